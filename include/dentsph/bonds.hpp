@@ -1,0 +1,42 @@
+// Adhesion bonds: per-pair hysteresis (MODEL.md), kept by stable particle id so that the bonds
+// survive the reordering of every step. Each particle has a fixed-capacity list of partners; an
+// insertion into a full list is refused and counted, never silent.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace dentsph {
+
+struct BondCounters {
+  std::uint64_t formed = 0;      // pairs bonded since the start (each pair once)
+  std::uint64_t broken = 0;      // pairs unbonded since the start (each pair once)
+  std::uint64_t overflowed = 0;  // insertions refused because a list was full (per side)
+};
+
+class BondStore {
+ public:
+  void resize(std::uint32_t particles, int capacity);
+  int capacity() const { return capacity_; }
+  std::uint32_t particles() const { return std::uint32_t(count_.size()); }
+
+  int count(std::uint32_t id) const { return count_[id]; }
+  std::uint32_t partner(std::uint32_t id, int k) const { return partner_[std::size_t(id) * capacity_ + k]; }
+  bool has(std::uint32_t id, std::uint32_t other) const;
+
+  // Adds `other` to the list of `id`; false (and counted) when the list is full.
+  bool add(std::uint32_t id, std::uint32_t other);
+  // Removes the k-th partner of `id` (the last one takes its place).
+  void remove_at(std::uint32_t id, int k);
+
+  // Bonded pairs now: half the sum of list lengths.
+  std::uint64_t current_pairs() const;
+  BondCounters counters;
+
+ private:
+  int capacity_ = 0;
+  std::vector<std::uint16_t> count_;    // [id]
+  std::vector<std::uint32_t> partner_;  // [id * capacity + k], partner ids
+};
+
+}  // namespace dentsph

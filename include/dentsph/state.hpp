@@ -1,0 +1,109 @@
+// State: everything a step changes (MODEL.md; cf. MuJoCo's mjData). Particles are stored as
+// structure of arrays, one array per quantity, all of length size(), in the current order
+// (sorted by grid cell after every step). A particle's stable id never changes; index_of_id
+// maps it to its current index.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dentsph/bonds.hpp"
+#include "dentsph/pose.hpp"
+#include "dentsph/vec3.hpp"
+
+namespace dentsph {
+
+struct Model;
+
+// How a particle moves (MODEL.md, "Particles").
+enum class Role : std::uint8_t {
+  material = 0,  // integrated
+  boundary = 1,  // static ghost particles (walls)
+  tool = 2,      // kinematic: rigid transform of the tool pose
+};
+const char* role_name(Role r);
+
+// Per-particle material parameters.
+struct Material {
+  real mu = 0;    // viscosity, Pa s
+  real Kp = 0;    // pressure stiffness, m^2/s^2 (P = Kp (rho - rho0))
+  real rho0 = 0;  // rest density, kg/m^3
+  real Ka = 0;    // adhesion strength, Pa
+};
+
+// One particle as the scene builder hands it in.
+struct ParticleInit {
+  Role role = Role::material;
+  Vec3 pos;        // m (for tool particles: position in the tool frame)
+  Vec3 vel;        // m/s (ignored for boundary and tool particles)
+  real mass = 0;   // kg
+  Material material;
+};
+
+// The wrench the particles exert on the tool (MODEL.md, "Haptic force").
+struct ToolWrench {
+  Vec3 force;   // N, sum over tool particles of m_i a_i (without gravity)
+  Vec3 torque;  // N m, about the tool pose's origin
+};
+
+// What the last step measured about itself.
+struct StepDiagnostics {
+  real max_accel = 0;        // m/s^2, largest |a| of a material particle
+  real max_speed = 0;        // m/s, largest |v| of a material particle after integration
+  std::uint64_t non_finite = 0;  // material particles whose state became NaN or infinite
+};
+
+// Scratch of the broad phase, sized with the particles (no allocation inside a step).
+struct GridIndex {
+  std::vector<std::uint32_t> key;         // [n] cell key of each particle (before sorting)
+  std::vector<std::uint32_t> order;       // [n] sorted position -> old index
+  std::vector<std::uint32_t> cell_start;  // [cells + 1] first sorted index of each cell
+  std::vector<std::uint32_t> cell_fill;   // [cells] counting-sort cursor
+};
+
+class State {
+ public:
+  // ---- particles, [size()] each, current order --------------------------------------------
+  std::vector<std::uint32_t> id;     // stable id in [0, size())
+  std::vector<Role> role;
+  std::vector<Vec3> pos;             // m
+  std::vector<Vec3> vel;             // m/s
+  std::vector<real> mass;            // kg
+  std::vector<real> mu;              // Pa s
+  std::vector<real> Kp;              // m^2/s^2
+  std::vector<real> rho0;            // kg/m^3
+  std::vector<real> Ka;              // Pa
+  std::vector<Vec3> anchor;          // m, tool particles: position in the tool frame
+  std::vector<real> rho;             // kg/m^3, from the density stage
+  std::vector<real> pressure;        // Pa, from the pressure stage
+  std::vector<Vec3> force;           // N/m^3, internal force density (no gravity)
+
+  // ---- by stable id -------------------------------------------------------------------------
+  std::vector<std::uint32_t> index_of_id;  // [size()] current index of each id
+  BondStore bonds;
+
+  // ---- tool and time ------------------------------------------------------------------------
+  Pose tool_pose;          // the pose the next step moves the tool to (set by the caller)
+  Pose tool_pose_applied;  // the pose the tool particles are at now
+  ToolWrench tool_wrench;  // from the last step
+  real time = 0;         // s, simulated
+  std::uint64_t steps = 0;
+  StepDiagnostics diagnostics;
+
+  // ---- scratch --------------------------------------------------------------------------------
+  GridIndex grid;
+  std::vector<Vec3> scratch_vec;
+  std::vector<real> scratch_real;
+  std::vector<std::uint32_t> scratch_u32;
+  std::vector<Role> scratch_role;
+
+  std::uint32_t size() const { return std::uint32_t(pos.size()); }
+
+  // Appends particles (between steps only); tool particles are placed at tool_pose. Sizes every
+  // buffer, the bond store and the grid scratch for `model`.
+  void add_particles(const Model& model, const std::vector<ParticleInit>& particles);
+  // Number of particles of each role.
+  std::uint32_t count(Role r) const;
+};
+
+}  // namespace dentsph

@@ -1,0 +1,40 @@
+// A small 3-vector usable in host and device code (no globals, no allocation).
+#pragma once
+
+#include <cmath>
+
+#include "dentsph/config.hpp"
+
+namespace dentsph {
+
+struct Vec3 {
+  real x = 0, y = 0, z = 0;
+
+  DENTSPH_HD constexpr Vec3() = default;
+  DENTSPH_HD constexpr Vec3(real x_, real y_, real z_) : x(x_), y(y_), z(z_) {}
+
+  DENTSPH_HD constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+  DENTSPH_HD constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+  DENTSPH_HD constexpr Vec3& operator*=(real s) { x *= s; y *= s; z *= s; return *this; }
+  DENTSPH_HD constexpr real operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+DENTSPH_HD constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
+DENTSPH_HD constexpr Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
+DENTSPH_HD constexpr Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
+DENTSPH_HD constexpr Vec3 operator*(Vec3 a, real s) { return a *= s; }
+DENTSPH_HD constexpr Vec3 operator*(real s, Vec3 a) { return a *= s; }
+DENTSPH_HD constexpr Vec3 operator/(const Vec3& a, real s) { return {a.x / s, a.y / s, a.z / s}; }
+DENTSPH_HD constexpr bool operator==(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+DENTSPH_HD constexpr real dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+DENTSPH_HD constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+DENTSPH_HD constexpr real norm2(const Vec3& a) { return dot(a, a); }
+DENTSPH_HD inline real norm(const Vec3& a) { return std::sqrt(norm2(a)); }
+DENTSPH_HD inline bool is_finite(const Vec3& a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+
+}  // namespace dentsph

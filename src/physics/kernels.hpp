@@ -1,0 +1,76 @@
+// SPH smoothing kernels (MODEL.md, "Kernels"): pure functions of their arguments, host and device.
+// Mueller et al. 2003 for poly6, spiky and viscosity; the paper's eq. 12 for adhesion.
+#pragma once
+
+#include <cmath>
+
+#include "dentsph/model.hpp"
+
+namespace dentsph::kernels {
+
+inline constexpr real pi = 3.14159265358979323846;
+
+// Normalisation constants for support h.
+DENTSPH_HD inline KernelCoeffs make_coeffs(real h, const AdhesionParams& a) {
+  KernelCoeffs k;
+  k.h = h;
+  k.h2 = h * h;
+  const real h3 = h * h * h;
+  const real h6 = h3 * h3;
+  k.poly6 = 315.0 / (64.0 * pi * h6 * h3);
+  k.spiky_grad = 45.0 / (pi * h6);
+  k.visc_lap = 45.0 / (pi * h6);
+  k.adh_scale = a.Cd / (h * h * h * h);
+  return k;
+}
+
+// Density kernel W_poly6 from the squared distance, 1/m^3. Integrates to 1.
+DENTSPH_HD inline real poly6(real r2, const KernelCoeffs& k) {
+  if (r2 >= k.h2) return 0;
+  const real d = k.h2 - r2;
+  return k.poly6 * d * d * d;
+}
+
+// Spiky value kernel 15/(pi h^6) (h - r)^3, 1/m^3 (for tests; the step uses its gradient).
+DENTSPH_HD inline real spiky(real r, const KernelCoeffs& k) {
+  if (r >= k.h) return 0;
+  const real d = k.h - r;
+  return k.spiky_grad / 3.0 * d * d * d;
+}
+
+// Radial derivative of the spiky kernel, 1/m^4: gradW_spiky(r_ij) = spiky_grad_radial(r) * rhat.
+DENTSPH_HD inline real spiky_grad_radial(real r, const KernelCoeffs& k) {
+  if (r >= k.h) return 0;
+  const real d = k.h - r;
+  return -k.spiky_grad * d * d;
+}
+
+// Viscosity value kernel 15/(2 pi h^3) (-r^3/(2h^3) + r^2/h^2 + h/(2r) - 1), 1/m^3 (for tests).
+DENTSPH_HD inline real visc(real r, const KernelCoeffs& k) {
+  if (r >= k.h) return 0;
+  const real h = k.h;
+  const real q = r / h;
+  return 15.0 / (2.0 * pi * h * h * h) * (-0.5 * q * q * q + q * q + 0.5 / q - 1.0);
+}
+
+// Laplacian of the viscosity kernel, 1/m^5.
+DENTSPH_HD inline real visc_laplacian(real r, const KernelCoeffs& k) {
+  if (r >= k.h) return 0;
+  return k.visc_lap * (k.h - r);
+}
+
+// The bracket x^eps - x^zeta of eq. 12, x in [0, 1]; integer exponents take the fast path.
+DENTSPH_HD inline real adhesion_bracket(real x, real eps, real zeta) {
+  if (eps == 3 && zeta == 2) return x * x * (x - 1);
+  return std::pow(x, eps) - std::pow(x, zeta);
+}
+
+// Adhesion kernel W_adh(r), 1/m^4: Cd/h^4 (x^eps - x^zeta), x = (r - A)/(B - A), on [A, B];
+// zero elsewhere. Non-positive, so W_adh * rhat (rhat from j to i) points from i to j: attraction.
+DENTSPH_HD inline real adhesion(real r, const AdhesionParams& a, const KernelCoeffs& k) {
+  if (r < a.A || r > a.B) return 0;
+  const real x = (r - a.A) / (a.B - a.A);
+  return k.adh_scale * adhesion_bracket(x, a.eps, a.zeta);
+}
+
+}  // namespace dentsph::kernels

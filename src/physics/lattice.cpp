@@ -1,0 +1,19 @@
+// Particle mass for a lattice at rest density: m = rho0 / sum_j W_poly6(|r_ij|) over the lattice.
+#include <cmath>
+
+#include "dentsph/scene.hpp"
+#include "physics/kernels.hpp"
+
+namespace dentsph {
+
+real lattice_particle_mass(real rho0, real spacing, const KernelCoeffs& kernel) {
+  const int n = int(std::ceil(kernel.h / spacing));
+  real sum = 0;
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j)
+      for (int k = -n; k <= n; ++k)
+        sum += kernels::poly6(spacing * spacing * real(i * i + j * j + k * k), kernel);
+  return rho0 / sum;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,79 @@
+// make_model(): checks the user's parameters and derives kernel constants, C_d and the grid.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "dentsph/model.hpp"
+#include "physics/kernels.hpp"
+
+namespace dentsph {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& field, const std::string& why) {
+  throw std::invalid_argument(fmt::format("{}: {}", field, why));
+}
+
+void require_finite_positive(real v, const char* field, const char* fix) {
+  if (!std::isfinite(v) || v <= 0) fail(field, fmt::format("must be a positive number, got {}; {}", v, fix));
+}
+
+}  // namespace
+
+real adhesion_normalisation(real eps, real zeta) {
+  // The bracket x^eps - x^zeta has its minimum where eps x^(eps-1) = zeta x^(zeta-1).
+  const real xs = std::pow(zeta / eps, 1.0 / (eps - zeta));
+  return 1.0 / (std::pow(xs, zeta) - std::pow(xs, eps));
+}
+
+Model make_model(const ModelParams& p) {
+  require_finite_positive(p.dt, "dt", "give the time step in seconds, e.g. 1e-4");
+  require_finite_positive(p.h, "h", "give the kernel support in metres, about twice the particle spacing");
+  if (!is_finite(p.gravity)) fail("gravity", "must be three finite numbers in m/s^2");
+  const AdhesionParams& a = p.adhesion;
+  require_finite_positive(a.A, "adhesion.A", "give the bond-forming distance in metres, a little under h");
+  require_finite_positive(a.B, "adhesion.B", "give the bond-breaking distance in metres, a little over h");
+  if (!(a.A < p.h && p.h < a.B))
+    fail("adhesion.A/adhesion.B",
+         fmt::format("need A < h < B (MODEL.md), got A = {}, h = {}, B = {}; e.g. A = 0.6 h, B = 1.5 h", a.A, p.h, a.B));
+  require_finite_positive(a.eps, "adhesion.eps", "the paper uses eps = 3");
+  require_finite_positive(a.zeta, "adhesion.zeta", "the paper uses zeta = 2");
+  if (!(a.eps > a.zeta))
+    fail("adhesion.eps", fmt::format("must exceed adhesion.zeta (got eps = {}, zeta = {}); the paper uses 3 and 2", a.eps, a.zeta));
+  if (p.max_bonds_per_particle < 1 || p.max_bonds_per_particle > 1024)
+    fail("max_bonds_per_particle", fmt::format("must be in [1, 1024], got {}", p.max_bonds_per_particle));
+  require_finite_positive(p.cfl_lambda, "cfl_lambda", "about 0.4 is usual");
+  if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
+      !(p.domain_min.y < p.domain_max.y) || !(p.domain_min.z < p.domain_max.z))
+    fail("domain", "min must be below max on every axis (metres)");
+
+  Model m;
+  m.dt = p.dt;
+  m.gravity = p.gravity;
+  m.adhesion = a;
+  m.adhesion.Cd = adhesion_normalisation(a.eps, a.zeta);
+  m.kernel = kernels::make_coeffs(p.h, m.adhesion);
+  m.max_bonds_per_particle = p.max_bonds_per_particle;
+  m.cfl_lambda = p.cfl_lambda;
+  m.domain_min = p.domain_min;
+  m.domain_max = p.domain_max;
+
+  // Grid: cells of edge h over the domain; at least 3 per axis (distinct 27-cell neighbourhoods),
+  // at most 2^22 cells in all (the domain wraps beyond, which stays correct).
+  GridSpec& g = m.grid;
+  g.origin = p.domain_min;
+  g.cell_size = p.h;
+  const Vec3 ext = p.domain_max - p.domain_min;
+  constexpr std::int64_t max_cells = std::int64_t(1) << 22;
+  for (;;) {
+    for (int ax = 0; ax < 3; ++ax)
+      g.dims[ax] = int(std::clamp<real>(std::ceil(ext[ax] / g.cell_size), 3, 4096));
+    if (g.cell_count() <= max_cells) break;
+    g.cell_size *= 1.25;
+  }
+  return m;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,47 @@
+// Pair interactions of the force stage (MODEL.md step 5), shared by every backend. Each returns
+// the force density that j exerts on i, in N/m^3. m_i/rho_i times it is antisymmetric in (i, j),
+// so internal forces conserve momentum.
+#pragma once
+
+#include "dentsph/state.hpp"
+#include "physics/kernels.hpp"
+
+namespace dentsph::pair {
+
+// What a pair term needs to know about one side.
+struct Side {
+  Vec3 pos;
+  Vec3 vel;
+  real mass;
+  real rho;
+  real pressure;
+  real mu;
+  real Ka;
+};
+
+// Pressure (eq. 5, Mueller's symmetrised form) plus viscosity (eq. 4), for 0 < r < h.
+// d = r_i - r_j, r = |d|.
+DENTSPH_HD inline Vec3 pressure_viscosity(const Side& i, const Side& j, const Vec3& d, real r,
+                                          const KernelCoeffs& k) {
+  if (r >= k.h || r <= 0) return {};
+  const real vol_j = j.mass / j.rho;
+  // -(P_i + P_j)/2 * m_j/rho_j * gradW_spiky, with gradW = radial * d / r.
+  const real fp = -0.5 * (i.pressure + j.pressure) * vol_j * kernels::spiky_grad_radial(r, k) / r;
+  const real fv = 0.5 * (i.mu + j.mu) * vol_j * kernels::visc_laplacian(r, k);
+  return d * fp + (j.vel - i.vel) * fv;
+}
+
+// Adhesion (eq. 11) of a bonded pair: (Ka_i + Ka_j)/2 * m_j/rho_j * W_adh(r) * rhat.
+DENTSPH_HD inline Vec3 adhesion(const Side& i, const Side& j, const Vec3& d, real r,
+                                const AdhesionParams& a, const KernelCoeffs& k) {
+  if (r <= 0) return {};
+  const real w = kernels::adhesion(r, a, k);
+  if (w == 0) return {};
+  return d * (0.5 * (i.Ka + j.Ka) * (j.mass / j.rho) * w / r);
+}
+
+// Whether a pair may bond at all: its mean adhesion strength is positive (so tool and wall,
+// both with Ka = 0, never bond; MODEL.md, "Particles").
+DENTSPH_HD inline bool can_bond(real Ka_i, real Ka_j) { return Ka_i + Ka_j > 0; }
+
+}  // namespace dentsph::pair

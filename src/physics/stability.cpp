@@ -1,0 +1,26 @@
+// Time-step limits (MODEL.md, "Stability"). Kp has the units of a squared sound speed
+// (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dentsph/step.hpp"
+
+namespace dentsph {
+
+StabilityLimits stability_limits(const Model& model, const State& s) {
+  constexpr real inf = std::numeric_limits<real>::infinity();
+  const real h = model.kernel.h;
+  real kp_max = 0, rho_over_mu_min = inf;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    kp_max = std::max(kp_max, s.Kp[i]);
+    if (s.mu[i] > 0) rho_over_mu_min = std::min(rho_over_mu_min, s.rho0[i] / s.mu[i]);
+  }
+  StabilityLimits l;
+  l.acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
+  l.viscous = 0.125 * h * h * rho_over_mu_min;
+  l.force = s.diagnostics.max_accel > 0 ? 0.25 * std::sqrt(h / s.diagnostics.max_accel) : inf;
+  return l;
+}
+
+}  // namespace dentsph

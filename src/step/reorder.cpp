@@ -1,0 +1,34 @@
+// Stage 2b: gather every per-particle array into cell order, so that the neighbour loops read
+// memory in sequence; then refresh the id -> index map that bonds and callers use.
+#include "step/stages.hpp"
+
+namespace dentsph::stages {
+
+namespace {
+
+template <class T>
+void gather(std::vector<T>& a, std::vector<T>& scratch, const std::vector<std::uint32_t>& order) {
+  const std::size_t n = a.size();
+  for (std::size_t k = 0; k < n; ++k) scratch[k] = a[order[k]];
+  a.swap(scratch);  // swaps buffers, no allocation
+}
+
+}  // namespace
+
+void reorder(State& s) {
+  const auto& order = s.grid.order;
+  gather(s.id, s.scratch_u32, order);
+  gather(s.role, s.scratch_role, order);
+  gather(s.pos, s.scratch_vec, order);
+  gather(s.vel, s.scratch_vec, order);
+  gather(s.anchor, s.scratch_vec, order);
+  gather(s.mass, s.scratch_real, order);
+  gather(s.mu, s.scratch_real, order);
+  gather(s.Kp, s.scratch_real, order);
+  gather(s.rho0, s.scratch_real, order);
+  gather(s.Ka, s.scratch_real, order);
+  // rho, pressure and force are recomputed before they are read again.
+  for (std::uint32_t i = 0; i < s.size(); ++i) s.index_of_id[s.id[i]] = i;
+}
+
+}  // namespace dentsph::stages

@@ -1,0 +1,34 @@
+// The stages of one step (MODEL.md, "One step"), one file each. step.cpp calls them in the
+// paper's order; brute_force.cpp replaces the grid stages by all-pairs loops.
+#pragma once
+
+#include "dentsph/model.hpp"
+#include "dentsph/state.hpp"
+
+namespace dentsph::stages {
+
+// 1. Broad phase: the grid cell key of every particle (hash.cpp).
+void compute_cell_keys(const Model& model, State& state);
+// 2a. Counting radix sort of the particles by cell key, and each cell's range (sort.cpp).
+void sort_by_cell(const Model& model, State& state);
+// 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
+void reorder(State& state);
+// Bond hysteresis over the grid: break beyond B, form below A (bonds/hysteresis.cpp).
+void update_bonds(const Model& model, State& state);
+// 3. Density over the 27 neighbouring cells (density.cpp).
+void compute_density(const Model& model, State& state);
+// 4. Repulsion-only pressure (pressure.cpp).
+void compute_pressure(State& state);
+// 5. Pressure, viscosity and adhesion force densities (forces.cpp).
+void compute_forces(const Model& model, State& state);
+// Wrench of the particles on the tool, from the forces of this step (tool_wrench.cpp).
+void compute_tool_wrench(State& state);
+// 6. Semi-implicit Euler for material; the tool moves to its pose (integrate.cpp).
+void integrate(const Model& model, State& state);
+
+// The all-pairs versions of the neighbour stages (brute_force.cpp).
+void update_bonds_all_pairs(const Model& model, State& state);
+void compute_density_all_pairs(const Model& model, State& state);
+void compute_forces_all_pairs(const Model& model, State& state);
+
+}  // namespace dentsph::stages

@@ -1,0 +1,57 @@
+#include <algorithm>
+#include <stdexcept>
+
+#include "dentsph/model.hpp"
+#include "dentsph/state.hpp"
+
+namespace dentsph {
+
+const char* role_name(Role r) {
+  switch (r) {
+    case Role::material: return "material";
+    case Role::boundary: return "boundary";
+    case Role::tool: return "tool";
+  }
+  return "unknown";
+}
+
+std::uint32_t State::count(Role r) const {
+  return std::uint32_t(std::count(role.begin(), role.end(), r));
+}
+
+void State::add_particles(const Model& model, const std::vector<ParticleInit>& particles) {
+  const std::uint32_t n0 = size();
+  const std::uint32_t n = n0 + std::uint32_t(particles.size());
+  for (const ParticleInit& p : particles) {
+    const std::uint32_t i = std::uint32_t(pos.size());
+    if (!(p.mass > 0)) throw std::invalid_argument("particle mass must be positive");
+    id.push_back(i);
+    role.push_back(p.role);
+    anchor.push_back(p.role == Role::tool ? p.pos : Vec3{});
+    pos.push_back(p.role == Role::tool ? tool_pose_applied.apply(p.pos) : p.pos);
+    vel.push_back(p.role == Role::material ? p.vel : Vec3{});
+    mass.push_back(p.mass);
+    mu.push_back(p.material.mu);
+    Kp.push_back(p.material.Kp);
+    rho0.push_back(p.material.rho0);
+    Ka.push_back(p.material.Ka);
+    rho.push_back(p.material.rho0);
+    pressure.push_back(0);
+    force.push_back({});
+  }
+  // Ids are dense and equal to the index at insertion; earlier particles may have moved.
+  index_of_id.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) index_of_id[id[i]] = i;
+  bonds.resize(n, model.max_bonds_per_particle);
+
+  grid.key.resize(n);
+  grid.order.resize(n);
+  grid.cell_start.assign(std::size_t(model.grid.cell_count()) + 1, 0);
+  grid.cell_fill.assign(std::size_t(model.grid.cell_count()), 0);
+  scratch_vec.resize(n);
+  scratch_real.resize(n);
+  scratch_u32.resize(n);
+  scratch_role.resize(n);
+}
+
+}  // namespace dentsph
