@@ -22,6 +22,10 @@ void compute_density_all_pairs(const Model& model, State& s) {
 void compute_forces_all_pairs(const Model& model, State& s) {
   const std::uint32_t n = s.size();
   for (std::uint32_t i = 0; i < n; ++i) {
+    if (s.role[i] == Role::boundary) {  // static: its force is never used
+      s.force[i] = {};
+      continue;
+    }
     const pair::Side si = side_of(s, i);
     Vec3 f;
     for (std::uint32_t j = 0; j < n; ++j) {

@@ -11,6 +11,10 @@ void compute_forces(const Model& model, State& s) {
   const std::uint32_t n = s.size();
   const KernelCoeffs& k = model.kernel;
   for (std::uint32_t i = 0; i < n; ++i) {
+    if (s.role[i] == Role::boundary) {  // static: its force is never used
+      s.force[i] = {};
+      continue;
+    }
     const pair::Side si = side_of(s, i);
     Vec3 f;
     grid::for_each_in_neighbourhood(model.grid, s.grid, si.pos, [&](std::uint32_t j) {

@@ -1,0 +1,74 @@
+// Small programmatic scenes for tests: a model with chosen parameters and particles on lattices
+// or at random, without going through the scene file format.
+#pragma once
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "dentsph/model.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/state.hpp"
+
+namespace dentsph::testing {
+
+// A model of spacing s: h = 2 s, A = 1.2 s, B = 3 s, over the given domain.
+inline ModelParams params_for_spacing(real s, Vec3 lo, Vec3 hi, real dt = 1e-4, Vec3 g = {0, 0, 0}) {
+  ModelParams p;
+  p.dt = dt;
+  p.h = 2 * s;
+  p.gravity = g;
+  p.adhesion.A = 1.2 * s;
+  p.adhesion.B = 3 * s;
+  p.domain_min = lo;
+  p.domain_max = hi;
+  return p;
+}
+
+inline ParticleInit particle(Role role, Vec3 pos, real mass, Material m, Vec3 vel = {}) {
+  ParticleInit p;
+  p.role = role;
+  p.pos = pos;
+  p.vel = vel;
+  p.mass = mass;
+  p.material = m;
+  return p;
+}
+
+// Points lo + s*(i,j,k) for 0 <= i < n[0] etc.
+inline std::vector<Vec3> lattice(Vec3 lo, real s, int nx, int ny, int nz) {
+  std::vector<Vec3> pts;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) pts.push_back(lo + Vec3{i * s, j * s, k * s});
+  return pts;
+}
+
+// Shell of `layers` lattice layers around the inner box [lo, lo + s*n] (walls start one spacing
+// outside it), open at the top.
+inline std::vector<Vec3> open_container(Vec3 lo, real s, int nx, int ny, int nz, int layers) {
+  std::vector<Vec3> pts;
+  for (int k = -layers; k <= nz; ++k)
+    for (int j = -layers; j <= ny + layers; ++j)
+      for (int i = -layers; i <= nx + layers; ++i) {
+        const bool inside = i >= 0 && i <= nx && j >= 0 && j <= ny && k >= 0;
+        if (!inside) pts.push_back(lo + Vec3{i * s, j * s, k * s});
+      }
+  return pts;
+}
+
+inline Vec3 random_in_box(std::mt19937_64& rng, Vec3 lo, Vec3 hi) {
+  std::uniform_real_distribution<real> u(0, 1);
+  return {lo.x + (hi.x - lo.x) * u(rng), lo.y + (hi.y - lo.y) * u(rng), lo.z + (hi.z - lo.z) * u(rng)};
+}
+
+inline Vec3 total_momentum(const State& s) {
+  Vec3 p;
+  for (std::uint32_t i = 0; i < s.size(); ++i) p += s.vel[i] * s.mass[i];
+  return p;
+}
+
+// Index of each stable id, for comparing states whose order differs.
+inline std::uint32_t at(const State& s, std::uint32_t id) { return s.index_of_id[id]; }
+
+}  // namespace dentsph::testing
