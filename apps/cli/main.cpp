@@ -1,1 +1,112 @@
-int main(){}
+// dentsph: the command-line program. Subcommands: run (an offline run of a scene), validate
+// (check a scene without running it).
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "dentsph/run.hpp"
+#include "dentsph/scene.hpp"
+
+namespace {
+
+using namespace dentsph;
+
+// Prints a progress line at most every 2 s of wall time, and at the end.
+void print_progress(const RunProgress& p) {
+  static double last_print = -1e9;
+  if (p.step != p.total && p.wall_s - last_print < 2.0) return;
+  last_print = p.wall_s;
+  const double pct = 100.0 * double(p.step) / double(p.total);
+  spdlog::info("step {:>9}/{} ({:5.1f}%)  t = {:.4f} s  {:.0f} steps/s  ETA {:.1f} s", p.step, p.total, pct,
+               p.sim_time, p.wall_s > 0 ? double(p.step) / p.wall_s : 0.0, p.eta_s);
+}
+
+void print_scene(const Scene& sc, const State& st) {
+  fmt::print("scene      {} ({})\n", sc.name, sc.source);
+  fmt::print("particles  {} material, {} boundary, {} tool\n", st.count(Role::material), st.count(Role::boundary),
+             st.count(Role::tool));
+  fmt::print("kernel     h = {:.4g} m, adhesion A = {:.4g} m, B = {:.4g} m, eps = {}, zeta = {}\n", sc.model.kernel.h,
+             sc.model.adhesion.A, sc.model.adhesion.B, sc.model.adhesion.eps, sc.model.adhesion.zeta);
+  fmt::print("grid       {} x {} x {} cells of {:.4g} m\n", sc.model.grid.dims[0], sc.model.grid.dims[1],
+             sc.model.grid.dims[2], sc.model.grid.cell_size);
+  const StabilityLimits l = stability_limits(sc.model, st);
+  fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
+             l.viscous);
+}
+
+int cmd_validate(const std::string& file) {
+  const Scene sc = load_scene(file);
+  const State st = make_state(sc);
+  print_scene(sc, st);
+  check_time_step(sc, st, false);
+  fmt::print("ok: {} is a valid scene\n", file);
+  return 0;
+}
+
+int cmd_run(const std::string& file, RunOptions opt, bool quiet) {
+  const Scene sc = load_scene(file);
+  if (!quiet) print_scene(sc, make_state(sc));
+  if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
+    throw std::invalid_argument(fmt::format(
+        "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", file));
+  if (!quiet) opt.on_progress = print_progress;
+  const RunSummary s = run_offline(sc, opt);
+  fmt::print("\n{} steps ({:.4g} s simulated) in {:.2f} s: {:.0f} steps/s\n", s.steps, s.sim_time_s, s.wall_time_s,
+             s.steps_per_second);
+  fmt::print("bonds: {} now, {} formed, {} broken, {} overflowed\n", s.bonds_current, s.bonds.formed,
+             s.bonds.broken, s.bonds.overflowed);
+  fmt::print("peak tool force: {:.4g} N\n", s.peak_tool_force_N);
+  if (s.force_violation_steps > 0)
+    fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "
+               "{:.3g} s)\n",
+               s.force_violation_steps, s.first_force_violation_t, s.limits.force);
+  if (!opt.out_dir.empty())
+    fmt::print("wrote {}: summary.json, tool_force.csv, particles.pvd ({} snapshots; open it in ParaView)\n",
+               opt.out_dir.string(), s.snapshots);
+  if (s.status != "completed") {
+    fmt::print(stderr, "error: the run diverged: {}\n", s.message);
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dentsph: SPH simulation of dental filling material with haptic force output"};
+  app.require_subcommand(1);
+
+  std::string run_scene, out_dir = "out";
+  RunOptions opt;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
+  run->add_option("scene", run_scene, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
+  auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
+  run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(steps);
+  run->add_option("--out", out_dir, "Output folder")->capture_default_str();
+  run->add_flag("--allow-unstable", opt.allow_unstable, "Run even when dt is over a stability limit");
+  run->add_flag("-q,--quiet", quiet, "No progress output");
+
+  std::string validate_scene;
+  CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
+  validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run) {
+      opt.out_dir = out_dir;
+      return cmd_run(run_scene, opt, quiet);
+    }
+    if (*validate) return cmd_validate(validate_scene);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -20,6 +20,7 @@ struct StabilityLimits {
   real acoustic = 0;  // lambda h / sqrt(max Kp)
   real viscous = 0;   // 0.125 h^2 min(rho0 / mu)
   real force = 0;     // 0.25 sqrt(h / max|a|), from the last step (infinite before any)
+  real sound_speed = 0;  // m/s, c = sqrt(max Kp); material moving at many times c has exploded
 };
 StabilityLimits stability_limits(const Model& model, const State& state);
 

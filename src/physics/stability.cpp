@@ -17,6 +17,7 @@ StabilityLimits stability_limits(const Model& model, const State& s) {
     if (s.mu[i] > 0) rho_over_mu_min = std::min(rho_over_mu_min, s.rho0[i] / s.mu[i]);
   }
   StabilityLimits l;
+  l.sound_speed = std::sqrt(kp_max);
   l.acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
   l.viscous = 0.125 * h * h * rho_over_mu_min;
   l.force = s.diagnostics.max_accel > 0 ? 0.25 * std::sqrt(h / s.diagnostics.max_accel) : inf;

@@ -95,6 +95,11 @@ void compare(const State& g, const State& r, int step) {
   expect_close(g.tool_wrench.torque, r.tool_wrench.torque, 1e-11, "tool torque", 0, step);
 }
 
+void PrintTo(const Config& c, std::ostream* os) {
+  *os << "material" << c.n_side << "cubed_jitter" << int(c.jitter * 100) << "pct" << (c.on_borders ? "_on_cell_borders" : "")
+      << (c.far_outliers ? "_far_outliers" : "") << (c.with_tool ? "_tool" : "");
+}
+
 class GridParity : public ::testing::TestWithParam<Config> {};
 
 TEST_P(GridParity, MatchesAllPairsOver100Steps) {

@@ -1,0 +1,70 @@
+#include "io/summary.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace dentsph::io {
+
+namespace {
+
+// JSON has no infinity: an absent limit is written as null.
+nlohmann::json seconds(real v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+std::string summary_json(const RunSummary& s) {
+  nlohmann::json j;
+  j["scene"] = s.scene;
+  j["status"] = s.status;
+  if (!s.message.empty()) j["message"] = s.message;
+  j["steps"] = s.steps;
+  j["sim_time_s"] = s.sim_time_s;
+  j["wall_time_s"] = s.wall_time_s;
+  j["steps_per_second"] = s.steps_per_second;
+  j["particles"] = {{"material", s.material}, {"boundary", s.boundary}, {"tool", s.tool},
+                    {"total", s.material + s.boundary + s.tool}};
+  j["bonds"] = {{"current", s.bonds_current},
+                {"formed", s.bonds.formed},
+                {"broken", s.bonds.broken},
+                {"overflowed", s.bonds.overflowed}};
+  j["stability"] = {{"dt_s", s.dt},
+                    {"limits_s", {{"acoustic", seconds(s.limits.acoustic)},
+                                  {"viscous", seconds(s.limits.viscous)},
+                                  {"force_min", seconds(s.limits.force)}}},
+                    {"violations", {{"acoustic", s.acoustic_violated},
+                                    {"viscous", s.viscous_violated},
+                                    {"force_steps", s.force_violation_steps},
+                                    {"first_force_violation_t_s", s.first_force_violation_t >= 0
+                                                                      ? nlohmann::json(s.first_force_violation_t)
+                                                                      : nlohmann::json(nullptr)}}},
+                    {"forced", s.forced}};
+  j["tool"] = {{"peak_force_N", s.peak_tool_force_N}};
+  j["snapshots"] = s.snapshots;
+  return j.dump(2);
+}
+
+void write_summary(const std::filesystem::path& file, const RunSummary& s) {
+  std::ofstream out(file);
+  out << summary_json(s) << "\n";
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary", file.string()));
+}
+
+ToolForceCsv::ToolForceCsv(const std::filesystem::path& file) : f_(std::fopen(file.c_str(), "w")) {
+  if (!f_) throw std::runtime_error(fmt::format("{}: cannot open for writing", file.string()));
+  std::fputs("t,fx,fy,fz,tx,ty,tz\n", f_);
+}
+
+ToolForceCsv::~ToolForceCsv() {
+  if (f_) std::fclose(f_);
+}
+
+void ToolForceCsv::add(real t, const ToolWrench& w) {
+  fmt::print(f_, "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", t, w.force.x, w.force.y, w.force.z, w.torque.x,
+             w.torque.y, w.torque.z);
+}
+
+}  // namespace dentsph::io

@@ -1,0 +1,125 @@
+// Materials of a scene: the named table, the default material per role, and per-block overrides
+// (docs/scene-format.md, "materials", "roles", "Choosing a block's material").
+#include <fmt/format.h>
+
+#include "scene/parse.hpp"
+
+namespace dentsph::scene {
+
+namespace {
+
+// One material field: its JSON key, where it goes, and what it accepts.
+struct MaterialField {
+  std::string_view key;
+  real Material::*member;
+  Range range;
+  std::string_view hint;
+};
+
+constexpr MaterialField material_fields[] = {
+    {"viscosity", &Material::mu, Range::non_negative,
+     "the dynamic viscosity mu in Pa s (>= 0), e.g. 0.5"},
+    {"stiffness", &Material::Kp, Range::positive,
+     "the pressure stiffness Kp in m^2/s^2 (> 0; sqrt(Kp) is the sound speed), e.g. 60"},
+    {"rest_density", &Material::rho0, Range::positive,
+     "the rest density rho0 in kg/m^3 (> 0), e.g. 1000"},
+    {"adhesion", &Material::Ka, Range::non_negative,
+     "the adhesion strength Ka in Pa (>= 0; 0 for walls and tools), e.g. 200"},
+};
+
+constexpr std::string_view role_keys[] = {"material", "boundary", "tool"};  // indexed by Role
+
+// A complete material: all four fields required.
+Material read_material(const Reader& m) {
+  m.only({"viscosity", "stiffness", "rest_density", "adhesion"});
+  Material mat;
+  for (const MaterialField& f : material_fields) mat.*f.member = m.number(f.key, f.hint, f.range);
+  return mat;
+}
+
+// An inline override: "base" (optional when the role has a default) plus any of the four fields.
+// Without a base, every field is required.
+Material read_override(const Reader& m, const MaterialTable& table,
+                       const MaterialDefault& fallback) {
+  m.only({"base", "viscosity", "stiffness", "rest_density", "adhesion"});
+  std::optional<Material> base = fallback.material;
+  if (m.has("base"))
+    base = table.lookup(m, "base", m.string("base", "the name of the material to start from"));
+  Material mat = base.value_or(Material{});
+  for (const MaterialField& f : material_fields) {
+    if (base) {
+      if (m.has(f.key)) mat.*f.member = m.number(f.key, f.hint, f.range);
+    } else {
+      const std::string hint =
+          fmt::format("{} (or a \"base\" material to start from: there is no default from {})",
+                      f.hint, fallback.from);
+      mat.*f.member = m.number(f.key, hint, f.range);
+    }
+  }
+  return mat;
+}
+
+std::vector<std::string_view> names_of(const MaterialTable& table) {
+  std::vector<std::string_view> names;
+  for (const auto& [name, mat] : table.by_name) names.push_back(name);
+  return names;
+}
+
+}  // namespace
+
+const Material& MaterialTable::lookup(const Reader& at, std::string_view key,
+                                      const std::string& name) const {
+  if (const auto it = by_name.find(name); it != by_name.end()) return it->second;
+  const std::vector<std::string_view> names = names_of(*this);
+  const std::string_view guess = closest(name, names);
+  at.fail(key, fmt::format("unknown material \"{}\"", name),
+          fmt::format("{}the materials defined under \"materials\" are: {}",
+                      guess.empty() ? "" : fmt::format("did you mean \"{}\"? ", guess),
+                      fmt::join(names, ", ")));
+}
+
+MaterialTable parse_materials(const Reader& root) {
+  MaterialTable table;
+  const Reader mats =
+      root.object("materials",
+                  "the materials by name, e.g. {\"paste\": {\"viscosity\": 0.5, \"stiffness\": "
+                  "60, \"rest_density\": 1000, \"adhesion\": 200}}");
+  for (const auto& item : root.find("materials")->items()) {
+    if (item.key().empty()) mats.fail("\"\"", "empty material name", "give every material a name");
+    const Reader m(item.value(), mats.path_of(item.key()), root.source(), "a material");
+    table.by_name.emplace(item.key(), read_material(m));
+  }
+  if (table.by_name.empty())
+    mats.fail_here("no materials",
+                   "define at least one, e.g. \"paste\": {\"viscosity\": 0.5, ...}");
+
+  if (const std::optional<Reader> roles = root.optional_object(
+          "roles", "the default material of each role, e.g. {\"material\": \"paste\"}")) {
+    roles->only({role_keys[0], role_keys[1], role_keys[2]});
+    for (int r = 0; r < 3; ++r)
+      if (roles->has(role_keys[r])) {
+        const std::string name =
+            roles->string(role_keys[r], "the name of a material under \"materials\"");
+        table.role_default[r] = table.lookup(*roles, role_keys[r], name);
+      }
+  }
+  return table;
+}
+
+Material resolve_material(const Reader& owner, const MaterialTable& table,
+                          const MaterialDefault& fallback) {
+  const Json* v = owner.find("material");
+  if (v == nullptr) {
+    if (fallback.material) return *fallback.material;
+    owner.fail("material", fmt::format("missing, and there is no default from {}", fallback.from),
+               fmt::format("give \"material\": \"<name>\" here, or set {}", fallback.from));
+  }
+  if (v->is_string()) return table.lookup(owner, "material", v->get<std::string>());
+  if (v->is_object())
+    return read_override(Reader(*v, owner.path_of("material"), owner.source(), "a material"), table,
+                         fallback);
+  owner.fail("material", fmt::format("expected a material name or an object, got {}", describe(*v)),
+             "give a name (\"paste\") or an override ({\"base\": \"paste\", \"adhesion\": 0})");
+}
+
+}  // namespace dentsph::scene

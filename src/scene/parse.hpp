@@ -1,0 +1,71 @@
+// The scene parser's parts, one concept per file: materials_json.cpp (materials, roles and
+// per-block overrides), block_json.cpp (a block of particles), tool_json.cpp (the tool and its
+// keyframes), scene_json.cpp (the top level, simulation settings and the Model).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dentsph/model.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/state.hpp"
+#include "scene/reader.hpp"
+
+namespace dentsph::scene {
+
+// ---- materials (materials_json.cpp) ------------------------------------------------------------
+
+// The scene's named materials and the default material of each role ("roles").
+struct MaterialTable {
+  std::map<std::string, Material, std::less<>> by_name;
+  std::optional<Material> role_default[3];  // indexed by Role
+
+  const std::optional<Material>& default_for(Role r) const { return role_default[int(r)]; }
+  // The material called `name`, or a SceneError at field `key` of `at` listing the known ones.
+  const Material& lookup(const Reader& at, std::string_view key, const std::string& name) const;
+};
+
+// Reads "materials" (required) and "roles" (optional) of the top level.
+MaterialTable parse_materials(const Reader& root);
+
+// Where a block's material comes from when it gives none: the material and the field that set
+// it ("roles.boundary", "tool.material"), for messages.
+struct MaterialDefault {
+  std::optional<Material> material;
+  std::string from;
+};
+
+// The material of the object read by `owner`: its "material" field (a name, or an inline object
+// overriding a base that defaults to `fallback`), else `fallback`.
+Material resolve_material(const Reader& owner, const MaterialTable& table,
+                          const MaterialDefault& fallback);
+
+// ---- blocks (block_json.cpp) --------------------------------------------------------------------
+
+struct BlockContext {
+  Role role;  // Role::tool for the tool's blocks (which have no "role" field)
+  const MaterialTable& materials;
+  MaterialDefault fallback;    // the role's material
+  const KernelCoeffs& kernel;  // h and the poly6 constants, for the default particle mass
+};
+
+// The role of a world block ("material" or "boundary"), from its "role" field.
+Role parse_role(const Reader& block);
+
+// The particles of one block, in the block's frame (world, or the tool frame for tool blocks).
+std::vector<ParticleInit> parse_block(const Reader& block, const BlockContext& ctx);
+
+// ---- tool (tool_json.cpp) -----------------------------------------------------------------------
+
+struct ToolPart {
+  std::vector<ParticleInit> particles;  // tool frame, Role::tool
+  ToolTrajectory trajectory;
+};
+
+// Reads the "tool" object.
+ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel);
+
+}  // namespace dentsph::scene

@@ -1,0 +1,224 @@
+// parse_scene and load_scene: the top level of a scene file, its simulation settings, and the
+// Model built from them (docs/scene-format.md).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "scene/parse.hpp"
+
+namespace dentsph::scene {
+
+namespace {
+
+// nlohmann's messages read "[json.exception.parse_error.101] parse error at line 3, column 7:
+// syntax error ...": the location becomes the path slot of ours, the rest the problem.
+[[noreturn]] void fail_syntax(const std::string& source, const Json::exception& e) {
+  std::string_view msg = e.what();
+  if (const auto bracket = msg.find("] "); bracket != std::string_view::npos)
+    msg.remove_prefix(bracket + 2);
+  std::string where = "JSON";
+  constexpr std::string_view at = "parse error at ";
+  if (msg.starts_with(at)) {
+    msg.remove_prefix(at.size());
+    const auto colon = msg.find(": ");
+    where = std::string(msg.substr(0, colon));
+    msg.remove_prefix(colon == std::string_view::npos ? msg.size() : colon + 2);
+  }
+  fail(source, where, msg,
+       "fix the JSON syntax (strict JSON: no comments, no trailing commas, no NaN or Infinity, "
+       "numbers within double range)");
+}
+
+Json parse_json(const std::string& text, const std::string& source) {
+  try {
+    return Json::parse(text);
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
+    fail_syntax(source, e);
+  }
+}
+
+// make_model's messages read "<field>: <problem>; <fix>" with fields named as in ModelParams:
+// adhesion.* keep their name, the rest live under "simulation".
+Model build_model(const ModelParams& p, const std::string& source) {
+  try {
+    return make_model(p);
+  } catch (const std::invalid_argument& e) {
+    const std::string_view msg = e.what();
+    const auto colon = msg.find(": ");
+    const std::string_view field = msg.substr(0, colon);
+    const std::string path =
+        field.starts_with("adhesion") ? std::string(field) : fmt::format("simulation.{}", field);
+    const std::string_view rest = colon == std::string_view::npos ? msg : msg.substr(colon + 2);
+    // Keep our "<problem>; <fix>" shape where make_model gave no fix.
+    const bool has_fix = rest.find("; ") != std::string_view::npos;
+    throw SceneError(fmt::format("{}: {}: {}{}", source, path, rest,
+                                 has_fix ? "" : "; see docs/scene-format.md"));
+  }
+}
+
+struct Domain {
+  bool given = false;
+  Vec3 min, max;  // m
+};
+
+// "simulation": time step, kernel support, gravity and the tunables of the Model.
+ModelParams read_simulation(const Reader& root, Domain& domain) {
+  const Reader sim =
+      root.object("simulation", "the simulation settings {\"dt\": 5e-4, \"h\": 0.02, ...}");
+  sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "domain"});
+  ModelParams p;
+  p.dt = sim.number("dt", "the time step in s, e.g. 5e-4", Range::positive);
+  p.h = sim.number("h", "the kernel support in m, about twice the spacing, e.g. 0.02",
+                   Range::positive);
+  p.gravity = sim.vec3_or("gravity", p.gravity, "the gravity [gx, gy, gz] in m/s^2");
+  p.max_bonds_per_particle = int(sim.integer_or(
+      "max_bonds_per_particle", p.max_bonds_per_particle, "the bond capacity per particle, e.g. 32",
+      std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+  p.cfl_lambda = sim.number_or("cfl_lambda", p.cfl_lambda, "the acoustic Courant number, about 0.4",
+                               Range::positive);
+  if (const std::optional<Reader> d = sim.optional_object(
+          "domain", "the grid region {\"min\": [x, y, z], \"max\": [x, y, z]} in m")) {
+    d->only({"min", "max"});
+    domain = {true, d->vec3("min", "the domain's lower corner in m"),
+              d->vec3("max", "the domain's upper corner in m")};
+  }
+  return p;
+}
+
+// "adhesion": the support [A, B] of the adhesion kernel and its exponents (MODEL.md eq. 12).
+AdhesionParams read_adhesion(const Reader& root) {
+  const Reader a = root.object("adhesion", "the adhesion kernel {\"A\": 0.012, \"B\": 0.03}");
+  a.only({"A", "B", "eps", "zeta"});
+  AdhesionParams p;
+  p.A = a.number("A", "the bond-forming distance in m, a little under h", Range::positive);
+  p.B = a.number("B", "the bond-breaking distance in m, a little over h", Range::positive);
+  p.eps = a.number_or("eps", p.eps, "the rising exponent, 3 in the paper", Range::positive);
+  p.zeta = a.number_or("zeta", p.zeta, "the falling exponent, 2 in the paper", Range::positive);
+  return p;
+}
+
+OutputSettings read_output(const Reader& root) {
+  OutputSettings out;
+  if (const std::optional<Reader> o = root.optional_object(
+          "output", "the output settings {\"snapshot_interval\": 0.01, \"vtk\": true}")) {
+    o->only({"snapshot_interval", "vtk"});
+    out.snapshot_interval = o->number_or(
+        "snapshot_interval", out.snapshot_interval,
+        "the simulated time between snapshots in s (0: none), e.g. 0.01", Range::non_negative);
+    out.vtk = o->boolean_or("vtk", out.vtk, "true to write .vtu snapshots and a .pvd index");
+  }
+  return out;
+}
+
+real read_duration(const Reader& root) {
+  const std::optional<Reader> run = root.optional_object("run", "{\"duration\": 1.0}");
+  if (!run) return 0;
+  run->only({"duration"});
+  return run->number_or("duration", 0, "the default run length in s of simulated time",
+                        Range::positive);
+}
+
+std::vector<ParticleInit> read_blocks(const Reader& root, const MaterialTable& materials,
+                                      const KernelCoeffs& kernel) {
+  const Json& blocks = root.array("blocks",
+                                  "at least one block of particles, e.g. [{\"role\": \"material\", "
+                                  "\"shape\": \"box\", ...}]");
+  std::vector<ParticleInit> particles;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const Reader b = root.element(blocks, "blocks", i, "a block");
+    const Role role = parse_role(b);
+    const MaterialDefault fallback{materials.default_for(role),
+                                   fmt::format("roles.{}", role_name(role))};
+    const std::vector<ParticleInit> ps = parse_block(b, {role, materials, fallback, kernel});
+    particles.insert(particles.end(), ps.begin(), ps.end());
+  }
+  return particles;
+}
+
+// Default domain: the bounding box of the world particles and of the tool's particles at every
+// keyframe, padded by 2h. (Between keyframes a rotating tool may leave it; the grid wraps, so
+// that costs time, never correctness.)
+Domain bounding_domain(const std::vector<ParticleInit>& world, const ToolPart& tool, real h) {
+  constexpr real inf = std::numeric_limits<real>::infinity();
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  auto grow = [&](const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  };
+  for (const ParticleInit& p : world) grow(p.pos);
+  for (const ToolKeyframe& kf : tool.trajectory.keyframes)
+    for (const ParticleInit& p : tool.particles) grow(kf.pose.apply(p.pos));
+  const Vec3 pad{2 * h, 2 * h, 2 * h};
+  return {true, lo - pad, hi + pad};
+}
+
+}  // namespace
+
+}  // namespace dentsph::scene
+
+namespace dentsph {
+
+Scene parse_scene(const std::string& json_text, const std::string& source) {
+  using namespace scene;
+  const Json json = parse_json(json_text, source);
+  const Reader root(json, "", source, "a scene");
+  root.only({"name", "description", "simulation", "adhesion", "materials", "roles", "blocks",
+             "tool", "output", "run"});
+
+  Scene sc;
+  sc.source = source;
+  sc.name = root.string("name", "the scene's name, e.g. \"blob_on_plate\"");
+  if (sc.name.empty()) root.fail("name", "is empty", "give the scene a name");
+  (void)root.optional_string("description", "a description of the scene");
+
+  // Check the physical parameters first (a provisional domain: the particles are not known yet):
+  // the blocks need a valid h and kernel for their spacing check and default particle mass.
+  Domain domain;
+  sc.params = read_simulation(root, domain);
+  sc.params.adhesion = read_adhesion(root);
+  sc.params.domain_min = domain.given ? domain.min : Vec3{-1, -1, -1};
+  sc.params.domain_max = domain.given ? domain.max : Vec3{1, 1, 1};
+  const KernelCoeffs kernel = build_model(sc.params, source).kernel;
+
+  const MaterialTable materials = parse_materials(root);
+  sc.particles = read_blocks(root, materials, kernel);
+  if (const std::optional<Reader> t =
+          root.optional_object("tool", "the tool {\"blocks\": [...], \"keyframes\": [...]}")) {
+    ToolPart tool = parse_tool(*t, materials, kernel);
+    if (!domain.given) domain = bounding_domain(sc.particles, tool, sc.params.h);
+    sc.particles.insert(sc.particles.end(), tool.particles.begin(), tool.particles.end());
+    sc.tool = std::move(tool.trajectory);
+  } else if (!domain.given) {
+    domain = bounding_domain(sc.particles, {}, sc.params.h);
+  }
+  sc.output = read_output(root);
+  sc.duration = read_duration(root);
+
+  sc.params.domain_min = domain.min;
+  sc.params.domain_max = domain.max;
+  sc.model = build_model(sc.params, source);
+  return sc;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw SceneError(
+        fmt::format("{}: cannot read the scene file: {}; check the path", name,
+                    std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in || in.bad())
+    throw SceneError(fmt::format("{}: cannot read the scene file: {}; check its permissions", name,
+                                 std::strerror(errno)));
+  return parse_scene(text.str(), name);
+}
+
+}  // namespace dentsph

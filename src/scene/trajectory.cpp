@@ -1,0 +1,24 @@
+// ToolTrajectory::at: the tool's pose at a time, from its keyframes.
+#include <algorithm>
+
+#include "dentsph/scene.hpp"
+
+namespace dentsph {
+
+Pose ToolTrajectory::at(real t) const {
+  if (keyframes.empty()) return Pose{};
+  // Held before the first and after the last keyframe (a NaN time also gets the first).
+  if (!(t > keyframes.front().t)) return keyframes.front().pose;
+  if (t >= keyframes.back().t) return keyframes.back().pose;
+  // The segment [a.t, b.t) holding t: b is the first keyframe after t.
+  const auto b = std::upper_bound(keyframes.begin(), keyframes.end(), t,
+                                  [](real time, const ToolKeyframe& k) { return time < k.t; });
+  const ToolKeyframe& a = *(b - 1);
+  const real s = (t - a.t) / (b->t - a.t);
+  Pose p;
+  p.position = a.pose.position + s * (b->pose.position - a.pose.position);
+  p.orientation = slerp(a.pose.orientation, b->pose.orientation, s);
+  return p;
+}
+
+}  // namespace dentsph

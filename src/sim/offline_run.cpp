@@ -1,0 +1,136 @@
+// The offline run loop: tool pose from the trajectory, one step, outputs, stability bookkeeping.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "dentsph/run.hpp"
+#include "io/summary.hpp"
+#include "io/vtk_writer.hpp"
+
+namespace dentsph {
+
+StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable) {
+  const StabilityLimits l = stability_limits(scene.model, state);
+  const real dt = scene.model.dt;
+  const real limit = std::min(l.acoustic, l.viscous);
+  if (dt > limit && !allow_unstable) {
+    const char* which = l.acoustic <= l.viscous ? "acoustic (lambda h / sqrt(max stiffness))"
+                                                : "viscous (0.125 h^2 rest_density / viscosity)";
+    throw UnstableTimeStep(fmt::format(
+        "{}: simulation.dt: {:.3g} s is over the {} stability limit of {:.3g} s (acoustic {:.3g} s, viscous {:.3g} s); "
+        "set simulation.dt to at most {:.3g}, lower the stiffest material's stiffness or viscosity, or pass "
+        "--allow-unstable to run anyway",
+        scene.source, dt, which, limit, l.acoustic, l.viscous, limit));
+  }
+  return l;
+}
+
+namespace {
+
+constexpr real kExplosionSpeedFactor = 10;
+
+// Particle snapshots every `interval` s of simulated time, indexed by a .pvd file.
+class SnapshotWriter {
+ public:
+  SnapshotWriter(const std::filesystem::path& dir, real interval)
+      : dir_(dir), interval_(interval), index_(dir / "particles.pvd") {
+    std::filesystem::create_directories(dir_ / "particles");
+  }
+  void maybe_write(const State& s, bool force = false) {
+    if (interval_ <= 0 && !force) return;
+    if (!force && s.time + 1e-12 < next_) return;
+    const std::string name = fmt::format("particles/step_{:08d}.vtu", s.steps);
+    io::write_vtu(dir_ / name, s);
+    index_.add(s.time, name);
+    next_ = s.time + interval_;
+  }
+  std::size_t count() const { return index_.size(); }
+
+ private:
+  std::filesystem::path dir_;
+  real interval_;
+  real next_ = 0;
+  io::PvdIndex index_;
+};
+
+}  // namespace
+
+RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
+  State state = make_state(scene);
+  RunSummary sum;
+  sum.scene = scene.name;
+  sum.dt = scene.model.dt;
+  sum.limits = check_time_step(scene, state, opt.allow_unstable);
+  sum.acoustic_violated = sum.dt > sum.limits.acoustic;
+  sum.viscous_violated = sum.dt > sum.limits.viscous;
+  sum.forced = opt.allow_unstable && (sum.acoustic_violated || sum.viscous_violated);
+  sum.material = state.count(Role::material);
+  sum.boundary = state.count(Role::boundary);
+  sum.tool = state.count(Role::tool);
+
+  const real duration = opt.duration > 0 ? opt.duration : scene.duration;
+  const std::uint64_t total = opt.steps > 0 ? opt.steps : std::uint64_t(std::llround(duration / scene.model.dt));
+
+  std::unique_ptr<SnapshotWriter> snaps;
+  std::unique_ptr<io::ToolForceCsv> csv;
+  if (!opt.out_dir.empty()) {
+    std::filesystem::create_directories(opt.out_dir);
+    if (scene.output.vtk) snaps = std::make_unique<SnapshotWriter>(opt.out_dir, scene.output.snapshot_interval);
+    csv = std::make_unique<io::ToolForceCsv>(opt.out_dir / "tool_force.csv");
+    if (snaps) snaps->maybe_write(state, true);
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const std::uint64_t report_every = std::max<std::uint64_t>(1, total / 100);
+  sum.limits.force = std::numeric_limits<real>::infinity();
+  for (std::uint64_t k = 0; k < total; ++k) {
+    const real t_forces = state.time;
+    state.tool_pose = scene.tool.at(state.time + scene.model.dt);
+    step(scene.model, state);
+    if (csv) csv->add(t_forces, state.tool_wrench);
+    sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
+    const real force_limit = stability_limits(scene.model, state).force;
+    sum.limits.force = std::min(sum.limits.force, force_limit);
+    if (sum.dt > force_limit) {
+      if (sum.force_violation_steps++ == 0) sum.first_force_violation_t = t_forces;
+    }
+    // Weakly compressible SPH keeps material far slower than its sound speed; material at ten
+    // times c (or non-finite) has exploded, and the run says so instead of writing garbage.
+    const bool non_finite = state.diagnostics.non_finite > 0;
+    if (non_finite || state.diagnostics.max_speed > kExplosionSpeedFactor * sum.limits.sound_speed) {
+      sum.status = "diverged";
+      sum.message = fmt::format(
+          "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
+          "simulation.dt or the stiffness",
+          non_finite ? fmt::format("{} material particles became non-finite", state.diagnostics.non_finite)
+                     : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
+                                   state.diagnostics.max_speed, kExplosionSpeedFactor, sum.limits.sound_speed),
+          state.time, state.steps, sum.limits.force, sum.dt);
+      break;
+    }
+    if (snaps) snaps->maybe_write(state);
+    if (opt.on_progress && ((k + 1) % report_every == 0 || k + 1 == total)) {
+      const double w = elapsed();
+      opt.on_progress({k + 1, total, state.time, w, w / double(k + 1) * double(total - k - 1)});
+    }
+  }
+  sum.steps = state.steps;
+  sum.sim_time_s = state.time;
+  sum.wall_time_s = elapsed();
+  sum.steps_per_second = sum.wall_time_s > 0 ? double(sum.steps) / sum.wall_time_s : 0;
+  sum.bonds = state.bonds.counters;
+  sum.bonds_current = state.bonds.current_pairs();
+  if (snaps) {
+    snaps->maybe_write(state, true);
+    sum.snapshots = snaps->count();
+  }
+  if (!opt.out_dir.empty()) io::write_summary(opt.out_dir / "summary.json", sum);
+  return sum;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,96 @@
+// The offline run: its files, its refusal of an unstable time step, and its report of divergence.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "dentsph/run.hpp"
+#include "support/builders.hpp"
+
+namespace dentsph {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr real s = 0.01;
+
+// A small scene built in code: a block of paste on a plate, a tool above it moving down.
+Scene small_scene(real dt) {
+  Scene sc;
+  sc.name = "small";
+  sc.source = "small.json";
+  sc.params = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.1, 0.1, 0.1}, dt, {0, 0, -9.81});
+  sc.model = make_model(sc.params);
+  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
+  const Material paste{0.5, 60, 1000, 100}, wall{0.5, 200, 1000, 0};
+  for (Vec3 p : testing::lattice({0, 0, 0}, s, 4, 4, 3)) sc.particles.push_back(testing::particle(Role::material, p, m, paste));
+  for (Vec3 p : testing::lattice({-2 * s, -2 * s, -2 * s}, s, 8, 8, 2))
+    sc.particles.push_back(testing::particle(Role::boundary, p, m, wall));
+  sc.particles.push_back(testing::particle(Role::tool, {0, 0, 0}, m, wall));
+  sc.tool.keyframes = {{0.0, Pose{{0.015, 0.015, 0.05}, {}}}, {0.1, Pose{{0.015, 0.015, 0.02}, {}}}};
+  sc.output.snapshot_interval = 0.01;
+  return sc;
+}
+
+TEST(Run, WritesSummaryCsvAndSnapshots) {
+  const fs::path out = fs::temp_directory_path() / ("dentsph_run_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  RunOptions opt;
+  opt.steps = 100;
+  opt.out_dir = out;
+  int progress_calls = 0;
+  opt.on_progress = [&](const RunProgress& p) {
+    ++progress_calls;
+    EXPECT_LE(p.step, p.total);
+  };
+  const RunSummary sum = run_offline(small_scene(5e-4), opt);
+  EXPECT_EQ(sum.status, "completed");
+  EXPECT_EQ(sum.steps, 100u);
+  EXPECT_GT(progress_calls, 10);
+  const auto j = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(j["steps"], 100);
+  EXPECT_NEAR(j["sim_time_s"].get<double>(), 0.05, 1e-12);
+  EXPECT_EQ(j["particles"]["material"], 48);
+  EXPECT_EQ(j["particles"]["tool"], 1);
+  std::ifstream csv(out / "tool_force.csv");
+  int lines = 0;
+  for (std::string l; std::getline(csv, l);) ++lines;
+  EXPECT_EQ(lines, 101) << "header + one row per step";
+  // Snapshots at t = 0, every 0.01 s, and the final state.
+  EXPECT_GE(sum.snapshots, 6u);
+  EXPECT_TRUE(fs::exists(out / "particles.pvd"));
+  EXPECT_TRUE(fs::exists(out / "particles" / "step_00000000.vtu"));
+}
+
+TEST(Run, RefusesATimeStepOverTheLimitAndNamesTheField) {
+  Scene sc = small_scene(0.05);  // far over the acoustic limit (~ 0.4 * 0.02 / sqrt(200) = 5.7e-4 s)
+  RunOptions opt;
+  opt.steps = 5;
+  try {
+    run_offline(sc, opt);
+    FAIL() << "expected UnstableTimeStep";
+  } catch (const UnstableTimeStep& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("small.json"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("simulation.dt"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("acoustic"), std::string::npos) << msg;
+  }
+}
+
+TEST(Run, ForcedUnstableRunReportsDivergenceInsteadOfSilentNaN) {
+  RunOptions opt;
+  opt.steps = 2000;
+  opt.allow_unstable = true;
+  const RunSummary sum = run_offline(small_scene(0.05), opt);
+  EXPECT_TRUE(sum.forced);
+  EXPECT_TRUE(sum.acoustic_violated);
+  EXPECT_GT(sum.force_violation_steps, 0u);
+  EXPECT_EQ(sum.status, "diverged");
+  EXPECT_NE(sum.message.find("sound speed"), std::string::npos) << sum.message;
+  EXPECT_LT(sum.steps, 2000u) << "stopped at the divergence";
+}
+
+}  // namespace
+}  // namespace dentsph

@@ -1,0 +1,574 @@
+// The scene module: lattice samplers, defaults, material precedence, the tool trajectory, the
+// initial state, the example scenes, the default particle mass, and the error messages.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "dentsph/scene.hpp"
+#include "physics/kernels.hpp"
+#include "scene/shapes.hpp"
+#include "support/builders.hpp"
+
+namespace dentsph {
+namespace {
+
+using nlohmann::json;
+constexpr real s = 0.01;  // m, lattice spacing of every test scene (h = 2 s)
+constexpr real pi = 3.14159265358979323846;
+
+// ---- helpers
+// -------------------------------------------------------------------------------------
+
+// A small valid scene: a plate, a box of paste above it, a one-sphere tool with two keyframes.
+json base_scene() {
+  return json::parse(R"({
+    "name": "base",
+    "simulation": {"dt": 5e-4, "h": 0.02},
+    "adhesion": {"A": 0.012, "B": 0.03},
+    "materials": {
+      "paste": {"viscosity": 0.5, "stiffness": 60, "rest_density": 1000, "adhesion": 200},
+      "wall": {"viscosity": 0.5, "stiffness": 200, "rest_density": 1000, "adhesion": 0}
+    },
+    "roles": {"material": "paste", "boundary": "wall", "tool": "wall"},
+    "blocks": [
+      {"role": "boundary", "shape": "box", "min": [0, 0, 0], "max": [0.04, 0.04, 0.01], "spacing": 0.01},
+      {"role": "material", "shape": "box", "min": [0, 0, 0.02], "max": [0.02, 0.02, 0.04], "spacing": 0.01}
+    ],
+    "tool": {
+      "blocks": [{"shape": "sphere", "center": [0, 0, 0], "radius": 0.01, "spacing": 0.01}],
+      "keyframes": [{"t": 0, "position": [0.02, 0.02, 0.08]}, {"t": 1, "position": [0.02, 0.02, 0.06]}]
+    }
+  })");
+}
+
+Scene parse(const json& j) { return parse_scene(j.dump(), "test.json"); }
+
+std::size_t count_role(const Scene& sc, Role r) {
+  return std::size_t(std::count_if(sc.particles.begin(), sc.particles.end(),
+                                   [&](const ParticleInit& p) { return p.role == r; }));
+}
+
+// Lattice indices of points relative to `base`, for exact set comparisons.
+std::set<std::tuple<long, long, long>> indices(const std::vector<Vec3>& pts, Vec3 base) {
+  std::set<std::tuple<long, long, long>> out;
+  for (const Vec3& p : pts)
+    out.emplace(std::lround((p.x - base.x) / s), std::lround((p.y - base.y) / s),
+                std::lround((p.z - base.z) / s));
+  return out;
+}
+
+bool near(const Vec3& a, const Vec3& b, real tol = 1e-12) { return norm(a - b) <= tol; }
+
+// ---- shapes
+// ----------------------------------------------------------------------------------------
+
+TEST(SceneShapes, BoxGivesNPlusOneCubedIncludingFloatingPointEdges) {
+  const scene::BoxShape cube{{0, 0, 0}, {0.1, 0.1, 0.1}};
+  EXPECT_EQ(scene::sample(cube, s).size(), 11u * 11u * 11u);
+  EXPECT_EQ(scene::point_count(cube, s), 11.0 * 11 * 11);
+  // 0.29 / 0.01 = 28.999999999999996: 30 points, not 29.
+  EXPECT_EQ(scene::sample(scene::BoxShape{{0, 0, 0}, {0.29, 0.005, 0.005}}, s).size(), 30u);
+  EXPECT_EQ(scene::point_count(scene::BoxShape{{0, 0, 0}, {0.29, 0.005, 0.005}}, s), 30.0);
+  // A max between lattice planes is rounded down: 0.105 holds 11 planes on x.
+  const scene::BoxShape odd{{0, 0, 0}, {0.105, 0.05, 0.02}};
+  const auto pts = scene::sample(odd, s);
+  EXPECT_EQ(pts.size(), 11u * 6u * 3u);
+  EXPECT_TRUE(near(pts.front(), {0, 0, 0}));
+  EXPECT_TRUE(near(pts.back(), {0.1, 0.05, 0.02}));
+}
+
+TEST(SceneShapes, SphereIsTheSymmetricLatticeBall) {
+  const Vec3 c{0.3, -0.2, 0.1};
+  const auto pts = scene::sample(scene::SphereShape{c, 0.05}, s);
+  EXPECT_EQ(pts.size(), 515u) << "lattice points with i^2 + j^2 + k^2 <= 25";
+  EXPECT_EQ(scene::point_count(scene::SphereShape{c, 0.05}, s), 515.0);
+  const auto idx = indices(pts, c);
+  Vec3 sum;
+  for (const auto& [i, j, k] : idx) {
+    EXPECT_LE(i * i + j * j + k * k, 25);
+    EXPECT_TRUE(idx.count({-i, j, k}) && idx.count({i, -j, k}) && idx.count({i, j, -k}) &&
+                idx.count({j, i, k}) && idx.count({k, j, i}));
+    sum += Vec3{real(i), real(j), real(k)};
+  }
+  EXPECT_TRUE(near(sum, {0, 0, 0}));
+  // The six poles at exactly one radius are in; radius 0.02 gives the 33-point ball.
+  EXPECT_TRUE(idx.count({5, 0, 0}) && idx.count({0, 0, -5}));
+  EXPECT_EQ(scene::sample(scene::SphereShape{{0, 0, 0}, 0.02}, s).size(), 33u);
+}
+
+TEST(SceneShapes, LatticeGivesCountPointsFromOrigin) {
+  const scene::LatticeShape l{{1, 2, 3}, {3, 4, 5}};
+  const auto pts = scene::sample(l, s);
+  ASSERT_EQ(pts.size(), 60u);
+  EXPECT_EQ(scene::point_count(l, s), 60.0);
+  EXPECT_TRUE(near(pts.front(), {1, 2, 3}));
+  EXPECT_TRUE(near(pts.back(), {1.02, 2.03, 3.04}));
+}
+
+TEST(SceneShapes, ContainerIsTheShellAroundTheInnerBox) {
+  const Vec3 lo{0, 0, 0};
+  const scene::ContainerShape open{lo, {0.04, 0.04, 0.03}, 2, true};
+  const auto pts = scene::sample(open, s);
+  // Outer index box (4+2+2+1)^2 x (3+2+1), minus the inner (4+1)^2 x (3+1).
+  EXPECT_EQ(pts.size(), 9u * 9u * 6u - 5u * 5u * 4u);
+  EXPECT_EQ(scene::point_count(open, s), double(pts.size()));
+  EXPECT_EQ(indices(pts, lo), indices(testing::open_container(lo, s, 4, 4, 3, 2), lo));
+  for (const Vec3& p : pts) {  // nothing inside the inner box, the lowest layer one spacing below
+    const bool inside =
+        p.x > -s / 2 && p.x < 0.04 + s / 2 && p.y > -s / 2 && p.y < 0.04 + s / 2 && p.z > -s / 2;
+    EXPECT_FALSE(inside) << p.x << " " << p.y << " " << p.z;
+    EXPECT_GE(p.z, -2 * s - 1e-12);
+    EXPECT_LE(p.z, 0.03 + 1e-12);
+  }
+  const scene::ContainerShape closed{lo, {0.04, 0.04, 0.03}, 1, false};
+  EXPECT_EQ(scene::sample(closed, s).size(), 7u * 7u * 6u - 5u * 5u * 4u);
+  // The inner size is rounded to whole spacings: 0.0404 acts as 0.04.
+  EXPECT_EQ(scene::sample(scene::ContainerShape{lo, {0.0404, 0.04, 0.03}, 2, true}, s).size(),
+            pts.size());
+}
+
+// ---- parsing: defaults and materials
+// --------------------------------------------------------------
+
+TEST(SceneParse, AppliesDefaults) {
+  json j = base_scene();
+  j.erase("tool");
+  const Scene sc = parse(j);
+  EXPECT_EQ(sc.name, "base");
+  EXPECT_EQ(sc.source, "test.json");
+  EXPECT_EQ(sc.params.gravity, (Vec3{0, 0, -9.81}));
+  EXPECT_EQ(sc.model.max_bonds_per_particle, 32);
+  EXPECT_EQ(sc.model.cfl_lambda, 0.4);
+  EXPECT_EQ(sc.model.adhesion.eps, 3);
+  EXPECT_EQ(sc.model.adhesion.zeta, 2);
+  EXPECT_NEAR(sc.model.adhesion.Cd, 6.75, 1e-12);
+  EXPECT_EQ(sc.output.snapshot_interval, 0.01);
+  EXPECT_TRUE(sc.output.vtk);
+  EXPECT_EQ(sc.duration, 0);
+  EXPECT_TRUE(sc.tool.keyframes.empty());
+  // Domain: the particles' bounding box [0, 0.04]^2 x [0, 0.04] padded by 2h = 0.04.
+  EXPECT_TRUE(near(sc.model.domain_min, {-0.04, -0.04, -0.04}));
+  EXPECT_TRUE(near(sc.model.domain_max, {0.08, 0.08, 0.08}));
+  EXPECT_EQ(count_role(sc, Role::boundary), 5u * 5u * 2u);
+  EXPECT_EQ(count_role(sc, Role::material), 3u * 3u * 3u);
+  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
+  for (const ParticleInit& p : sc.particles) {
+    EXPECT_EQ(p.mass, m);
+    EXPECT_EQ(p.vel, (Vec3{}));
+  }
+}
+
+TEST(SceneParse, ReadsGivenSettings) {
+  json j = base_scene();
+  j["simulation"]["gravity"] = {0, -1, 0};
+  j["simulation"]["max_bonds_per_particle"] = 16;
+  j["simulation"]["cfl_lambda"] = 0.3;
+  j["simulation"]["domain"] = {{"min", {-1, -1, -1}}, {"max", {1, 2, 3}}};
+  j["adhesion"]["eps"] = 4;
+  j["adhesion"]["zeta"] = 1;
+  j["output"] = {{"snapshot_interval", 0}, {"vtk", false}};
+  j["run"] = {{"duration", 2.5}};
+  j["blocks"][1]["velocity"] = {0.1, 0, 0};
+  j["blocks"][1]["mass"] = 0.002;
+  const Scene sc = parse(j);
+  EXPECT_EQ(sc.params.gravity, (Vec3{0, -1, 0}));
+  EXPECT_EQ(sc.model.max_bonds_per_particle, 16);
+  EXPECT_EQ(sc.model.cfl_lambda, 0.3);
+  EXPECT_EQ(sc.model.domain_max, (Vec3{1, 2, 3}));
+  EXPECT_EQ(sc.model.adhesion.eps, 4);
+  EXPECT_EQ(sc.output.snapshot_interval, 0);
+  EXPECT_FALSE(sc.output.vtk);
+  EXPECT_EQ(sc.duration, 2.5);
+  for (const ParticleInit& p : sc.particles)
+    if (p.role == Role::material) {
+      EXPECT_EQ(p.vel, (Vec3{0.1, 0, 0}));
+      EXPECT_EQ(p.mass, 0.002);
+    }
+}
+
+TEST(SceneParse, MaterialPrecedenceIsInlineOverNameOverRole) {
+  json j = base_scene();
+  j["materials"]["stiff"] = {
+      {"viscosity", 2}, {"stiffness", 300}, {"rest_density", 1200}, {"adhesion", 50}};
+  json block = j["blocks"][1];
+  j["blocks"] = json::array();
+  auto add = [&](real x, json material) {
+    json b = block;
+    b["min"] = {x, 0, 0};
+    b["max"] = {x + 0.001, 0.001, 0.001};  // one particle at (x, 0, 0)
+    if (!material.is_null()) b["material"] = material;
+    j["blocks"].push_back(b);
+  };
+  add(0.0, nullptr);                                // role: paste
+  add(0.1, "stiff");                                // by name
+  add(0.2, {{"adhesion", 0}});                      // inline over the role's paste
+  add(0.3, {{"base", "stiff"}, {"viscosity", 7}});  // inline over a named base
+  add(0.4, {{"viscosity", 1}, {"stiffness", 2}, {"rest_density", 3}, {"adhesion", 4}});
+  j["tool"]["material"] = {{"base", "stiff"}, {"adhesion", 9}};
+  j["tool"]["blocks"].push_back({{"shape", "lattice"},
+                                 {"origin", {0, 0, 0.1}},
+                                 {"count", {1, 1, 1}},
+                                 {"spacing", s},
+                                 {"material", {{"stiffness", 500}}}});
+  const Scene sc = parse(j);
+  ASSERT_EQ(sc.particles.size(), 5u + 7u + 1u);
+  auto mat = [&](std::size_t i) { return sc.particles[i].material; };
+  EXPECT_EQ(mat(0).Kp, 60);
+  EXPECT_EQ(mat(0).Ka, 200);
+  EXPECT_EQ(mat(1).Kp, 300);
+  EXPECT_EQ(mat(2).Kp, 60);
+  EXPECT_EQ(mat(2).Ka, 0);
+  EXPECT_EQ(mat(2).mu, 0.5);
+  EXPECT_EQ(mat(3).mu, 7);
+  EXPECT_EQ(mat(3).Kp, 300);
+  EXPECT_EQ(mat(3).rho0, 1200);
+  EXPECT_EQ(mat(4).rho0, 3);
+  // Tool: tool.material (stiff, Ka 9) over roles.tool (wall); its block overrides stiffness.
+  EXPECT_EQ(mat(5).Ka, 9);
+  EXPECT_EQ(mat(5).Kp, 300);
+  EXPECT_EQ(mat(12).Kp, 500);
+  EXPECT_EQ(mat(12).Ka, 9);
+  // The default mass follows each block's own rest density.
+  EXPECT_EQ(sc.particles[3].mass, lattice_particle_mass(1200, s, sc.model.kernel));
+}
+
+// ---- the tool's trajectory and the initial state
+// ---------------------------------------------------
+
+TEST(ToolTrajectory, InterpolatesLinearlyAndBySlerpAndClamps) {
+  ToolTrajectory traj;
+  EXPECT_EQ(traj.at(0.3).position, (Vec3{}));
+  EXPECT_EQ(traj.at(0.3).orientation.w, 1);
+  const Quat quarter = Quat::from_axis_angle({0, 0, 1}, pi / 2);
+  traj.keyframes = {
+      {1, Pose{{0, 0, 0}, {}}}, {3, Pose{{2, 4, 6}, quarter}}, {4, Pose{{2, 4, 10}, quarter}}};
+  const Pose mid = traj.at(2);
+  EXPECT_TRUE(near(mid.position, {1, 2, 3}));
+  // Half way through a quarter turn about z: 45 degrees.
+  EXPECT_TRUE(near(mid.orientation.rotate({1, 0, 0}), {std::sqrt(0.5), std::sqrt(0.5), 0}, 1e-12));
+  EXPECT_TRUE(near(traj.at(1.5).orientation.rotate({1, 0, 0}),
+                   {std::cos(pi / 8), std::sin(pi / 8), 0}, 1e-12));
+  EXPECT_TRUE(near(traj.at(3.25).position, {2, 4, 7}));
+  EXPECT_TRUE(near(traj.at(-5).position, {0, 0, 0}));  // held before the first
+  EXPECT_TRUE(near(traj.at(1).position, {0, 0, 0}));
+  EXPECT_TRUE(near(traj.at(9).position, {2, 4, 10}));  // held after the last
+  EXPECT_TRUE(near(traj.at(9).orientation.rotate({1, 0, 0}), {0, 1, 0}, 1e-12));
+}
+
+TEST(SceneParse, ReadsKeyframeRotations) {
+  json j = base_scene();
+  j["tool"]["keyframes"][1]["rotation"] = {{"axis", {0, 0, 2}}, {"angle_deg", 90}};
+  const Scene sc = parse(j);
+  EXPECT_TRUE(near(sc.tool.at(1).orientation.rotate({1, 0, 0}), {0, 1, 0}, 1e-12));
+  EXPECT_TRUE(near(sc.tool.at(0.5).position, {0.02, 0.02, 0.07}));
+}
+
+TEST(MakeState, PlacesTheToolAtItsFirstKeyframe) {
+  json j = base_scene();
+  j["tool"]["keyframes"][0]["t"] = 0.5;  // the first keyframe after t = 0 still holds at 0
+  j["tool"]["keyframes"][1]["t"] = 1.5;
+  j["tool"]["keyframes"][0]["rotation"] = {{"axis", {1, 0, 0}}, {"angle_deg", 90}};
+  const Scene sc = parse(j);
+  const State st = make_state(sc);
+  const Pose p0 = sc.tool.keyframes[0].pose;
+  EXPECT_EQ(st.tool_pose.position, p0.position);
+  EXPECT_EQ(st.tool_pose_applied.position, p0.position);
+  ASSERT_EQ(st.size(), sc.particles.size());
+  EXPECT_EQ(st.count(Role::tool), 7u);
+  for (std::uint32_t i = 0; i < st.size(); ++i) {
+    const ParticleInit& init = sc.particles[st.id[i]];
+    const Vec3 expected = init.role == Role::tool ? p0.apply(init.pos) : init.pos;
+    EXPECT_TRUE(near(st.pos[i], expected));
+    EXPECT_EQ(st.mass[i], init.mass);
+    EXPECT_EQ(st.Kp[i], init.material.Kp);
+  }
+}
+
+TEST(MakeState, WithoutAToolUsesTheIdentityPose) {
+  json j = base_scene();
+  j.erase("tool");
+  const State st = make_state(parse(j));
+  EXPECT_EQ(st.tool_pose.position, (Vec3{}));
+  EXPECT_EQ(st.tool_pose.orientation.w, 1);
+  EXPECT_EQ(st.count(Role::tool), 0u);
+}
+
+// The default mass puts an interior particle of a lattice at rest density under poly6.
+TEST(SceneParse, DefaultMassGivesRestDensityInside) {
+  json j = base_scene();
+  j.erase("tool");
+  j["blocks"] = json::array({{{"role", "material"},
+                              {"shape", "lattice"},
+                              {"origin", {0, 0, 0}},
+                              {"count", {9, 9, 9}},
+                              {"spacing", s}}});
+  const Scene sc = parse(j);
+  const State st = make_state(sc);
+  ASSERT_EQ(st.size(), 729u);
+  const Vec3 centre{4 * s, 4 * s, 4 * s};
+  std::uint32_t c = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (norm(st.pos[i] - centre) < norm(st.pos[c] - centre)) c = i;
+  ASSERT_TRUE(near(st.pos[c], centre));
+  real rho = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    rho += st.mass[i] * kernels::poly6(norm2(st.pos[i] - st.pos[c]), sc.model.kernel);
+  EXPECT_NEAR(rho, 1000, 1e-9);
+  // A corner particle has only the octant i, j, k >= 0 of its neighbourhood. With h = 2 s the
+  // poly6 weights (4 - q)^3, q = i^2 + j^2 + k^2 < 4, sum to 330 in all and 170 in the octant.
+  real rho_corner = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    rho_corner += st.mass[i] * kernels::poly6(norm2(st.pos[i]), sc.model.kernel);
+  EXPECT_NEAR(rho_corner, 1000.0 * 170 / 330, 1e-9);
+}
+
+// ---- the example scenes
+// ----------------------------------------------------------------------------
+
+// Acoustic limit of MODEL.md: dt <= lambda h / sqrt(max Kp).
+real acoustic_limit(const Scene& sc) {
+  real kp = 0;
+  for (const ParticleInit& p : sc.particles) kp = std::max(kp, p.material.Kp);
+  return sc.model.cfl_lambda * sc.model.kernel.h / std::sqrt(kp);
+}
+
+// Smallest distance between a particle of role a and one of role b (tool at pose `tool`).
+real gap(const Scene& sc, Role a, Role b, const Pose& tool = {}) {
+  auto at = [&](const ParticleInit& p) { return p.role == Role::tool ? tool.apply(p.pos) : p.pos; };
+  real d = 1e30;
+  for (const ParticleInit& p : sc.particles)
+    if (p.role == a)
+      for (const ParticleInit& q : sc.particles)
+        if (q.role == b) d = std::min(d, norm(at(p) - at(q)));
+  return d;
+}
+
+TEST(ExampleScenes, BlobOnPlate) {
+  const Scene sc = load_scene("scenes/blob_on_plate.json");
+  EXPECT_EQ(sc.name, "blob_on_plate");
+  EXPECT_EQ(sc.source, "scenes/blob_on_plate.json");
+  EXPECT_EQ(count_role(sc, Role::material), 515u);
+  EXPECT_EQ(count_role(sc, Role::boundary), 31u * 31u * 3u);
+  EXPECT_EQ(count_role(sc, Role::tool), 0u);
+  EXPECT_EQ(sc.duration, 1.0);
+  EXPECT_EQ(sc.output.snapshot_interval, 0.01);
+  EXPECT_LT(sc.params.gravity.z, 0);
+  EXPECT_LE(sc.model.dt, acoustic_limit(sc));
+  // The blob starts 0.03 m above the plate, out of the kernel's reach.
+  EXPECT_NEAR(gap(sc, Role::material, Role::boundary), 0.03, 1e-12);
+  const State st = make_state(sc);
+  EXPECT_EQ(st.size(), sc.particles.size());
+}
+
+TEST(ExampleScenes, ToolPress) {
+  const Scene sc = load_scene("scenes/tool_press.json");
+  EXPECT_EQ(sc.name, "tool_press");
+  EXPECT_EQ(count_role(sc, Role::material), 13u * 13u * 7u);
+  EXPECT_EQ(count_role(sc, Role::boundary), 17u * 17u * 13u - 13u * 13u * 11u);
+  EXPECT_EQ(count_role(sc, Role::tool), 33u);
+  EXPECT_EQ(sc.duration, 1.5);
+  EXPECT_LE(sc.model.dt, acoustic_limit(sc));
+  // The paste touches the walls at one spacing, nothing overlaps.
+  EXPECT_NEAR(gap(sc, Role::material, Role::boundary), s, 1e-12);
+  // The tool starts 0.03 m above the paste, goes 0.03 m into it (down 0.06 m over 0.5 s),
+  // holds for 0.25 s and is back up at 1.25 s, inside the run.
+  EXPECT_NEAR(gap(sc, Role::material, Role::tool, sc.tool.at(0)), 0.03, 1e-12);
+  EXPECT_NEAR(sc.tool.at(0).position.z - sc.tool.at(0.5).position.z, 0.06, 1e-12);
+  EXPECT_EQ(sc.tool.at(0.5).position, sc.tool.at(0.75).position);
+  EXPECT_EQ(sc.tool.at(1.25).position, sc.tool.at(0).position);
+  EXPECT_LT(sc.tool.keyframes.back().t, sc.duration);
+  // At the deepest point the tool stays clear of the floor and the walls.
+  EXPECT_GE(gap(sc, Role::tool, Role::boundary, sc.tool.at(0.5)), 0.03 - 1e-12);
+  const State st = make_state(sc);
+  EXPECT_EQ(st.count(Role::tool), 33u);
+}
+
+// ---- errors
+// ----------------------------------------------------------------------------------------
+
+struct BrokenCase {
+  const char* what;
+  std::function<void(json&)> mutate;
+  std::string path;       // the message must read "broken.json: <path>..."
+  std::string also = "";  // and contain this
+};
+
+// Test listings show the case's name rather than its bytes.
+void PrintTo(const BrokenCase& c, std::ostream* os) {
+  for (const char* p = c.what; *p; ++p) *os << (std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_');
+}
+
+const BrokenCase broken_cases[] = {
+    {"missing dt", [](json& j) { j["simulation"].erase("dt"); }, "simulation.dt", "missing"},
+    {"negative spacing", [](json& j) { j["blocks"][1]["spacing"] = -0.01; }, "blocks[1].spacing",
+     "> 0"},
+    {"spacing over h", [](json& j) { j["blocks"][0]["spacing"] = 0.03; }, "blocks[0].spacing",
+     "at most h"},
+    {"typo in a block", [](json& j) { j["blocks"][0]["spacng"] = 0.01; }, "blocks[0].spacng",
+     "did you mean \"spacing\""},
+    {"typo at the top", [](json& j) { j["simulaton"] = j["simulation"]; }, "simulaton",
+     "simulation"},
+    {"field of another shape", [](json& j) { j["blocks"][0]["radius"] = 0.1; }, "blocks[0].radius",
+     "unknown field"},
+    {"A >= h", [](json& j) { j["adhesion"]["A"] = 0.02; }, "adhesion.A", "A < h < B"},
+    {"eps <= zeta",
+     [](json& j) {
+       j["adhesion"]["eps"] = 2;
+       j["adhesion"]["zeta"] = 3;
+     },
+     "adhesion.eps", "zeta"},
+    {"bad max_bonds", [](json& j) { j["simulation"]["max_bonds_per_particle"] = 0; },
+     "simulation.max_bonds_per_particle", "[1, 1024]"},
+    {"unknown material", [](json& j) { j["blocks"][1]["material"] = "pastee"; },
+     "blocks[1].material", "did you mean \"paste\""},
+    {"unknown role material", [](json& j) { j["roles"]["boundary"] = "steel"; }, "roles.boundary",
+     "wall"},
+    {"no material for the role", [](json& j) { j["roles"].erase("boundary"); },
+     "blocks[0].material", "roles.boundary"},
+    {"incomplete inline material",
+     [](json& j) {
+       j["roles"].erase("boundary");
+       j["blocks"][0]["material"] = {{"stiffness", 5}};
+     },
+     "blocks[0].material.viscosity", "base"},
+    {"negative stiffness", [](json& j) { j["materials"]["paste"]["stiffness"] = -1; },
+     "materials.paste.stiffness", "> 0"},
+    {"vector of 2",
+     [](json& j) {
+       j["blocks"][0]["min"] = {0, 0};
+     },
+     "blocks[0].min", "3 numbers"},
+    {"string for a number", [](json& j) { j["simulation"]["h"] = "0.02"; }, "simulation.h",
+     "a string"},
+    {"string in a vector",
+     [](json& j) {
+       j["simulation"]["gravity"] = {0, 0, "down"};
+     },
+     "simulation.gravity[2]", "expected a number"},
+    {"min above max", [](json& j) { j["blocks"][0]["max"][2] = -0.01; }, "blocks[0].max",
+     "exceed min"},
+    {"zero radius", [](json& j) { j["tool"]["blocks"][0]["radius"] = 0; }, "tool.blocks[0].radius",
+     "> 0"},
+    {"fractional count",
+     [](json& j) {
+       j["blocks"][1] = {{"role", "material"},
+                         {"shape", "lattice"},
+                         {"origin", {0, 0, 0}},
+                         {"count", {2, 2, 2.5}},
+                         {"spacing", 0.01}};
+     },
+     "blocks[1].count[2]", "whole number"},
+    {"tiny container",
+     [](json& j) {
+       j["blocks"][0] = {{"role", "boundary"},
+                         {"shape", "container"},
+                         {"min", {0, 0, 0}},
+                         {"max", {0.004, 0.1, 0.1}},
+                         {"spacing", 0.01}};
+     },
+     "blocks[0].max", "one spacing"},
+    {"too many particles",
+     [](json& j) {
+       j["blocks"][0]["max"] = {10, 10, 10};
+     },
+     "blocks[0]", "limit"},
+    {"empty blocks", [](json& j) { j["blocks"] = json::array(); }, "blocks", "empty"},
+    {"unknown shape", [](json& j) { j["blocks"][0]["shape"] = "cube"; }, "blocks[0].shape", "box"},
+    {"tool role in blocks", [](json& j) { j["blocks"][0]["role"] = "tool"; }, "blocks[0].role",
+     "tool.blocks"},
+    {"velocity on a wall",
+     [](json& j) {
+       j["blocks"][0]["velocity"] = {0, 0, 1};
+     },
+     "blocks[0].velocity", "static"},
+    {"tool without keyframes", [](json& j) { j["tool"].erase("keyframes"); }, "tool.keyframes",
+     "missing"},
+    {"tool with empty keyframes", [](json& j) { j["tool"]["keyframes"] = json::array(); },
+     "tool.keyframes", "empty"},
+    {"keyframes not increasing", [](json& j) { j["tool"]["keyframes"][1]["t"] = 0; },
+     "tool.keyframes[1].t", "strictly increase"},
+    {"negative first keyframe", [](json& j) { j["tool"]["keyframes"][0]["t"] = -1; },
+     "tool.keyframes[0].t", ">= 0"},
+    {"zero rotation axis",
+     [](json& j) {
+       j["tool"]["keyframes"][0]["rotation"] = {{"axis", {0, 0, 0}}, {"angle_deg", 10}};
+     },
+     "tool.keyframes[0].rotation.axis", "non-zero"},
+    {"inverted domain",
+     [](json& j) {
+       j["simulation"]["domain"] = {{"min", {1, 1, 1}}, {"max", {0, 0, 0}}};
+     },
+     "simulation.domain", "min"},
+    {"negative duration",
+     [](json& j) {
+       j["run"] = {{"duration", -1}};
+     },
+     "run.duration", "> 0"},
+    {"empty name", [](json& j) { j["name"] = ""; }, "name", "empty"},
+    {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},
+};
+
+class BrokenScene : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenScene, NamesTheSourceAndTheField) {
+  const BrokenCase& c = GetParam();
+  json j = base_scene();
+  c.mutate(j);
+  try {
+    parse_scene(j.dump(), "broken.json");
+    FAIL() << c.what << ": no error";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("broken.json: " + c.path), std::string::npos) << c.what << ": " << msg;
+    EXPECT_NE(msg.find(c.also), std::string::npos) << c.what << ": " << msg;
+    EXPECT_NE(msg.find("; "), std::string::npos) << c.what << ": no fix in " << msg;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, BrokenScene, ::testing::ValuesIn(broken_cases),
+                         [](const ::testing::TestParamInfo<BrokenCase>& info) {
+                           std::string name = info.param.what;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+void expect_error(const std::string& text, const std::string& part1, const std::string& part2) {
+  try {
+    parse_scene(text, "broken.json");
+    FAIL() << "no error for " << text;
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(part1), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(part2), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneErrors, SyntaxErrorsNameLineAndColumn) {
+  expect_error("{\n  \"name\": \"x\",\n}", "broken.json: line 3, column 1: syntax error",
+               "trailing commas");
+  expect_error("{\"name\": \"x\", \"simulation\": {\"dt\": NaN}}", "broken.json: line 1", "NaN");
+  expect_error("{\"name\": \"x\", \"simulation\": {\"dt\": 1e999}}", "broken.json: ", "overflow");
+  expect_error("", "broken.json: line 1, column 1", "end of input");
+  expect_error("[1, 2]", "broken.json: (top level): expected a scene", "{");
+}
+
+TEST(SceneErrors, MissingFileNamesTheFile) {
+  try {
+    load_scene("scenes/no_such_scene.json");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("scenes/no_such_scene.json: cannot read"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(load_scene("scenes"), SceneError);  // a directory
+}
+
+}  // namespace
+}  // namespace dentsph
