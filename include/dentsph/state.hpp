@@ -54,11 +54,15 @@ struct StepDiagnostics {
 };
 
 // Scratch of the broad phase, sized with the particles (no allocation inside a step).
+// Particles are sorted into buckets 2 * cell + (role == boundary): in each cell the moving
+// particles (material, tool) come first and the static boundary particles after them, so a
+// search that needs only moving neighbours skips the walls.
 struct GridIndex {
-  std::vector<std::uint32_t> key;         // [n] cell key of each particle (before sorting)
-  std::vector<std::uint32_t> order;       // [n] sorted position -> old index
-  std::vector<std::uint32_t> cell_start;  // [cells + 1] first sorted index of each cell
-  std::vector<std::uint32_t> cell_fill;   // [cells] counting-sort cursor
+  std::vector<std::uint32_t> key;           // [n] bucket of each particle (before sorting)
+  std::vector<std::uint32_t> order;         // [n] sorted position -> old index
+  std::vector<std::uint32_t> bucket_start;  // [2 cells + 1] first sorted index of each bucket
+  std::vector<std::uint32_t> bucket_fill;   // [2 cells] counting-sort cursor
+  std::vector<real> x, y, z;                // [n] m, positions in sorted order as separate arrays
 };
 
 class State {
@@ -80,6 +84,10 @@ class State {
 
   // ---- by stable id -------------------------------------------------------------------------
   std::vector<std::uint32_t> index_of_id;  // [size()] current index of each id
+  // kg/m^3, the density a boundary particle gets from the (static) boundary around it; 0 for
+  // other roles. Computed once by the first step after particles are added.
+  std::vector<real> rho_static;
+  bool rho_static_valid = false;
   BondStore bonds;
 
   // ---- tool and time ------------------------------------------------------------------------

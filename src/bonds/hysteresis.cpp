@@ -28,7 +28,7 @@ void break_stretched(const Model& model, State& s, std::uint32_t i) {
 inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j) {
   if (j == i) return;
   if (!(norm2(s.pos[i] - s.pos[j]) < model.adhesion.A * model.adhesion.A)) return;
-  if (!pair::can_bond(s.Ka[i], s.Ka[j])) return;
+  if (!pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j])) return;
   const std::uint32_t a = s.id[i], b = s.id[j];
   if (s.bonds.has(a, b)) return;
   if (s.bonds.add(a, b) && a < b) ++s.bonds.counters.formed;
@@ -40,8 +40,10 @@ void update_bonds(const Model& model, State& s) {
   const std::uint32_t n = s.size();
   for (std::uint32_t i = 0; i < n; ++i) {
     break_stretched(model, s, i);
-    // A < h <= cell size: every pair closer than A is in the 27 cells.
-    grid::for_each_in_neighbourhood(model.grid, s.grid, s.pos[i],
+    // A < h <= cell size: every pair closer than A is in the 27 cells. A boundary particle
+    // bonds only to material, so it looks at moving particles alone.
+    const grid::Visit visit = s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
+    grid::for_each_in_neighbourhood(model.grid, s.grid, s.pos[i], visit,
                                     [&](std::uint32_t j) { try_form(model, s, i, j); });
   }
 }

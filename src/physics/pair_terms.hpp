@@ -41,7 +41,11 @@ DENTSPH_HD inline Vec3 adhesion(const Side& i, const Side& j, const Vec3& d, rea
 }
 
 // Whether a pair may bond at all: its mean adhesion strength is positive (so tool and wall,
-// both with Ka = 0, never bond; MODEL.md, "Particles").
-DENTSPH_HD inline bool can_bond(real Ka_i, real Ka_j) { return Ka_i + Ka_j > 0; }
+// both with Ka = 0, never bond; MODEL.md, "Particles"), and at least one side is material (two
+// particles that never move relative to each other, wall-wall or tool-tool, have nothing to
+// hold together).
+DENTSPH_HD inline bool can_bond(Role role_i, Role role_j, real Ka_i, real Ka_j) {
+  return Ka_i + Ka_j > 0 && (role_i == Role::material || role_j == Role::material);
+}
 
 }  // namespace dentsph::pair

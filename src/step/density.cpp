@@ -1,20 +1,43 @@
 // Stage 3: rho_i = sum_j m_j W_poly6(r_ij) over all roles, self included (MODEL.md; the paper's
-// eq. 6 has a stray minus sign).
+// eq. 6 has a stray minus sign). Boundary particles never move, so the part of a boundary
+// particle's density that comes from other boundary particles is computed once
+// (compute_static_density) and each step adds only its moving neighbours.
 #include "physics/kernels.hpp"
 #include "step/grid.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {
 
+namespace {
+
+// Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
+real density_sum(const Model& model, const State& s, std::uint32_t i, grid::Visit visit) {
+  const GridIndex& g = s.grid;
+  const real xi = g.x[i], yi = g.y[i], zi = g.z[i];
+  real rho = 0;
+  grid::for_each_neighbour_range(model.grid, g, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t j = b; j < e; ++j) {
+      const real dx = xi - g.x[j], dy = yi - g.y[j], dz = zi - g.z[j];
+      rho += s.mass[j] * kernels::poly6(dx * dx + dy * dy + dz * dz, model.kernel);
+    }
+  });
+  return rho;
+}
+
+}  // namespace
+
+void compute_static_density(const Model& model, State& s) {
+  for (std::uint32_t i = 0; i < s.size(); ++i)
+    s.rho_static[s.id[i]] = s.role[i] == Role::boundary ? density_sum(model, s, i, grid::Visit::boundary) : 0;
+  s.rho_static_valid = true;
+}
+
 void compute_density(const Model& model, State& s) {
+  if (!s.rho_static_valid) compute_static_density(model, s);
   const std::uint32_t n = s.size();
   for (std::uint32_t i = 0; i < n; ++i) {
-    const Vec3 pi = s.pos[i];
-    real rho = 0;
-    grid::for_each_in_neighbourhood(model.grid, s.grid, pi, [&](std::uint32_t j) {
-      rho += s.mass[j] * kernels::poly6(norm2(pi - s.pos[j]), model.kernel);
-    });
-    s.rho[i] = rho;
+    s.rho[i] = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving)
+                                           : density_sum(model, s, i, grid::Visit::all);
   }
 }
 

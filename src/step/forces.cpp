@@ -10,6 +10,7 @@ namespace dentsph::stages {
 void compute_forces(const Model& model, State& s) {
   const std::uint32_t n = s.size();
   const KernelCoeffs& k = model.kernel;
+  const GridIndex& g = s.grid;
   for (std::uint32_t i = 0; i < n; ++i) {
     if (s.role[i] == Role::boundary) {  // static: its force is never used
       s.force[i] = {};
@@ -17,12 +18,13 @@ void compute_forces(const Model& model, State& s) {
     }
     const pair::Side si = side_of(s, i);
     Vec3 f;
-    grid::for_each_in_neighbourhood(model.grid, s.grid, si.pos, [&](std::uint32_t j) {
-      if (j == i) return;
-      const Vec3 d = si.pos - s.pos[j];
-      const real r2 = norm2(d);
-      if (r2 >= k.h2) return;
-      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
+    grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t j = b; j < e; ++j) {
+        const Vec3 d{si.pos.x - g.x[j], si.pos.y - g.y[j], si.pos.z - g.z[j]};
+        const real r2 = norm2(d);
+        if (r2 >= k.h2 || j == i) continue;
+        f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
+      }
     });
     const std::uint32_t id = s.id[i];
     for (int b = 0; b < s.bonds.count(id); ++b) {

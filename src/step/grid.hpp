@@ -1,5 +1,5 @@
-// Uniform-grid helpers shared by the CPU stages and the CUDA backend: a particle's cell, its key,
-// and a visit of the 27 cells around it.
+// Uniform-grid helpers shared by the CPU stages and the CUDA backend: a particle's cell, its
+// bucket key, and visits of the 27 cells around a position.
 #pragma once
 
 #include <cmath>
@@ -10,10 +10,15 @@
 
 namespace dentsph::grid {
 
-// Cell coordinate along one axis, wrapped into [0, dim). Exact for any finite coordinate (fmod
-// of an integer-valued double is exact); a non-finite coordinate gets cell 0.
+// Cell coordinate along one axis, wrapped into [0, dim). Exact for any finite coordinate; a
+// non-finite coordinate gets cell 0. The common case (within a billion cells of the origin)
+// takes an integer path; beyond it fmod of the integer-valued floor is still exact.
 DENTSPH_HD inline int wrap_cell(real coord, real origin, real cell_size, int dim) {
   const real q = std::floor((coord - origin) / cell_size);
+  if (q > -1e9 && q < 1e9) {
+    int c = int(q) % dim;
+    return c < 0 ? c + dim : c;
+  }
   real m = std::fmod(q, real(dim));
   if (m < 0) m += dim;
   if (!(m >= 0 && m < dim)) return 0;
@@ -30,28 +35,54 @@ DENTSPH_HD inline std::uint32_t key_of(const Vec3& p, const GridSpec& g) {
                   wrap_cell(p.z, g.origin.z, g.cell_size, g.dims[2]), g);
 }
 
-// Calls fn(j) for every particle j in the 27 cells around position p (p's own particle
-// included). The state must have been sorted and reordered this step.
-template <class Fn>
-inline void for_each_in_neighbourhood(const GridSpec& g, const GridIndex& gi, const Vec3& p, Fn&& fn) {
-  const int c[3] = {wrap_cell(p.x, g.origin.x, g.cell_size, g.dims[0]),
-                    wrap_cell(p.y, g.origin.y, g.cell_size, g.dims[1]),
-                    wrap_cell(p.z, g.origin.z, g.cell_size, g.dims[2])};
+// Sort bucket of a particle: moving particles first in their cell, static boundary after.
+DENTSPH_HD inline std::uint32_t bucket_of(const Vec3& p, Role role, const GridSpec& g) {
+  return 2 * key_of(p, g) + (role == Role::boundary ? 1 : 0);
+}
+
+DENTSPH_HD inline int wrap(int c, int dim) { return c < 0 ? c + dim : (c >= dim ? c - dim : c); }
+
+// Which particles of each cell a visit wants.
+enum class Visit { all, moving, boundary };
+
+// Calls range(begin, end) for runs of sorted indices covering the particles of the 27 cells
+// around p (p's own particle included) of the kind `visit` asks for. Where the three cells of
+// a row are adjacent in memory (no wrap in x) and all particles are wanted, a row is one run.
+template <class Range>
+inline void for_each_neighbour_range(const GridSpec& g, const GridIndex& gi, const Vec3& p, Visit visit,
+                                     Range&& range) {
+  const int cx = wrap_cell(p.x, g.origin.x, g.cell_size, g.dims[0]);
+  const int cy = wrap_cell(p.y, g.origin.y, g.cell_size, g.dims[1]);
+  const int cz = wrap_cell(p.z, g.origin.z, g.cell_size, g.dims[2]);
+  const std::uint32_t* bs = gi.bucket_start.data();
+  const bool row_contiguous = visit == Visit::all && cx >= 1 && cx + 1 < g.dims[0];
   for (int dz = -1; dz <= 1; ++dz) {
-    int z = c[2] + dz;
-    z = z < 0 ? z + g.dims[2] : (z >= g.dims[2] ? z - g.dims[2] : z);
+    const int z = wrap(cz + dz, g.dims[2]);
     for (int dy = -1; dy <= 1; ++dy) {
-      int y = c[1] + dy;
-      y = y < 0 ? y + g.dims[1] : (y >= g.dims[1] ? y - g.dims[1] : y);
+      const int y = wrap(cy + dy, g.dims[1]);
+      if (row_contiguous) {
+        const std::uint32_t k = cell_key(cx - 1, y, z, g);
+        range(bs[2 * k], bs[2 * k + 6]);
+        continue;
+      }
       for (int dx = -1; dx <= 1; ++dx) {
-        int x = c[0] + dx;
-        x = x < 0 ? x + g.dims[0] : (x >= g.dims[0] ? x - g.dims[0] : x);
-        const std::uint32_t key = cell_key(x, y, z, g);
-        const std::uint32_t end = gi.cell_start[key + 1];
-        for (std::uint32_t j = gi.cell_start[key]; j < end; ++j) fn(j);
+        const std::uint32_t k = cell_key(wrap(cx + dx, g.dims[0]), y, z, g);
+        switch (visit) {
+          case Visit::all: range(bs[2 * k], bs[2 * k + 2]); break;
+          case Visit::moving: range(bs[2 * k], bs[2 * k + 1]); break;
+          case Visit::boundary: range(bs[2 * k + 1], bs[2 * k + 2]); break;
+        }
       }
     }
   }
+}
+
+// Calls fn(j) for every particle j of the 27 cells around p that `visit` asks for.
+template <class Fn>
+inline void for_each_in_neighbourhood(const GridSpec& g, const GridIndex& gi, const Vec3& p, Visit visit, Fn&& fn) {
+  for_each_neighbour_range(g, gi, p, visit, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t j = b; j < e; ++j) fn(j);
+  });
 }
 
 }  // namespace dentsph::grid

@@ -1,4 +1,5 @@
-// Stage 1, broad phase: each particle's cell key on the uniform grid.
+// Stage 1, broad phase: each particle's sort bucket on the uniform grid (its cell, and whether
+// it is a static boundary particle).
 #include "step/grid.hpp"
 #include "step/stages.hpp"
 
@@ -6,7 +7,7 @@ namespace dentsph::stages {
 
 void compute_cell_keys(const Model& model, State& state) {
   const std::uint32_t n = state.size();
-  for (std::uint32_t i = 0; i < n; ++i) state.grid.key[i] = grid::key_of(state.pos[i], model.grid);
+  for (std::uint32_t i = 0; i < n; ++i) state.grid.key[i] = grid::bucket_of(state.pos[i], state.role[i], model.grid);
 }
 
 }  // namespace dentsph::stages

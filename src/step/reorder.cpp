@@ -1,5 +1,6 @@
 // Stage 2b: gather every per-particle array into cell order, so that the neighbour loops read
-// memory in sequence; then refresh the id -> index map that bonds and callers use.
+// memory in sequence; then refresh the id -> index map that bonds and callers use, and the
+// coordinate arrays the neighbour searches read.
 #include "step/stages.hpp"
 
 namespace dentsph::stages {
@@ -28,7 +29,12 @@ void reorder(State& s) {
   gather(s.rho0, s.scratch_real, order);
   gather(s.Ka, s.scratch_real, order);
   // rho, pressure and force are recomputed before they are read again.
-  for (std::uint32_t i = 0; i < s.size(); ++i) s.index_of_id[s.id[i]] = i;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    s.index_of_id[s.id[i]] = i;
+    s.grid.x[i] = s.pos[i].x;
+    s.grid.y[i] = s.pos[i].y;
+    s.grid.z[i] = s.pos[i].z;
+  }
 }
 
 }  // namespace dentsph::stages

@@ -17,6 +17,8 @@ void reorder(State& state);
 void update_bonds(const Model& model, State& state);
 // 3. Density over the 27 neighbouring cells (density.cpp).
 void compute_density(const Model& model, State& state);
+// The boundary-boundary part of boundary particles' density, once (density.cpp).
+void compute_static_density(const Model& model, State& state);
 // 4. Repulsion-only pressure (pressure.cpp).
 void compute_pressure(State& state);
 // 5. Pressure, viscosity and adhesion force densities (forces.cpp).

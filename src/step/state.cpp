@@ -43,11 +43,16 @@ void State::add_particles(const Model& model, const std::vector<ParticleInit>& p
   index_of_id.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) index_of_id[id[i]] = i;
   bonds.resize(n, model.max_bonds_per_particle);
+  rho_static.assign(n, 0);
+  rho_static_valid = false;
 
   grid.key.resize(n);
   grid.order.resize(n);
-  grid.cell_start.assign(std::size_t(model.grid.cell_count()) + 1, 0);
-  grid.cell_fill.assign(std::size_t(model.grid.cell_count()), 0);
+  grid.bucket_start.assign(2 * std::size_t(model.grid.cell_count()) + 1, 0);
+  grid.bucket_fill.assign(2 * std::size_t(model.grid.cell_count()), 0);
+  grid.x.resize(n);
+  grid.y.resize(n);
+  grid.z.resize(n);
   scratch_vec.resize(n);
   scratch_real.resize(n);
   scratch_u32.resize(n);

@@ -1,6 +1,6 @@
 // The paper's Fig. 2 as a two-particle test (MODEL.md, "Adhesion hysteresis"). A tool particle is
-// pushed towards a boundary particle and pulled away again along x (both kinematic, so the
-// distance follows the script); the force on the tool shows the seven stages, and the loading
+// pushed towards a material particle and pulled away again along x; the material particle is
+// held at the origin (reset after every step), so the distance follows the script; the force on the tool shows the seven stages, and the loading
 // and unloading force-distance curves differ (the area between them is positive).
 #include <gtest/gtest.h>
 
@@ -34,11 +34,11 @@ class Fig2 : public ::testing::Test {
     // Rest density = the self contribution, so any neighbour inside h raises the pressure.
     const real rho0 = m * kernels::poly6(0, model.kernel);
     const Material tool{0, 50, rho0, 300};  // mu = 0: the loop comes from adhesion alone
-    const Material wall{0, 50, rho0, 300};
+    const Material paste{0, 50, rho0, 300};
     st.tool_pose.position = {1.2 * B, 0, 0};
     st.tool_pose_applied = st.tool_pose;
     st.add_particles(model, {testing::particle(Role::tool, {0, 0, 0}, m, tool),
-                             testing::particle(Role::boundary, {0, 0, 0}, m, wall)});
+                             testing::particle(Role::material, {0, 0, 0}, m, paste)});
   }
 
   // Moves the tool to x = r over `n` steps, recording each step.
@@ -48,6 +48,9 @@ class Fig2 : public ::testing::Test {
       const real before = st.tool_pose_applied.position.x;  // distance used in this force pass
       st.tool_pose.position.x = r0 + (r - r0) * k / n;
       step(model, st);
+      const std::uint32_t held = st.index_of_id[1];  // the material particle stays put
+      st.pos[held] = {};
+      st.vel[held] = {};
       out.push_back({before, st.tool_wrench.force.x, st.bonds.count(st.id[st.index_of_id[0]])});
     }
   }
