@@ -26,6 +26,12 @@ class BondStore {
 
   // Adds `other` to the list of `id`; false (and counted) when the list is full.
   bool add(std::uint32_t id, std::uint32_t other);
+  // The same without counting (the step counts per thread and adds up).
+  bool try_add(std::uint32_t id, std::uint32_t other) {
+    if (count_[id] >= capacity_) return false;
+    partner_[std::size_t(id) * capacity_ + count_[id]++] = other;
+    return true;
+  }
   // Removes the k-th partner of `id` (the last one takes its place).
   void remove_at(std::uint32_t id, int k);
 

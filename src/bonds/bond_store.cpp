@@ -28,12 +28,9 @@ bool BondStore::has(std::uint32_t id, std::uint32_t other) const {
 }
 
 bool BondStore::add(std::uint32_t id, std::uint32_t other) {
-  if (count_[id] >= capacity_) {
-    ++counters.overflowed;
-    return false;
-  }
-  partner_[std::size_t(id) * capacity_ + count_[id]++] = other;
-  return true;
+  if (try_add(id, other)) return true;
+  ++counters.overflowed;
+  return false;
 }
 
 void BondStore::remove_at(std::uint32_t id, int k) {

@@ -2,6 +2,8 @@
 // eq. 6 has a stray minus sign). Boundary particles never move, so the part of a boundary
 // particle's density that comes from other boundary particles is computed once
 // (compute_static_density) and each step adds only its moving neighbours.
+#include <algorithm>
+
 #include "physics/kernels.hpp"
 #include "step/grid.hpp"
 #include "step/stages.hpp"
@@ -14,14 +16,21 @@ namespace {
 real density_sum(const Model& model, const State& s, std::uint32_t i, grid::Visit visit) {
   const GridIndex& g = s.grid;
   const real xi = g.x[i], yi = g.y[i], zi = g.z[i];
-  real rho = 0;
+  const real h2 = model.kernel.h2;
+  const real* x = g.x.data();
+  const real* y = g.y.data();
+  const real* z = g.z.data();
+  const real* m = s.mass.data();
+  real sum = 0;  // of m_j (h^2 - r^2)^3 over r < h; the kernel's constant is applied once
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
+    // Branch-free so that the compiler vectorises it: pairs beyond h contribute max(0, .) = 0.
     for (std::uint32_t j = b; j < e; ++j) {
-      const real dx = xi - g.x[j], dy = yi - g.y[j], dz = zi - g.z[j];
-      rho += s.mass[j] * kernels::poly6(dx * dx + dy * dy + dz * dz, model.kernel);
+      const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
+      const real w = std::max<real>(0, h2 - (dx * dx + dy * dy + dz * dz));
+      sum += m[j] * w * w * w;
     }
   });
-  return rho;
+  return model.kernel.poly6 * sum;
 }
 
 }  // namespace

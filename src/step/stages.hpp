@@ -13,15 +13,17 @@ void compute_cell_keys(const Model& model, State& state);
 void sort_by_cell(const Model& model, State& state);
 // 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
 void reorder(State& state);
-// Bond hysteresis over the grid: break beyond B, form below A (bonds/hysteresis.cpp).
-void update_bonds(const Model& model, State& state);
+// Bond hysteresis of boundary particles: break beyond B, form below A (bonds/hysteresis.cpp).
+// Moving particles update theirs in the force pass.
+void update_boundary_bonds(const Model& model, State& state);
 // 3. Density over the 27 neighbouring cells (density.cpp).
 void compute_density(const Model& model, State& state);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).
 void compute_static_density(const Model& model, State& state);
 // 4. Repulsion-only pressure (pressure.cpp).
 void compute_pressure(State& state);
-// 5. Pressure, viscosity and adhesion force densities (forces.cpp).
+// 5. Pressure, viscosity and adhesion force densities; moving particles' bond hysteresis on the
+// distances this pass computes anyway (forces.cpp).
 void compute_forces(const Model& model, State& state);
 // Wrench of the particles on the tool, from the forces of this step (tool_wrench.cpp).
 void compute_tool_wrench(State& state);

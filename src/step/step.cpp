@@ -8,10 +8,10 @@ void step(const Model& model, State& state) {
   stages::compute_cell_keys(model, state);   // 1. broad phase
   stages::sort_by_cell(model, state);        // 2. sort, cell ranges
   stages::reorder(state);                    //    and reorder
-  stages::update_bonds(model, state);        //    bond hysteresis (part of the narrow phase)
   stages::compute_density(model, state);     // 3. density
   stages::compute_pressure(state);           // 4. pressure
-  stages::compute_forces(model, state);      // 5. forces
+  stages::compute_forces(model, state);      // 5. forces, and bond hysteresis of moving particles
+  stages::update_boundary_bonds(model, state);  //  bond hysteresis of boundary particles
   stages::compute_tool_wrench(state);        //    force and torque on the tool
   stages::integrate(model, state);           // 6. integration
 }

@@ -1,0 +1,54 @@
+// Bond hysteresis (MODEL.md, "Adhesion hysteresis"): a pair bonds when r < A, stays bonded while
+// r <= B, and unbonds when r > B. Each particle updates only its own list, from the same squared
+// distance its partner sees (|r_i - r_j|^2 is bit-identical both ways), so the decision is
+// symmetric and a per-particle loop is free of write conflicts. Each event is counted once, by
+// the side with the smaller id; the caller adds the events to the store's counters.
+#pragma once
+
+#include "dentsph/model.hpp"
+#include "dentsph/state.hpp"
+#include "physics/pair_terms.hpp"
+
+namespace dentsph::bonds {
+
+struct Events {
+  std::uint64_t formed = 0, broken = 0, overflowed = 0;
+  Events& operator+=(const Events& o) {
+    formed += o.formed, broken += o.broken, overflowed += o.overflowed;
+    return *this;
+  }
+};
+
+// Removes the partners of particle i that are now beyond B.
+inline void break_stretched(const Model& model, State& s, std::uint32_t i, Events& ev) {
+  const real B2 = model.adhesion.B * model.adhesion.B;
+  const std::uint32_t id = s.id[i];
+  for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
+    const std::uint32_t other = s.bonds.partner(id, b);
+    if (norm2(s.pos[i] - s.pos[s.index_of_id[other]]) > B2) {
+      s.bonds.remove_at(id, b);
+      if (id < other) ++ev.broken;
+    }
+  }
+}
+
+// Bonds particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
+// are not bonded yet.
+inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
+  if (j == i || !(r2 < model.adhesion.A * model.adhesion.A)) return;
+  if (!pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j])) return;
+  const std::uint32_t a = s.id[i], b = s.id[j];
+  if (s.bonds.has(a, b)) return;
+  if (!s.bonds.try_add(a, b))
+    ++ev.overflowed;
+  else if (a < b)
+    ++ev.formed;
+}
+
+inline void record(State& s, const Events& ev) {
+  s.bonds.counters.formed += ev.formed;
+  s.bonds.counters.broken += ev.broken;
+  s.bonds.counters.overflowed += ev.overflowed;
+}
+
+}  // namespace dentsph::bonds
