@@ -80,6 +80,7 @@ class State {
   std::vector<Vec3> anchor;          // m, tool particles: position in the tool frame
   std::vector<real> rho;             // kg/m^3, from the density stage
   std::vector<real> pressure;        // Pa, from the pressure stage
+  std::vector<real> volume;          // m^3, m / rho, from the pressure stage (the pair terms' m_j/rho_j)
   std::vector<Vec3> force;           // N/m^3, internal force density (no gravity)
 
   // ---- by stable id -------------------------------------------------------------------------

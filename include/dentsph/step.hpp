@@ -1,15 +1,34 @@
 // One simulation step: the paper's six stages (MODEL.md, "One step").
 #pragma once
 
+#include <cstdint>
+
 #include "dentsph/model.hpp"
 #include "dentsph/state.hpp"
 
 namespace dentsph {
 
-// The grid step: cell keys, counting radix sort, reorder and cell ranges, bond hysteresis,
-// density, pressure, forces over the 27 neighbouring cells, semi-implicit Euler; then the tool
-// wrench. The tool moves to state.tool_pose. Allocation-free once particles are added.
-void step(const Model& model, State& state);
+// Wall time of each stage, summed over the steps that were given this struct (microseconds).
+struct StageTimes {
+  double hash_us = 0, sort_us = 0, reorder_us = 0, density_us = 0, pressure_us = 0, forces_us = 0,
+         bonds_us = 0, wrench_us = 0, integrate_us = 0;
+  std::uint64_t steps = 0;
+  double total_us() const {
+    return hash_us + sort_us + reorder_us + density_us + pressure_us + forces_us + bonds_us + wrench_us + integrate_us;
+  }
+};
+
+// How a step runs, not what it computes: every thread count gives the same result, bit for bit
+// (each particle's sums are taken in the same order whichever thread takes them).
+struct StepOptions {
+  int threads = 1;              // threads for the parallel stages (OpenMP); 1 runs serially
+  StageTimes* times = nullptr;  // when set, each stage's wall time is added to it
+};
+
+// The grid step: cell keys, counting radix sort, reorder and cell ranges, density, pressure,
+// forces over the 27 neighbouring cells with the bond hysteresis, semi-implicit Euler; then the
+// tool wrench. The tool moves to state.tool_pose. Allocation-free once particles are added.
+void step(const Model& model, State& state, const StepOptions& options = {});
 
 // The all-pairs reference step (the paper's "less efficient algorithm"): the same physics with
 // every pair visited, no grid and no reordering. Every faster path is tested against it.

@@ -12,8 +12,7 @@ namespace dentsph::pair {
 struct Side {
   Vec3 pos;
   Vec3 vel;
-  real mass;
-  real rho;
+  real vol;  // m^3, m / rho
   real pressure;
   real mu;
   real Ka;
@@ -24,10 +23,9 @@ struct Side {
 DENTSPH_HD inline Vec3 pressure_viscosity(const Side& i, const Side& j, const Vec3& d, real r,
                                           const KernelCoeffs& k) {
   if (r >= k.h || r <= 0) return {};
-  const real vol_j = j.mass / j.rho;
   // -(P_i + P_j)/2 * m_j/rho_j * gradW_spiky, with gradW = radial * d / r.
-  const real fp = -0.5 * (i.pressure + j.pressure) * vol_j * kernels::spiky_grad_radial(r, k) / r;
-  const real fv = 0.5 * (i.mu + j.mu) * vol_j * kernels::visc_laplacian(r, k);
+  const real fp = -0.5 * (i.pressure + j.pressure) * j.vol * kernels::spiky_grad_radial(r, k) / r;
+  const real fv = 0.5 * (i.mu + j.mu) * j.vol * kernels::visc_laplacian(r, k);
   return d * fp + (j.vel - i.vel) * fv;
 }
 
@@ -37,7 +35,7 @@ DENTSPH_HD inline Vec3 adhesion(const Side& i, const Side& j, const Vec3& d, rea
   if (r <= 0) return {};
   const real w = kernels::adhesion(r, a, k);
   if (w == 0) return {};
-  return d * (0.5 * (i.Ka + j.Ka) * (j.mass / j.rho) * w / r);
+  return d * (0.5 * (i.Ka + j.Ka) * j.vol * w / r);
 }
 
 // Whether a pair may bond at all: its mean adhesion strength is positive (so tool and wall,

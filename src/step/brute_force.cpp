@@ -45,10 +45,10 @@ void compute_forces_all_pairs(const Model& model, State& s) {
 void step_all_pairs(const Model& model, State& state) {
   stages::update_bonds_all_pairs(model, state);
   stages::compute_density_all_pairs(model, state);
-  stages::compute_pressure(state);
+  stages::compute_pressure(state, 1);
   stages::compute_forces_all_pairs(model, state);
   stages::compute_tool_wrench(state);
-  stages::integrate(model, state);
+  stages::integrate(model, state, 1);
 }
 
 }  // namespace dentsph

@@ -13,7 +13,7 @@ namespace dentsph::stages {
 namespace {
 
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
-real density_sum(const Model& model, const State& s, std::uint32_t i, grid::Visit visit) {
+real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
   const GridIndex& g = s.grid;
   const real xi = g.x[i], yi = g.y[i], zi = g.z[i];
   const real h2 = model.kernel.h2;
@@ -41,10 +41,11 @@ void compute_static_density(const Model& model, State& s) {
   s.rho_static_valid = true;
 }
 
-void compute_density(const Model& model, State& s) {
+void compute_density(const Model& model, State& s, int threads) {
   if (!s.rho_static_valid) compute_static_density(model, s);
-  const std::uint32_t n = s.size();
-  for (std::uint32_t i = 0; i < n; ++i) {
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
     s.rho[i] = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving)
                                            : density_sum(model, s, i, grid::Visit::all);
   }

@@ -1,6 +1,9 @@
 // Stage 5: force densities over the 27 neighbouring cells (pressure, viscosity) and over the
 // particle's bond list (adhesion, which reaches partners up to B > h). Gravity is added in
-// integration, so `force` is the internal force density the tool wrench is made of.
+// integration, so `force` is the internal force density the tool wrench is made of. Each moving
+// particle also updates its own bond list here, from the distances this pass computes anyway.
+#include <algorithm>
+
 #include "bonds/hysteresis.hpp"
 #include "step/grid.hpp"
 #include "step/side.hpp"
@@ -8,37 +11,80 @@
 
 namespace dentsph::stages {
 
-void compute_forces(const Model& model, State& s) {
-  const std::uint32_t n = s.size();
+namespace {
+
+// Neighbours of one particle found so far: candidates of the 27 cells are filtered without
+// branches (every candidate is written, the count advances only for those within h), then the
+// pair terms run over the short list. Flushed whenever it could overflow.
+struct NeighbourBuffer {
+  static constexpr std::uint32_t capacity = 256;
+  std::uint32_t j[capacity];
+  real r2[capacity];
+  std::uint32_t n = 0;
+};
+
+// Force density on moving particle i; updates i's bonds (events into ev).
+Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
   const GridIndex& g = s.grid;
-  bonds::Events ev;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (s.role[i] == Role::boundary) {  // static: its force is never used
-      s.force[i] = {};
-      continue;
+  const real* x = g.x.data();
+  const real* y = g.y.data();
+  const real* z = g.z.data();
+  const pair::Side si = side_of(s, i);
+  bonds::break_stretched(model, s, i, ev);
+
+  Vec3 f;
+  NeighbourBuffer nb;
+  auto flush = [&] {
+    for (std::uint32_t q = 0; q < nb.n; ++q) {
+      const std::uint32_t j = nb.j[q];
+      if (j == i) continue;
+      const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
+      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(nb.r2[q]), k);
+      bonds::try_form(model, s, i, j, nb.r2[q], ev);  // A < h: every pair to bond is here
     }
-    const pair::Side si = side_of(s, i);
-    bonds::break_stretched(model, s, i, ev);
-    Vec3 f;
-    grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t j = b; j < e; ++j) {
-        const Vec3 d{si.pos.x - g.x[j], si.pos.y - g.y[j], si.pos.z - g.z[j]};
-        const real r2 = norm2(d);
-        if (r2 >= k.h2 || j == i) continue;
-        f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
-        bonds::try_form(model, s, i, j, r2, ev);  // A < h: every pair to bond is here
+    nb.n = 0;
+  };
+  grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
+    while (b < e) {
+      const std::uint32_t end = std::min(e, b + (NeighbourBuffer::capacity - nb.n));
+      for (std::uint32_t j = b; j < end; ++j) {
+        const real dx = si.pos.x - x[j], dy = si.pos.y - y[j], dz = si.pos.z - z[j];
+        const real r2 = dx * dx + dy * dy + dz * dz;
+        nb.j[nb.n] = j;
+        nb.r2[nb.n] = r2;
+        nb.n += r2 < k.h2 ? 1 : 0;
       }
-    });
-    const std::uint32_t id = s.id[i];
-    for (int b = 0; b < s.bonds.count(id); ++b) {
-      const std::uint32_t j = s.index_of_id[s.bonds.partner(id, b)];
-      const Vec3 d = si.pos - s.pos[j];
-      f += pair::adhesion(si, side_of(s, j), d, norm(d), model.adhesion, k);
+      b = end;
+      if (nb.n == NeighbourBuffer::capacity) flush();
     }
-    s.force[i] = f;
+  });
+  flush();
+
+  const std::uint32_t id = s.id[i];
+  for (int b = 0; b < s.bonds.count(id); ++b) {
+    const std::uint32_t j = s.index_of_id[s.bonds.partner(id, b)];
+    const Vec3 d = si.pos - s.pos[j];
+    f += pair::adhesion(si, side_of(s, j), d, norm(d), model.adhesion, k);
   }
-  bonds::record(s, ev);
+  return f;
+}
+
+}  // namespace
+
+void compute_forces(const Model& model, State& s, int threads) {
+  const std::int64_t n = s.size();
+  bonds::Events total;
+#pragma omp parallel num_threads(threads)
+  {
+    bonds::Events ev;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i)
+      s.force[i] = s.role[i] == Role::boundary ? Vec3{} : force_on(model, s, std::uint32_t(i), ev);  // static: unused
+#pragma omp critical(dentsph_bond_events)
+    total += ev;
+  }
+  bonds::record(s, total);
 }
 
 }  // namespace dentsph::stages

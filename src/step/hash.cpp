@@ -5,9 +5,10 @@
 
 namespace dentsph::stages {
 
-void compute_cell_keys(const Model& model, State& state) {
-  const std::uint32_t n = state.size();
-  for (std::uint32_t i = 0; i < n; ++i) state.grid.key[i] = grid::bucket_of(state.pos[i], state.role[i], model.grid);
+void compute_cell_keys(const Model& model, State& state, int threads) {
+  const std::int64_t n = state.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) state.grid.key[i] = grid::bucket_of(state.pos[i], state.role[i], model.grid);
 }
 
 }  // namespace dentsph::stages

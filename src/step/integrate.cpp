@@ -8,11 +8,13 @@
 
 namespace dentsph::stages {
 
-void integrate(const Model& model, State& s) {
+void integrate(const Model& model, State& s, int threads) {
   const real dt = model.dt;
-  StepDiagnostics diag;
-  const std::uint32_t n = s.size();
-  for (std::uint32_t i = 0; i < n; ++i) {
+  real a2max = 0, v2max = 0;
+  std::uint64_t non_finite = 0;
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite)
+  for (std::int64_t i = 0; i < n; ++i) {
     switch (s.role[i]) {
       case Role::material: {
         const Vec3 a = s.force[i] / s.rho[i] + model.gravity;
@@ -20,10 +22,10 @@ void integrate(const Model& model, State& s) {
         s.pos[i] += s.vel[i] * dt;
         const real a2 = norm2(a), v2 = norm2(s.vel[i]);
         if (!std::isfinite(a2) || !std::isfinite(v2) || !is_finite(s.pos[i])) {
-          ++diag.non_finite;
+          ++non_finite;
         } else {
-          diag.max_accel = std::max(diag.max_accel, a2);
-          diag.max_speed = std::max(diag.max_speed, v2);
+          a2max = std::max(a2max, a2);
+          v2max = std::max(v2max, v2);
         }
         break;
       }
@@ -38,9 +40,9 @@ void integrate(const Model& model, State& s) {
       }
     }
   }
-  diag.max_accel = std::sqrt(diag.max_accel);
-  diag.max_speed = std::sqrt(diag.max_speed);
-  s.diagnostics = diag;
+  s.diagnostics.max_accel = std::sqrt(a2max);
+  s.diagnostics.max_speed = std::sqrt(v2max);
+  s.diagnostics.non_finite = non_finite;
   s.tool_pose_applied = s.tool_pose;
   s.time += dt;
   ++s.steps;

@@ -7,7 +7,7 @@
 namespace dentsph::stages {
 
 inline pair::Side side_of(const State& s, std::uint32_t i) {
-  return {s.pos[i], s.vel[i], s.mass[i], s.rho[i], s.pressure[i], s.mu[i], s.Ka[i]};
+  return {s.pos[i], s.vel[i], s.volume[i], s.pressure[i], s.mu[i], s.Ka[i]};
 }
 
 }  // namespace dentsph::stages

@@ -8,27 +8,27 @@
 namespace dentsph::stages {
 
 // 1. Broad phase: the grid cell key of every particle (hash.cpp).
-void compute_cell_keys(const Model& model, State& state);
+void compute_cell_keys(const Model& model, State& state, int threads);
 // 2a. Counting radix sort of the particles by cell key, and each cell's range (sort.cpp).
 void sort_by_cell(const Model& model, State& state);
 // 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
-void reorder(State& state);
+void reorder(State& state, int threads);
 // Bond hysteresis of boundary particles: break beyond B, form below A (bonds/hysteresis.cpp).
 // Moving particles update theirs in the force pass.
-void update_boundary_bonds(const Model& model, State& state);
+void update_boundary_bonds(const Model& model, State& state, int threads);
 // 3. Density over the 27 neighbouring cells (density.cpp).
-void compute_density(const Model& model, State& state);
+void compute_density(const Model& model, State& state, int threads);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).
 void compute_static_density(const Model& model, State& state);
 // 4. Repulsion-only pressure (pressure.cpp).
-void compute_pressure(State& state);
+void compute_pressure(State& state, int threads);
 // 5. Pressure, viscosity and adhesion force densities; moving particles' bond hysteresis on the
 // distances this pass computes anyway (forces.cpp).
-void compute_forces(const Model& model, State& state);
+void compute_forces(const Model& model, State& state, int threads);
 // Wrench of the particles on the tool, from the forces of this step (tool_wrench.cpp).
 void compute_tool_wrench(State& state);
 // 6. Semi-implicit Euler for material; the tool moves to its pose (integrate.cpp).
-void integrate(const Model& model, State& state);
+void integrate(const Model& model, State& state, int threads);
 
 // The all-pairs versions of the neighbour stages (brute_force.cpp).
 void update_bonds_all_pairs(const Model& model, State& state);

@@ -37,6 +37,7 @@ void State::add_particles(const Model& model, const std::vector<ParticleInit>& p
     Ka.push_back(p.material.Ka);
     rho.push_back(p.material.rho0);
     pressure.push_back(0);
+    volume.push_back(p.mass / p.material.rho0);
     force.push_back({});
   }
   // Ids are dense and equal to the index at insertion; earlier particles may have moved.

@@ -1,19 +1,57 @@
 // The grid step, in the paper's order (section 3.2).
+#include <chrono>
+
 #include "dentsph/step.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph {
 
-void step(const Model& model, State& state) {
-  stages::compute_cell_keys(model, state);   // 1. broad phase
-  stages::sort_by_cell(model, state);        // 2. sort, cell ranges
-  stages::reorder(state);                    //    and reorder
-  stages::compute_density(model, state);     // 3. density
-  stages::compute_pressure(state);           // 4. pressure
-  stages::compute_forces(model, state);      // 5. forces, and bond hysteresis of moving particles
-  stages::update_boundary_bonds(model, state);  //  bond hysteresis of boundary particles
-  stages::compute_tool_wrench(state);        //    force and torque on the tool
-  stages::integrate(model, state);           // 6. integration
+namespace {
+
+// Adds the wall time of each stage to a StageTimes when one is given; costs nothing otherwise.
+class StageClock {
+ public:
+  explicit StageClock(StageTimes* t) : times_(t) {
+    if (times_) last_ = std::chrono::steady_clock::now();
+  }
+  void lap(double StageTimes::*field) {
+    if (!times_) return;
+    const auto now = std::chrono::steady_clock::now();
+    times_->*field += std::chrono::duration<double, std::micro>(now - last_).count();
+    last_ = now;
+  }
+  ~StageClock() {
+    if (times_) ++times_->steps;
+  }
+
+ private:
+  StageTimes* times_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+}  // namespace
+
+void step(const Model& model, State& state, const StepOptions& opt) {
+  const int t = opt.threads < 1 ? 1 : opt.threads;
+  StageClock clock(opt.times);
+  stages::compute_cell_keys(model, state, t);      // 1. broad phase
+  clock.lap(&StageTimes::hash_us);
+  stages::sort_by_cell(model, state);              // 2. sort, cell ranges
+  clock.lap(&StageTimes::sort_us);
+  stages::reorder(state, t);                       //    and reorder
+  clock.lap(&StageTimes::reorder_us);
+  stages::compute_density(model, state, t);        // 3. density
+  clock.lap(&StageTimes::density_us);
+  stages::compute_pressure(state, t);              // 4. pressure
+  clock.lap(&StageTimes::pressure_us);
+  stages::compute_forces(model, state, t);         // 5. forces, and bond hysteresis of moving particles
+  clock.lap(&StageTimes::forces_us);
+  stages::update_boundary_bonds(model, state, t);  //    bond hysteresis of boundary particles
+  clock.lap(&StageTimes::bonds_us);
+  stages::compute_tool_wrench(state);              //    force and torque on the tool
+  clock.lap(&StageTimes::wrench_us);
+  stages::integrate(model, state, t);              // 6. integration
+  clock.lap(&StageTimes::integrate_us);
 }
 
 }  // namespace dentsph
