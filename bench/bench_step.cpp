@@ -1,52 +1,33 @@
-// Google Benchmark: one step of a block of material in a container, grid step against the
-// all-pairs reference, for growing particle counts (the paper's Fig. 3, on the CPU).
+// Google Benchmark: one step of a block of material in a container (the `dentsph bench` sweep's
+// scenes), grid step against the all-pairs reference, for growing particle counts and threads.
 #include <benchmark/benchmark.h>
 
-#include "dentsph/step.hpp"
-#include "support/builders.hpp"
+#include "dentsph/bench.hpp"
 
 namespace {
 
 using namespace dentsph;
 
-constexpr real s = 0.01;
-
-struct Setup {
-  Model model;
-  State state;
-};
-
-// A cube of n^3 material particles in an open container with two wall layers.
-Setup block(int n) {
-  const real ext = (n + 6) * s;
-  Setup st{make_model(testing::params_for_spacing(s, {-3 * s, -3 * s, -3 * s}, {ext, ext, ext}, 2e-4, {0, 0, -9.81})),
-           {}};
-  const real m = lattice_particle_mass(1000, s, st.model.kernel);
-  const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
-  std::vector<ParticleInit> ps;
-  for (Vec3 p : testing::lattice({0, 0, 0}, s, n, n, n)) ps.push_back(testing::particle(Role::material, p, m, paste));
-  for (Vec3 p : testing::open_container({0, 0, 0}, s, n - 1, n - 1, n + 1, 2))
-    ps.push_back(testing::particle(Role::boundary, p, m, wall));
-  st.state.add_particles(st.model, ps);
-  for (int k = 0; k < 20; ++k) step(st.model, st.state);  // settle the first transients
-  return st;
-}
-
-void BM_GridStep(benchmark::State& bs) {
-  Setup st = block(int(bs.range(0)));
-  for (auto _ : bs) step(st.model, st.state);
-  bs.counters["particles"] = st.state.size();
+void run(benchmark::State& bs, bool all_pairs) {
+  const Scene sc = sweep_block_scene(int(bs.range(0)));
+  State st = make_state(sc);
+  const StepOptions opt{int(bs.range(1)), nullptr};
+  for (int k = 0; k < 10; ++k) step(sc.model, st, opt);  // first bonds, warm caches
+  for (auto _ : bs) {
+    if (all_pairs)
+      step_all_pairs(sc.model, st);
+    else
+      step(sc.model, st, opt);
+  }
+  bs.counters["particles"] = st.size();
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_GridStep)->Arg(8)->Arg(12)->Arg(16)->Arg(24)->Arg(32)->Unit(benchmark::kMicrosecond);
 
-void BM_AllPairsStep(benchmark::State& bs) {
-  Setup st = block(int(bs.range(0)));
-  for (auto _ : bs) step_all_pairs(st.model, st.state);
-  bs.counters["particles"] = st.state.size();
-  bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_AllPairsStep)->Arg(8)->Arg(12)->Unit(benchmark::kMicrosecond);
+void BM_GridStep(benchmark::State& bs) { run(bs, false); }
+BENCHMARK(BM_GridStep)->ArgsProduct({{8, 12, 16, 24, 32}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+void BM_AllPairsStep(benchmark::State& bs) { run(bs, true); }
+BENCHMARK(BM_AllPairsStep)->ArgsProduct({{8, 12}, {1}})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 }  // namespace
 

@@ -8,6 +8,11 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <fstream>
+#include <thread>
+#include <vector>
+
+#include "dentsph/bench.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 
@@ -44,6 +49,23 @@ int cmd_validate(const std::string& file) {
   print_scene(sc, st);
   check_time_step(sc, st, false);
   fmt::print("ok: {} is a valid scene\n", file);
+  return 0;
+}
+
+int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
+  if (quick) {
+    opt.sweep_sides = {8, 12, 16};
+    opt.repeats = 3;
+    opt.seconds_per_run = 0.1;
+  }
+  const BenchResult r = run_benchmarks(opt, [](const std::string& line) { spdlog::info("{}", line); });
+  fmt::print("\n{}", bench_table(r));
+  if (!json_file.empty()) {
+    std::ofstream out(json_file);
+    out << bench_json(r) << "\n";
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the benchmark results", json_file));
+    fmt::print("wrote {}\n", json_file);
+  }
   return 0;
 }
 
@@ -92,6 +114,17 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
   run->add_flag("--allow-unstable", opt.allow_unstable, "Run even when dt is over a stability limit");
   run->add_flag("-q,--quiet", quiet, "No progress output");
+  opt.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
+
+  BenchOptions bench_opt;
+  std::string bench_json_file;
+  bool bench_quick = false;
+  CLI::App* bench = app.add_subcommand("bench", "Measure steps per second: the paper-sized scene and a sweep over particle counts");
+  bench->add_option("--threads", bench_opt.threads, "Thread counts to measure (e.g. --threads 1 2)")->capture_default_str();
+  bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
+  bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
+  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 3 repeats)");
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -104,6 +137,7 @@ int main(int argc, char** argv) {
       return cmd_run(run_scene, opt, quiet);
     }
     if (*validate) return cmd_validate(validate_scene);
+    if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -32,6 +32,7 @@ struct RunOptions {
   real duration = 0;                // s of simulated time when steps == 0 (0: the scene's run.duration)
   std::filesystem::path out_dir;    // where to write; empty: write nothing
   bool allow_unstable = false;      // run even when dt is over the acoustic or viscous limit
+  int threads = 1;                  // threads of the parallel stages
   std::function<void(const RunProgress&)> on_progress;  // called about every 1% of the run
 };
 
@@ -52,6 +53,7 @@ struct RunSummary {
   real first_force_violation_t = -1;        // s, -1 if none
   real peak_tool_force_N = 0;
   std::uint64_t snapshots = 0;
+  int threads = 1;
 };
 
 // The acoustic and viscous limits of a scene's initial state, and an error (UnstableTimeStep)

@@ -34,6 +34,9 @@ void step(const Model& model, State& state, const StepOptions& options = {});
 // every pair visited, no grid and no reordering. Every faster path is tested against it.
 void step_all_pairs(const Model& model, State& state);
 
+// Mean number of neighbours within h per particle (self excluded), over the 27-cell grid.
+real mean_neighbours(const Model& model, State& state);
+
 // Time-step limits of MODEL.md, "Stability", in seconds.
 struct StabilityLimits {
   real acoustic = 0;  // lambda h / sqrt(max Kp)

@@ -63,6 +63,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   State state = make_state(scene);
   RunSummary sum;
   sum.scene = scene.name;
+  sum.threads = opt.threads;
   sum.dt = scene.model.dt;
   sum.limits = check_time_step(scene, state, opt.allow_unstable);
   sum.acoustic_violated = sum.dt > sum.limits.acoustic;
@@ -91,7 +92,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   for (std::uint64_t k = 0; k < total; ++k) {
     const real t_forces = state.time;
     state.tool_pose = scene.tool.at(state.time + scene.model.dt);
-    step(scene.model, state);
+    step(scene.model, state, StepOptions{opt.threads, nullptr});
     if (csv) csv->add(t_forces, state.tool_wrench);
     sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
     const real force_limit = stability_limits(scene.model, state).force;

@@ -19,6 +19,25 @@ std::uint32_t State::count(Role r) const {
   return std::uint32_t(std::count(role.begin(), role.end(), r));
 }
 
+namespace {
+
+template <class T>
+std::size_t bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+}  // namespace
+
+std::size_t State::bytes_per_particle() const {
+  if (size() == 0) return 0;
+  const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +
+                            bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
+                            bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + bytes(grid.key) +
+                            bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(scratch_vec) +
+                            bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role);
+  return total / size();
+}
+
 void State::add_particles(const Model& model, const std::vector<ParticleInit>& particles) {
   const std::uint32_t n0 = size();
   const std::uint32_t n = n0 + std::uint32_t(particles.size());

@@ -1,0 +1,191 @@
+// The benchmark runner behind `dentsph bench`. Each configuration runs `repeats` times for about
+// `seconds_per_run` of wall time after a warm-up; the median run's rate and stage times are kept.
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "dentsph/bench.hpp"
+
+namespace dentsph {
+
+namespace {
+
+struct Measured {
+  double steps_per_second = 0;
+  StageTimes per_step;
+};
+
+// Runs `state` for repeats x seconds_per_run; `prepare` sets the tool pose before each step.
+template <class Prepare>
+Measured measure(const Model& model, State& state, bool all_pairs, int threads, const BenchOptions& opt,
+                 Prepare&& prepare) {
+  auto one = [&] {
+    prepare(state);
+    if (all_pairs)
+      step_all_pairs(model, state);
+    else
+      step(model, state, StepOptions{threads, nullptr});
+  };
+  for (int k = 0; k < 10; ++k) one();  // warm-up: first bonds, caches
+  std::vector<Measured> runs;
+  for (int r = 0; r < std::max(1, opt.repeats); ++r) {
+    StageTimes t;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::uint64_t steps = 0;
+    double elapsed = 0;
+    while (steps < 5 || elapsed < opt.seconds_per_run) {
+      prepare(state);
+      if (all_pairs)
+        step_all_pairs(model, state);
+      else
+        step(model, state, StepOptions{threads, &t});
+      ++steps;
+      elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    Measured m;
+    m.steps_per_second = double(steps) / elapsed;
+    for (double StageTimes::*f : {&StageTimes::hash_us, &StageTimes::sort_us, &StageTimes::reorder_us,
+                                  &StageTimes::density_us, &StageTimes::pressure_us, &StageTimes::forces_us,
+                                  &StageTimes::bonds_us, &StageTimes::wrench_us, &StageTimes::integrate_us})
+      m.per_step.*f = t.*f / double(steps);
+    m.per_step.steps = steps;
+    runs.push_back(m);
+  }
+  std::sort(runs.begin(), runs.end(),
+            [](const Measured& a, const Measured& b) { return a.steps_per_second < b.steps_per_second; });
+  return runs[runs.size() / 2];
+}
+
+std::string machine_name() {
+  std::ifstream cpu("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpu, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  return fmt::format("{}, {} hardware threads", model, std::thread::hardware_concurrency());
+}
+
+nlohmann::json stages_json(const StageTimes& t) {
+  return {{"hash", t.hash_us},     {"sort", t.sort_us},     {"reorder", t.reorder_us},
+          {"density", t.density_us}, {"pressure", t.pressure_us}, {"forces", t.forces_us},
+          {"bonds", t.bonds_us},   {"wrench", t.wrench_us}, {"integrate", t.integrate_us},
+          {"total", t.total_us()}};
+}
+
+}  // namespace
+
+Scene sweep_block_scene(int side) {
+  constexpr real s = 0.01;
+  Scene sc;
+  sc.name = fmt::format("block_{}", side);
+  sc.source = "built-in";
+  const real ext = (side + 6) * s;
+  sc.params.dt = 2e-4;
+  sc.params.h = 2 * s;
+  sc.params.adhesion.A = 1.2 * s;
+  sc.params.adhesion.B = 3 * s;
+  sc.params.domain_min = {-3 * s, -3 * s, -3 * s};
+  sc.params.domain_max = {ext, ext, ext};
+  sc.model = make_model(sc.params);
+  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
+  const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
+  auto add = [&](Role role, Vec3 p, const Material& mat) {
+    ParticleInit q;
+    q.role = role;
+    q.pos = p;
+    q.mass = m;
+    q.material = mat;
+    sc.particles.push_back(q);
+  };
+  // A cube of side^3 material in an open container with two wall layers, one spacing away.
+  for (int k = -2; k <= side + 1; ++k)
+    for (int j = -2; j <= side + 1; ++j)
+      for (int i = -2; i <= side + 1; ++i) {
+        const bool inner = i >= 0 && i < side && j >= 0 && j < side && k >= 0;
+        if (inner && k < side) add(Role::material, {i * s, j * s, k * s}, paste);
+        if (!inner) add(Role::boundary, {i * s, j * s, k * s}, wall);
+      }
+  return sc;
+}
+
+BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(const std::string&)>& log) {
+  BenchResult res;
+  res.machine = machine_name();
+
+  const Scene paper = paper_counts_scene();
+  res.default_scene = paper.name;
+  {
+    const State st = make_state(paper);
+    for (Role r : {Role::material, Role::boundary, Role::tool}) res.default_particles[role_name(r)] = st.count(r);
+  }
+  for (int t : opt.threads) {
+    State st = make_state(paper);
+    const Measured m = measure(paper.model, st, false, t, opt, [&](State& s) { s.tool_pose = paper.tool.at(s.time + paper.model.dt); });
+    res.default_steps_per_second[t] = m.steps_per_second;
+    res.default_stage_us[t] = m.per_step;
+    log(fmt::format("{}: {} threads: {:.0f} steps/s", paper.name, t, m.steps_per_second));
+  }
+
+  for (int side : opt.sweep_sides) {
+    const Scene sc = sweep_block_scene(side);
+    State probe = make_state(sc);
+    const real neighbours = mean_neighbours(sc.model, probe);
+    auto row = [&](const std::string& method, int t) {
+      State st = make_state(sc);
+      const Measured m = measure(sc.model, st, method == "all_pairs", t, opt, [](State&) {});
+      res.sweep.push_back({st.size(), neighbours, method, t, m.steps_per_second, m.per_step});
+      res.bytes_per_particle = st.bytes_per_particle();
+      log(fmt::format("{} particles, {} threads, {}: {:.1f} steps/s", st.size(), t, method, m.steps_per_second));
+    };
+    for (int t : opt.threads) row("grid", t);
+    if (probe.size() <= opt.all_pairs_max_particles) row("all_pairs", 1);
+  }
+  return res;
+}
+
+std::string bench_json(const BenchResult& r) {
+  nlohmann::json j;
+  j["machine"] = r.machine;
+  nlohmann::json sps = nlohmann::json::object(), stages = nlohmann::json::object();
+  for (const auto& [t, v] : r.default_steps_per_second) sps[std::to_string(t)] = v;
+  for (const auto& [t, v] : r.default_stage_us) stages[std::to_string(t)] = stages_json(v);
+  j["default_scene"] = {{"name", r.default_scene}, {"particles", r.default_particles}, {"steps_per_second", sps},
+                        {"stage_us", stages}};
+  j["sweep"] = nlohmann::json::array();
+  for (const BenchRow& row : r.sweep)
+    j["sweep"].push_back({{"particles", row.particles},
+                          {"neighbours", row.neighbours},
+                          {"method", row.method},
+                          {"threads", row.threads},
+                          {"steps_per_second", row.steps_per_second},
+                          {"stage_us", stages_json(row.stage_us)}});
+  j["bytes_per_particle"] = r.bytes_per_particle;
+  return j.dump(2);
+}
+
+std::string bench_table(const BenchResult& r) {
+  std::string out = fmt::format("machine: {}\n\n{} (", r.machine, r.default_scene);
+  for (const auto& [role, n] : r.default_particles) out += fmt::format("{} {}, ", n, role);
+  out += "particles)\n";
+  for (const auto& [t, v] : r.default_steps_per_second) {
+    const StageTimes& st = r.default_stage_us.at(t);
+    out += fmt::format("  {} threads: {:8.0f} steps/s  ({:.1f} us/step: density {:.1f}, forces {:.1f}, bonds {:.1f}, other {:.1f})\n",
+                       t, v, st.total_us(), st.density_us, st.forces_us, st.bonds_us,
+                       st.total_us() - st.density_us - st.forces_us - st.bonds_us);
+  }
+  out += fmt::format("\n{:>10} {:>10} {:>10} {:>8} {:>12} {:>12}\n", "particles", "neighbours", "method", "threads",
+                     "steps/s", "ns/particle");
+  for (const BenchRow& row : r.sweep)
+    out += fmt::format("{:>10} {:>10.1f} {:>10} {:>8} {:>12.1f} {:>12.1f}\n", row.particles, row.neighbours, row.method,
+                       row.threads, row.steps_per_second, 1e9 / (row.steps_per_second * row.particles));
+  out += fmt::format("\nmemory: {} bytes per particle\n", r.bytes_per_particle);
+  return out;
+}
+
+}  // namespace dentsph
