@@ -36,8 +36,6 @@ class BondStore {
   void remove_at(std::uint32_t id, int k);
 
   std::size_t bytes() const { return count_.capacity() * sizeof(std::uint16_t) + partner_.capacity() * sizeof(std::uint32_t); }
-  // Bonded pairs now: half the sum of list lengths.
-  std::uint64_t current_pairs() const;
   BondCounters counters;
 
  private:

@@ -113,6 +113,9 @@ class State {
   void add_particles(const Model& model, const std::vector<ParticleInit>& particles);
   // Number of particles of each role.
   std::uint32_t count(Role r) const;
+  // Bonded pairs now. A pair of moving particles is in both lists, a bond to a boundary particle
+  // only in the moving particle's list (boundary particles keep none).
+  std::uint64_t bonded_pairs() const;
   // Bytes held per particle by every per-particle array, the bond store and the scratch
   // (the grid's per-cell arrays, which depend on the domain, not the particles, excluded).
   std::size_t bytes_per_particle() const;

@@ -11,10 +11,10 @@ namespace dentsph {
 // Wall time of each stage, summed over the steps that were given this struct (microseconds).
 struct StageTimes {
   double hash_us = 0, sort_us = 0, reorder_us = 0, density_us = 0, pressure_us = 0, forces_us = 0,
-         bonds_us = 0, wrench_us = 0, integrate_us = 0;
+         wrench_us = 0, integrate_us = 0;
   std::uint64_t steps = 0;
   double total_us() const {
-    return hash_us + sort_us + reorder_us + density_us + pressure_us + forces_us + bonds_us + wrench_us + integrate_us;
+    return hash_us + sort_us + reorder_us + density_us + pressure_us + forces_us + wrench_us + integrate_us;
   }
 };
 
@@ -26,7 +26,7 @@ struct StepOptions {
 };
 
 // The grid step: cell keys, counting radix sort, reorder and cell ranges, density, pressure,
-// forces over the 27 neighbouring cells with the bond hysteresis, semi-implicit Euler; then the
+// forces over the 27 neighbouring cells with the bond hysteresis of each moving particle, semi-implicit Euler; then the
 // tool wrench. The tool moves to state.tool_pose. Allocation-free once particles are added.
 void step(const Model& model, State& state, const StepOptions& options = {});
 

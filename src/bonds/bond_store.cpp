@@ -1,5 +1,3 @@
-#include <numeric>
-
 #include "dentsph/bonds.hpp"
 
 namespace dentsph {
@@ -38,8 +36,5 @@ void BondStore::remove_at(std::uint32_t id, int k) {
   p[k] = p[--count_[id]];
 }
 
-std::uint64_t BondStore::current_pairs() const {
-  return std::accumulate(count_.begin(), count_.end(), std::uint64_t(0)) / 2;
-}
 
 }  // namespace dentsph

@@ -1,8 +1,11 @@
 // Bond hysteresis (MODEL.md, "Adhesion hysteresis"): a pair bonds when r < A, stays bonded while
 // r <= B, and unbonds when r > B. Each particle updates only its own list, from the same squared
 // distance its partner sees (|r_i - r_j|^2 is bit-identical both ways), so the decision is
-// symmetric and a per-particle loop is free of write conflicts. Each event is counted once, by
-// the side with the smaller id; the caller adds the events to the store's counters.
+// symmetric and a per-particle loop is free of write conflicts. Boundary particles keep no lists
+// (they never move, so nothing of theirs reads one): a bond to a wall lives in the moving
+// particle's list alone. Each event is counted once: by the side with the smaller id when both
+// sides keep lists, by the moving side when the partner is a boundary particle. The caller adds
+// the events to the store's counters.
 #pragma once
 
 #include "dentsph/model.hpp"
@@ -19,20 +22,21 @@ struct Events {
   }
 };
 
-// Removes the partners of particle i that are now beyond B.
+// Removes the partners of moving particle i that are now beyond B.
 inline void break_stretched(const Model& model, State& s, std::uint32_t i, Events& ev) {
   const real B2 = model.adhesion.B * model.adhesion.B;
   const std::uint32_t id = s.id[i];
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
     const std::uint32_t other = s.bonds.partner(id, b);
-    if (norm2(s.pos[i] - s.pos[s.index_of_id[other]]) > B2) {
+    const std::uint32_t j = s.index_of_id[other];
+    if (norm2(s.pos[i] - s.pos[j]) > B2) {
       s.bonds.remove_at(id, b);
-      if (id < other) ++ev.broken;
+      if (id < other || s.role[j] == Role::boundary) ++ev.broken;
     }
   }
 }
 
-// Bonds particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
+// Bonds moving particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
 // are not bonded yet.
 inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
   if (j == i || !(r2 < model.adhesion.A * model.adhesion.A)) return;
@@ -41,7 +45,7 @@ inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_
   if (s.bonds.has(a, b)) return;
   if (!s.bonds.try_add(a, b))
     ++ev.overflowed;
-  else if (a < b)
+  else if (a < b || s.role[j] == Role::boundary)
     ++ev.formed;
 }
 

@@ -125,7 +125,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   sum.wall_time_s = elapsed();
   sum.steps_per_second = sum.wall_time_s > 0 ? double(sum.steps) / sum.wall_time_s : 0;
   sum.bonds = state.bonds.counters;
-  sum.bonds_current = state.bonds.current_pairs();
+  sum.bonds_current = state.bonded_pairs();
   if (snaps) {
     snaps->maybe_write(state, true);
     sum.snapshots = snaps->count();

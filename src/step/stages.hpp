@@ -13,9 +13,6 @@ void compute_cell_keys(const Model& model, State& state, int threads);
 void sort_by_cell(const Model& model, State& state);
 // 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
 void reorder(State& state, int threads);
-// Bond hysteresis of boundary particles: break beyond B, form below A (bonds/hysteresis.cpp).
-// Moving particles update theirs in the force pass.
-void update_boundary_bonds(const Model& model, State& state, int threads);
 // 3. Density over the 27 neighbouring cells (density.cpp).
 void compute_density(const Model& model, State& state, int threads);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).

@@ -28,6 +28,15 @@ std::size_t bytes(const std::vector<T>& v) {
 
 }  // namespace
 
+std::uint64_t State::bonded_pairs() const {
+  std::uint64_t both_sides = 0, to_boundary = 0;
+  for (std::uint32_t i = 0; i < size(); ++i) {
+    for (int b = 0; b < bonds.count(id[i]); ++b)
+      (role[index_of_id[bonds.partner(id[i], b)]] == Role::boundary ? to_boundary : both_sides) += 1;
+  }
+  return both_sides / 2 + to_boundary;
+}
+
 std::size_t State::bytes_per_particle() const {
   if (size() == 0) return 0;
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +

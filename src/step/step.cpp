@@ -46,8 +46,6 @@ void step(const Model& model, State& state, const StepOptions& opt) {
   clock.lap(&StageTimes::pressure_us);
   stages::compute_forces(model, state, t);         // 5. forces, and bond hysteresis of moving particles
   clock.lap(&StageTimes::forces_us);
-  stages::update_boundary_bonds(model, state, t);  //    bond hysteresis of boundary particles
-  clock.lap(&StageTimes::bonds_us);
   stages::compute_tool_wrench(state);              //    force and torque on the tool
   clock.lap(&StageTimes::wrench_us);
   stages::integrate(model, state, t);              // 6. integration

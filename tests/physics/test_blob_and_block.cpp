@@ -126,7 +126,7 @@ BlockResult run_block(real Ka, real dt, real seconds) {
   r.drift = centre_of_mass() - c0;
   for (std::uint32_t i = 0; i < st.size(); ++i)
     if (st.role[i] == Role::material) r.min_x = std::min(r.min_x, st.pos[i].x), r.min_z = std::min(r.min_z, st.pos[i].z);
-  r.bonds = st.bonds.current_pairs();
+  r.bonds = st.bonded_pairs();
   return r;
 }
 
