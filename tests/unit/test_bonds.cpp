@@ -1,7 +1,9 @@
-// The bond store: fixed capacity per particle, counted overflow, removal.
+// The bond store: fixed capacity per particle, counted overflow, removal; and bonds in a State.
 #include <gtest/gtest.h>
 
 #include "dentsph/bonds.hpp"
+#include "dentsph/step.hpp"
+#include "support/builders.hpp"
 
 namespace dentsph {
 namespace {
@@ -46,6 +48,34 @@ TEST(BondStore, GrowingKeepsExistingLists) {
   EXPECT_EQ(b.count(2), 0);
   EXPECT_TRUE(b.add(2, 0));
   EXPECT_EQ(b.capacity(), 4);
+}
+
+}  // namespace
+}  // namespace dentsph
+
+// Bonds in a State: a bond to a wall lives in the moving particle's list only, and is counted once.
+namespace dentsph {
+namespace {
+
+TEST(StateBonds, WallBondsLiveOnTheMovingSideAndCountOnce) {
+  constexpr real s = 0.01;
+  const Model model = make_model(testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.05, 0.05, 0.05}, 1e-5));
+  const Material paste{0, 60, 1000, 300}, wall{0, 200, 1000, 0};
+  const real m = lattice_particle_mass(1000, s, model.kernel);
+  State st;
+  st.add_particles(model, {testing::particle(Role::material, {0, 0, 0}, m, paste),
+                           testing::particle(Role::material, {s, 0, 0}, m, paste),
+                           testing::particle(Role::boundary, {0, 0, -s}, m, wall),
+                           testing::particle(Role::boundary, {s, 0, -s}, m, wall)});
+  step(model, st);
+  // Material 0 bonds to material 1 (r = s < A) and to the wall particle below it; material 1
+  // likewise; the wall particles bond to each other never and keep no lists.
+  EXPECT_EQ(st.bonds.count(0), 2);
+  EXPECT_EQ(st.bonds.count(1), 2);
+  EXPECT_EQ(st.bonds.count(2), 0);
+  EXPECT_EQ(st.bonds.count(3), 0);
+  EXPECT_EQ(st.bonded_pairs(), 3u);
+  EXPECT_EQ(st.bonds.counters.formed, 3u);
 }
 
 }  // namespace
