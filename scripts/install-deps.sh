@@ -6,6 +6,11 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+# --sanitizers: also clang 14 and LLVM's OpenMP, for the tsan preset (Archer makes OpenMP visible
+# to ThreadSanitizer).
+if [ "${1:-}" = "--sanitizers" ]; then
+  packages+=(clang-14 libomp-14-dev libclang-rt-14-dev)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -28,13 +28,17 @@ struct KernelCoeffs {
   real adh_scale = 0;    // Cd / h^4, 1/m^4
 };
 
-// The uniform grid of the broad phase. Cells are cubes of edge `cell_size` (>= h) starting at
-// `origin`; coordinates wrap modulo `dims`, so a particle anywhere in space has a cell (far
+// The uniform grid of the broad phase. Cells are cubes of edge `cell_size` starting at `origin`;
+// a particle's neighbours within h lie in the (2 reach + 1)^3 cells around its own, with
+// reach * cell_size >= h. Half-h cells (reach 2, 125 cells) hold 15.6 h^3 of candidates where
+// h cells (reach 1, the paper's 27) hold 27 h^3: 42% fewer pairs to test for the same
+// neighbours. Coordinates wrap modulo `dims`, so a particle anywhere in space has a cell (far
 // particles share cells with near ones, which costs time but never correctness).
 struct GridSpec {
   Vec3 origin;             // m
   real cell_size = 0;      // m
-  int dims[3] = {0, 0, 0}; // cells per axis, each >= 3 so the 27 neighbours are distinct
+  int reach = 1;           // cells searched on each side
+  int dims[3] = {0, 0, 0}; // cells per axis, each >= 2 reach + 1 so the searched cells are distinct
 
   std::int64_t cell_count() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 };
@@ -48,6 +52,7 @@ struct ModelParams {
   Vec3 domain_min, domain_max;    // m, region the grid covers without wrapping
   int max_bonds_per_particle = 32;
   real cfl_lambda = 0.4;          // acoustic Courant number of the stability limit
+  int grid_reach = 2;             // grid cells of h / grid_reach, searched grid_reach deep
 };
 
 struct Model {

@@ -45,6 +45,8 @@ Model make_model(const ModelParams& p) {
   if (p.max_bonds_per_particle < 1 || p.max_bonds_per_particle > 1024)
     fail("max_bonds_per_particle", fmt::format("must be in [1, 1024], got {}", p.max_bonds_per_particle));
   require_finite_positive(p.cfl_lambda, "cfl_lambda", "about 0.4 is usual");
+  if (p.grid_reach < 1 || p.grid_reach > 3)
+    fail("grid_reach", fmt::format("must be 1, 2 or 3 (cells of h / reach), got {}", p.grid_reach));
   if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
       !(p.domain_min.y < p.domain_max.y) || !(p.domain_min.z < p.domain_max.z))
     fail("domain", "min must be below max on every axis (metres)");
@@ -60,16 +62,17 @@ Model make_model(const ModelParams& p) {
   m.domain_min = p.domain_min;
   m.domain_max = p.domain_max;
 
-  // Grid: cells of edge h over the domain; at least 3 per axis (distinct 27-cell neighbourhoods),
-  // at most 2^22 cells in all (the domain wraps beyond, which stays correct).
+  // Grid: cells of edge h / reach over the domain; at least 2 reach + 1 per axis (distinct
+  // searched cells), at most 2^22 cells in all (the domain wraps beyond, which stays correct).
   GridSpec& g = m.grid;
   g.origin = p.domain_min;
-  g.cell_size = p.h;
+  g.reach = p.grid_reach;
+  g.cell_size = p.h / g.reach;
   const Vec3 ext = p.domain_max - p.domain_min;
   constexpr std::int64_t max_cells = std::int64_t(1) << 22;
   for (;;) {
     for (int ax = 0; ax < 3; ++ax)
-      g.dims[ax] = int(std::clamp<real>(std::ceil(ext[ax] / g.cell_size), 3, 4096));
+      g.dims[ax] = int(std::clamp<real>(std::ceil(ext[ax] / g.cell_size), 2 * g.reach + 1, 4096));
     if (g.cell_count() <= max_cells) break;
     g.cell_size *= 1.25;
   }

@@ -23,6 +23,7 @@ struct Config {
   bool far_outliers;   // a second cluster far outside the domain
   bool with_tool;
   unsigned seed;
+  int reach = 2;       // grid cells of h / reach
 };
 
 State build(const Model& model, const Config& c) {
@@ -32,8 +33,8 @@ State build(const Model& model, const Config& c) {
   const Material wall{0.4, 200, 1000, 0};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::vector<ParticleInit> ps;
-  // On borders: the origin and spacing are multiples of the cell size h = 2 s, so every other
-  // lattice plane lies exactly on a cell face.
+  // On borders: the origin and spacing are multiples of the cell size (h / reach, h = 2 s), so
+  // lattice planes lie exactly on cell faces.
   const Vec3 lo = c.on_borders ? Vec3{0, 0, 0} : Vec3{0.0031, 0.0017, 0.0043};
   for (Vec3 p : testing::lattice(lo + Vec3{2 * s, 2 * s, 2 * s}, s, c.n_side, c.n_side, c.n_side)) {
     const real j = c.jitter * s;
@@ -97,7 +98,7 @@ void compare(const State& g, const State& r, int step) {
 
 void PrintTo(const Config& c, std::ostream* os) {
   *os << "material" << c.n_side << "cubed_jitter" << int(c.jitter * 100) << "pct" << (c.on_borders ? "_on_cell_borders" : "")
-      << (c.far_outliers ? "_far_outliers" : "") << (c.with_tool ? "_tool" : "");
+      << (c.far_outliers ? "_far_outliers" : "") << (c.with_tool ? "_tool" : "") << "_reach" << c.reach;
 }
 
 class GridParity : public ::testing::TestWithParam<Config> {};
@@ -105,7 +106,9 @@ class GridParity : public ::testing::TestWithParam<Config> {};
 TEST_P(GridParity, MatchesAllPairsOver100Steps) {
   const Config c = GetParam();
   const real ext = (c.n_side + 6) * s;
-  const Model model = make_model(testing::params_for_spacing(s, {0, 0, 0}, {ext, ext, ext}, 2e-4, {0, 0, -9.81}));
+  ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {ext, ext, ext}, 2e-4, {0, 0, -9.81});
+  mp.grid_reach = c.reach;
+  const Model model = make_model(mp);
   State g = build(model, c), r = build(model, c);
   for (int k = 0; k < 100; ++k) {
     // The tool presses down and sideways so that bonds form and break.
@@ -128,7 +131,10 @@ INSTANTIATE_TEST_SUITE_P(Configs, GridParity,
                          ::testing::Values(Config{3, 0.2, false, false, false, 1},
                                            Config{5, 0.25, true, false, true, 2},
                                            Config{6, 0.0, true, true, true, 3},
-                                           Config{8, 0.3, false, true, true, 4}));
+                                           Config{8, 0.3, false, true, true, 4},
+                                           Config{5, 0.25, true, false, true, 5, 1},
+                                           Config{6, 0.2, false, true, true, 6, 1},
+                                           Config{5, 0.2, true, true, true, 7, 3}));
 
 TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   // Two material particles pulled apart by their initial velocities: the bond formed at r < A
