@@ -52,7 +52,7 @@ struct ModelParams {
   Vec3 domain_min, domain_max;    // m, region the grid covers without wrapping
   int max_bonds_per_particle = 32;
   real cfl_lambda = 0.4;          // acoustic Courant number of the stability limit
-  int grid_reach = 2;             // grid cells of h / grid_reach, searched grid_reach deep
+  int grid_reach = 1;             // grid cells of h / grid_reach, searched grid_reach deep
 };
 
 struct Model {

@@ -22,16 +22,20 @@ struct Events {
   }
 };
 
+// Counts the break of the bond of moving particle i to j (once per pair).
+inline void count_break(const State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
+  if (s.id[i] < s.id[j] || s.role[j] == Role::boundary) ++ev.broken;
+}
+
 // Removes the partners of moving particle i that are now beyond B.
 inline void break_stretched(const Model& model, State& s, std::uint32_t i, Events& ev) {
   const real B2 = model.adhesion.B * model.adhesion.B;
   const std::uint32_t id = s.id[i];
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
-    const std::uint32_t other = s.bonds.partner(id, b);
-    const std::uint32_t j = s.index_of_id[other];
+    const std::uint32_t j = s.index_of_id[s.bonds.partner(id, b)];
     if (norm2(s.pos[i] - s.pos[j]) > B2) {
+      count_break(s, i, j, ev);
       s.bonds.remove_at(id, b);
-      if (id < other || s.role[j] == Role::boundary) ++ev.broken;
     }
   }
 }

@@ -23,6 +23,26 @@ struct NeighbourBuffer {
   std::uint32_t n = 0;
 };
 
+// Adhesion on moving particle i from its bonded partners; breaks the bonds stretched past B.
+Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, bonds::Events& ev) {
+  const real B2 = model.adhesion.B * model.adhesion.B;
+  const std::uint32_t id = s.id[i];
+  Vec3 f;
+  for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
+    const std::uint32_t other = s.bonds.partner(id, b);
+    const std::uint32_t j = s.index_of_id[other];
+    const Vec3 d = si.pos - s.pos[j];
+    const real r2 = norm2(d);
+    if (r2 > B2) {
+      bonds::count_break(s, i, j, ev);
+      s.bonds.remove_at(id, b);
+    } else {
+      f += pair::adhesion(si, side_of(s, j), d, std::sqrt(r2), model.adhesion, model.kernel);
+    }
+  }
+  return f;
+}
+
 // Force density on moving particle i; updates i's bonds (events into ev).
 Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
@@ -31,9 +51,9 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   const real* y = g.y.data();
   const real* z = g.z.data();
   const pair::Side si = side_of(s, i);
-  bonds::break_stretched(model, s, i, ev);
-
-  Vec3 f;
+  // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
+  // formed below (r < A) add nothing this step: W_adh is zero below A.
+  Vec3 f = bonded_adhesion(model, s, i, si, ev);
   NeighbourBuffer nb;
   auto flush = [&] {
     for (std::uint32_t q = 0; q < nb.n; ++q) {
@@ -60,13 +80,6 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     }
   });
   flush();
-
-  const std::uint32_t id = s.id[i];
-  for (int b = 0; b < s.bonds.count(id); ++b) {
-    const std::uint32_t j = s.index_of_id[s.bonds.partner(id, b)];
-    const Vec3 d = si.pos - s.pos[j];
-    f += pair::adhesion(si, side_of(s, j), d, norm(d), model.adhesion, k);
-  }
   return f;
 }
 
