@@ -63,6 +63,14 @@ struct GridIndex {
   std::vector<std::uint32_t> bucket_start;  // [2 cells + 1] first sorted index of each bucket
   std::vector<std::uint32_t> bucket_fill;   // [2 cells] counting-sort cursor
   std::vector<real> x, y, z;                // [n] m, positions in sorted order as separate arrays
+  // Neighbours within h of each moving particle, found by the density pass for the force pass:
+  // [n * kNeighbourStride] sorted indices (kNeighbourCapacity used, one scratch slot), and [n]
+  // counts. A count above the capacity means the list overflowed and the force pass searches
+  // the grid itself.
+  static constexpr int kNeighbourStride = 64;
+  static constexpr int kNeighbourCapacity = kNeighbourStride - 1;
+  std::vector<std::uint32_t> neighbours;
+  std::vector<std::uint16_t> neighbour_count;
 };
 
 class State {

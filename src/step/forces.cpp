@@ -1,5 +1,5 @@
-// Stage 5: force densities over the 27 neighbouring cells (pressure, viscosity) and over the
-// particle's bond list (adhesion, which reaches partners up to B > h). Gravity is added in
+// Stage 5: force densities over the neighbours within h that the density pass listed (pressure,
+// viscosity) and over the particle's bond list (adhesion, which reaches partners up to B > h). Gravity is added in
 // integration, so `force` is the internal force density the tool wrench is made of. Each moving
 // particle also updates its own bond list here, from the distances this pass computes anyway.
 #include <algorithm>
@@ -54,6 +54,19 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
   Vec3 f = bonded_adhesion(model, s, i, si, ev);
+  // The density pass listed the neighbours within h (unless the list overflowed).
+  if (s.grid.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
+    const std::uint32_t* list = s.grid.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    for (std::uint32_t q = 0; q < s.grid.neighbour_count[i]; ++q) {
+      const std::uint32_t j = list[q];
+      const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
+      const real r2 = norm2(d);
+      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
+      bonds::try_form(model, s, i, j, r2, ev);  // A < h: every pair to bond is here
+    }
+    return f;
+  }
+  // Otherwise search the grid: candidates filtered without branches into a short buffer.
   NeighbourBuffer nb;
   auto flush = [&] {
     for (std::uint32_t q = 0; q < nb.n; ++q) {

@@ -158,5 +158,33 @@ TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   EXPECT_EQ(g.bonds.counters.broken, 1u);
 }
 
+TEST(GridParity, OverfullNeighbourListsFallBackToTheGridSearch) {
+  // Material packed at 0.45 spacings: about 360 neighbours within h, far over the list capacity
+  // of the density pass, so the force pass searches the grid for these particles.
+  // Bond lists large enough for every pair closer than A (about 80): a full list would make
+  // which bonds form depend on the visiting order, which is all that differs between the paths.
+  ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {0.2, 0.2, 0.2}, 1e-5);
+  mp.max_bonds_per_particle = 256;
+  const Model model = make_model(mp);
+  const Material paste{0.1, 1, 1000, 100};
+  const real m = lattice_particle_mass(1000, s, model.kernel);
+  std::vector<ParticleInit> ps;
+  for (Vec3 p : testing::lattice({0.05, 0.05, 0.05}, 0.45 * s, 12, 12, 12)) ps.push_back(testing::particle(Role::material, p, m, paste));
+  State g, r;
+  g.add_particles(model, ps);
+  r.add_particles(model, ps);
+  for (int k = 0; k < 10; ++k) {
+    step(model, g);
+    step_all_pairs(model, r);
+    compare(g, r, k);
+    if (HasFatalFailure()) return;
+  }
+  int overfull = 0;
+  for (std::uint32_t i = 0; i < g.size(); ++i) overfull += g.grid.neighbour_count[i] > GridIndex::kNeighbourCapacity;
+  EXPECT_GT(overfull, 100) << "the fallback path was taken";
+  EXPECT_GT(g.bonds.counters.formed, 1000u);
+  EXPECT_EQ(g.bonds.counters.overflowed, 0u);
+}
+
 }  // namespace
 }  // namespace dentsph
