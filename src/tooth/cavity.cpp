@@ -1,0 +1,363 @@
+// carve_cavity(): places the Class I / Class II shape on the occlusal surface, checks that the
+// tooth keeps enough wall and floor around it, and measures the tooth removed.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tooth/geometry.hpp"
+#include "tooth/prepared.hpp"
+
+namespace dentsph {
+
+namespace {
+
+using tooth::CavityShape;
+using tooth::RoundedBox;
+using tooth::Side;
+using tooth::SlantedBox;
+
+constexpr real pi = 3.14159265358979323846;
+constexpr real inf = std::numeric_limits<real>::infinity();
+// The occlusal reference: the highest occlusal surface point within this radius of the axis
+// (one ray down the axis could fall into a fissure).
+constexpr real reference_radius = 0.5e-3;  // m
+// Finest cell of the volume integration, a third of the material spacing (~0.3 mm); the slab
+// estimate below makes its error second order.
+constexpr real volume_cell = 0.1e-3;  // m
+
+[[noreturn]] void refuse(const std::string& problem, const std::string& fix) {
+  throw CavityError(fmt::format("cavity does not fit: {}; {}", problem, fix));
+}
+[[noreturn]] void bad_param(const std::string& name, real value_mm, const std::string& need) {
+  throw CavityError(fmt::format("cavity parameter {} = {:.4g} mm: {}", name, value_mm, need));
+}
+
+std::string mm3(const Vec3& p) {
+  return fmt::format("({:.2f}, {:.2f}, {:.2f}) mm", p.x * 1e3, p.y * 1e3, p.z * 1e3);
+}
+
+// Local bounds of the tooth in a frame.
+Bounds local_bounds(const TriMesh& mesh, const ToothFrame& f) {
+  Bounds b{{inf, inf, inf}, {-inf, -inf, -inf}};
+  for (const Vec3& v : mesh.vertices) {
+    const Vec3 l = f.to_local(v);
+    b.min = tooth::vmin(b.min, l);
+    b.max = tooth::vmax(b.max, l);
+  }
+  return b;
+}
+
+// Tooth left along a ray from a point of a wall or floor (frame coordinates): 0 when the
+// point is not in the tooth.
+real thickness(const MeshDistance& tooth, const ToothFrame& f, const Vec3& local,
+               const Vec3& local_dir) {
+  const Vec3 p = f.to_world(local);
+  if (!tooth.inside(p)) return 0;
+  const Vec3 d = f.x * local_dir.x + f.y * local_dir.y + f.z * local_dir.z;
+  return tooth.ray(p, d).value_or(0);
+}
+
+// One checked surface of the preparation: points on it, and the direction to measure in.
+struct Probe {
+  std::string name;
+  std::vector<Vec3> points;  // frame coordinates
+  Vec3 direction;            // frame coordinates, unit, out of the cavity into the tooth
+  bool floor = false;
+};
+
+// Evenly spaced values in [a, b], at most `step` apart, ends included.
+std::vector<real> steps(real a, real b, real step) {
+  if (b <= a) return {0.5 * (a + b)};
+  const int n = std::max(1, int(std::ceil((b - a) / step)));
+  std::vector<real> v;
+  for (int i = 0; i <= n; ++i) v.push_back(a + (b - a) * i / n);
+  return v;
+}
+
+void check_params(const CavityParams& p) {
+  auto positive = [](const char* name, real v) {
+    if (!(v > 0) || !std::isfinite(v)) bad_param(name, v * 1e3, "must be > 0");
+  };
+  positive("width", p.width);
+  positive("length", p.length);
+  positive("depth", p.depth);
+  if (!(p.taper_deg >= 0 && p.taper_deg < 30))
+    throw CavityError(fmt::format(
+        "cavity parameter taper_deg = {}: must be in [0, 30) degrees (occlusal divergence of "
+        "each wall; 2 to 8 is usual)",
+        p.taper_deg));
+  if (!(p.rounding >= 0)) bad_param("rounding", p.rounding * 1e3, "must be >= 0");
+  if (!(p.min_wall >= 0)) bad_param("min_wall", p.min_wall * 1e3, "must be >= 0");
+  if (!(p.min_floor >= 0)) bad_param("min_floor", p.min_floor * 1e3, "must be >= 0");
+  if (p.kind == CavityClass::class_2) {
+    positive("box_width", p.box_width);
+    positive("box_axial_depth", p.box_axial_depth);
+    if (!(p.box_depth >= p.depth))
+      bad_param("box_depth", p.box_depth * 1e3,
+                fmt::format("the gingival floor must lie at least as deep as the pulpal floor "
+                            "(depth = {:.4g} mm)",
+                            p.depth * 1e3));
+  }
+}
+
+// Volume of {cavity} and {tooth} by adaptive octree cells: both distances are 1-Lipschitz, so a
+// cell whose centre is farther than its half-diagonal from a surface lies wholly on one side.
+struct VolumeIntegrator {
+  const CavityShape& shape;
+  const MeshDistance& tooth;
+  const ToothFrame& frame;
+  real volume = 0;
+  Bounds hit{{inf, inf, inf}, {-inf, -inf, -inf}};
+
+  void cell(const Vec3& c, real half, int levels) {
+    const real reach = half * std::sqrt(real(3));
+    const real dc = shape.distance(c).distance;
+    if (dc > reach) return;
+    const real g = std::fmax(dc, tooth.signed_distance(frame.to_world(c)));
+    if (g > reach) return;
+    if (g < -reach || levels == 0) {
+      // A finest cell counts the part of it behind the plane at distance g from its centre (as
+      // if the cube were a slab across the normal): exact for faces parallel to the cell's,
+      // and unbiased for others, where the midpoint rule would be off by up to half a cell.
+      const real side = 2 * half;
+      const real inside = std::clamp(0.5 - g / side, 0.0, 1.0);
+      if (inside <= 0) return;
+      volume += inside * side * side * side;
+      hit.min = tooth::vmin(hit.min, c - Vec3{half, half, half});
+      hit.max = tooth::vmax(hit.max, c + Vec3{half, half, half});
+      return;
+    }
+    const real q = half / 2;
+    for (int k = 0; k < 8; ++k)
+      cell(c + Vec3{k & 1 ? q : -q, k & 2 ? q : -q, k & 4 ? q : -q}, q, levels - 1);
+  }
+};
+
+}  // namespace
+
+std::string CavityReport::summary() const {
+  return fmt::format(
+      "occlusal reference at {}; thinnest wall {:.2f} mm, thinnest floor {:.2f} mm; tooth "
+      "removed {:.2f} mm^3",
+      mm3(occlusal_point), min_wall * 1e3, min_floor * 1e3, cavity_volume * 1e9);
+}
+
+PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
+                           const CavityParams& p) {
+  check_params(p);
+  auto impl =
+      std::make_shared<PreparedTooth::Impl>(PreparedTooth::Impl{tooth, given, p, {}, {}, {}, {}});
+  ToothFrame& f = impl->frame;
+
+  // Occlusal reference: rays down the axis from above the tooth, at the axis and around it.
+  const Bounds tb = local_bounds(tooth.mesh(), given);
+  const real start = tb.max.z + 1e-3;
+  real top = -inf;
+  bool axis_hit = false;
+  for (int k = -1; k < 8; ++k) {
+    const real ox = k < 0 ? 0 : reference_radius * std::cos(2 * pi * k / 8);
+    const real oy = k < 0 ? 0 : reference_radius * std::sin(2 * pi * k / 8);
+    if (auto t = tooth.ray(given.to_world({ox, oy, start}), -given.z)) {
+      top = std::fmax(top, start - *t);
+      axis_hit |= k < 0;
+    }
+  }
+  if (!axis_hit)
+    refuse("the long axis does not meet the tooth's occlusal surface",
+           "check the tooth frame: its origin and z axis must pass through the crown");
+  f.origin = given.to_world({0, 0, top});
+  const Bounds lb = local_bounds(tooth.mesh(), f);
+
+  // The shape, in the frame: z = 0 at the reference, walls diverging occlusally by the taper.
+  const real t = std::tan(p.taper_deg * pi / 180);
+  const real z_top = lb.max.z + p.rounding + 1e-3;  // above every cusp: no top rounding in tooth
+  const real sigma = p.side == ProximalSide::mesial ? 1 : -1;
+  const bool class2 = p.kind == CavityClass::class_2;
+  // In "xi" = sigma x, the proximal side is +xi. Converts a [lo, hi] xi range to x sides.
+  auto x_sides = [&](Side xi_lo, Side xi_hi) {
+    if (sigma > 0) return std::pair{xi_lo, xi_hi};
+    return std::pair{Side{-xi_hi.a, -xi_hi.slope}, Side{-xi_lo.a, -xi_lo.slope}};
+  };
+  const real xi_out = std::fmax(lb.max.x, -lb.min.x) + p.rounding + 1e-3;  // beyond the tooth
+  real xi_axial = 0;
+  {
+    SlantedBox occlusal;
+    const Side far{-p.length / 2, -t};
+    const Side near = class2 ? Side{xi_out, 0} : Side{p.length / 2, t};
+    std::tie(occlusal.x_lo, occlusal.x_hi) = x_sides(far, near);
+    occlusal.y_lo = {-p.width / 2, -t};
+    occlusal.y_hi = {p.width / 2, t};
+    occlusal.z_lo = -p.depth;
+    occlusal.z_hi = z_top;
+    impl->shape.boxes.emplace_back(occlusal, p.rounding, "occlusal box");
+  }
+  if (class2) {
+    // The axial wall stands box_axial_depth inside the proximal surface at the gingival floor.
+    const Vec3 floor_centre{0, 0, -p.box_depth};
+    if (!tooth.inside(f.to_world(floor_centre)))
+      refuse(fmt::format("the gingival floor, {:.2f} mm below the occlusal reference, lies below "
+                         "the tooth on its axis",
+                         p.box_depth * 1e3),
+             "reduce box_depth");
+    const real to_surface =
+        tooth.ray(f.to_world(floor_centre), f.x * sigma).value_or(0);  // m along +xi
+    xi_axial = to_surface - p.box_axial_depth;
+    if (xi_axial < 0)
+      refuse(fmt::format("the proximal surface is {:.2f} mm from the axis at the gingival floor, "
+                         "so an axial depth of {:.2f} mm reaches past the long axis",
+                         to_surface * 1e3, p.box_axial_depth * 1e3),
+             "reduce box_axial_depth");
+    SlantedBox box;
+    std::tie(box.x_lo, box.x_hi) = x_sides(Side{xi_axial - t * p.box_depth, -t}, Side{xi_out, 0});
+    box.y_lo = {-p.box_width / 2, -t};
+    box.y_hi = {p.box_width / 2, t};
+    box.z_lo = -p.box_depth;
+    box.z_hi = z_top;
+    impl->shape.boxes.emplace_back(box, p.rounding, "proximal box");
+  }
+
+  // Fit: horizontal rays from the walls and vertical rays from the floors, inside the part of
+  // each wall the rounding leaves flat, from the floor up to a third of the depth below the
+  // reference (higher up the occlusal surface itself may dip below z = 0 in a groove).
+  const real r = p.rounding, step = 0.4e-3;
+  auto wall_heights = [&](real floor_depth) {
+    return steps(-floor_depth + r, std::fmin(-floor_depth / 3, -floor_depth + r), step);
+  };
+  std::vector<Probe> probes;
+  const std::string prox = p.side == ProximalSide::mesial ? "mesial (+x)" : "distal (-x)";
+  {
+    const real xi_far = -p.length / 2;
+    const real xi_near = class2 ? xi_axial : p.length / 2;
+    for (real side : {-1.0, 1.0}) {
+      Probe wall{fmt::format("{} side wall of the occlusal box", side > 0 ? "+y" : "-y"),
+                 {},
+                 {0, side, 0}};
+      for (real z : wall_heights(p.depth))
+        for (real xi : steps(xi_far + r, xi_near - r, step))
+          wall.points.push_back({sigma * xi, side * (p.width / 2 + t * z), z});
+      probes.push_back(std::move(wall));
+    }
+    auto end_wall = [&](real xi_sign) {
+      const std::string name = sigma * xi_sign > 0 ? "mesial (+x)" : "distal (-x)";
+      Probe wall{name + " end wall of the occlusal box", {}, {sigma * xi_sign, 0, 0}};
+      for (real z : wall_heights(p.depth))
+        for (real y : steps(-p.width / 2 + r, p.width / 2 - r, step))
+          wall.points.push_back({sigma * xi_sign * (p.length / 2 + t * z), y, z});
+      probes.push_back(std::move(wall));
+    };
+    end_wall(-1);
+    if (!class2) end_wall(1);
+    Probe floor{"pulpal floor", {}, {0, 0, -1}, true};
+    const real half_w = p.width / 2 - t * p.depth - r;
+    for (real xi : steps(xi_far + r, xi_near - r, step))
+      for (real y : steps(-half_w, half_w, step)) floor.points.push_back({sigma * xi, y, -p.depth});
+    probes.push_back(std::move(floor));
+  }
+  if (class2) {
+    // Beside the box, at its axial wall (nearer the proximal surface the walls thin out as the
+    // crown's contour curves in: that is where the box is meant to break through).
+    for (real side : {-1.0, 1.0}) {
+      Probe wall{fmt::format("{} side wall of the {} box", side > 0 ? "+y" : "-y", prox),
+                 {},
+                 {0, side, 0}};
+      for (real z : steps(-p.box_depth + r, -p.depth, step))
+        wall.points.push_back(
+            {sigma * (xi_axial - t * (p.box_depth + z) + r), side * (p.box_width / 2 + t * z), z});
+      probes.push_back(std::move(wall));
+    }
+    Probe floor{"gingival floor", {}, {0, 0, -1}, true};
+    const real half_w = p.box_width / 2 - t * p.box_depth - r;
+    for (real xi : steps(xi_axial + r, xi_axial + std::fmax(r, p.box_axial_depth / 2), step))
+      for (real y : steps(-half_w, half_w, step))
+        floor.points.push_back({sigma * xi, y, -p.box_depth});
+    probes.push_back(std::move(floor));
+  }
+  impl->report.min_wall = inf;
+  impl->report.min_floor = inf;
+  for (const Probe& probe : probes) {
+    real least = inf;
+    Vec3 where;
+    for (const Vec3& q : probe.points) {
+      const real th = thickness(tooth, f, q, probe.direction);
+      if (th < least) least = th, where = q;
+    }
+    real& keep = probe.floor ? impl->report.min_floor : impl->report.min_wall;
+    keep = std::fmin(keep, least);
+    const real need = probe.floor ? p.min_floor : p.min_wall;
+    if (least >= need) continue;
+    const std::string what = least == 0 ? "lies outside the tooth" : "leaves too little tooth";
+    if (probe.floor)
+      refuse(fmt::format("the {} {} at {} (frame coordinates): {:.2f} mm below it, {:.2f} mm "
+                         "required (min_floor)",
+                         probe.name, what, mm3(where), least * 1e3, need * 1e3),
+             "make the cavity shallower");
+    refuse(fmt::format("the {} {} at {} (frame coordinates): {:.2f} mm of tooth beside it, "
+                       "{:.2f} mm required (min_wall){}",
+                       probe.name, what, mm3(where), least * 1e3, need * 1e3,
+                       least == 0 ? ": the outline runs off the crown" : ""),
+           "make the outline narrower or shorter, or the cavity shallower");
+  }
+
+  // Volume of the tooth removed, by octree cells of root size 8 finest cells.
+  Bounds cb = impl->shape.bounds();
+  cb.min = tooth::vmax(cb.min, lb.min);
+  cb.max = tooth::vmin(cb.max, lb.max);
+  VolumeIntegrator vi{impl->shape, tooth, f};
+  constexpr int levels = 3;
+  const real root = volume_cell * (1 << levels);
+  const auto cells = [&](real lo, real hi) { return int(std::ceil((hi - lo) / root)); };
+  const int nx = cells(cb.min.x, cb.max.x), ny = cells(cb.min.y, cb.max.y),
+            nz = cells(cb.min.z, cb.max.z);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        vi.cell(cb.min + Vec3{i + 0.5, j + 0.5, k + 0.5} * root, root / 2, levels);
+  if (!(vi.volume > 0))
+    refuse("it removes no tooth", "check the frame: the cavity must sit on the occlusal surface");
+  impl->report.cavity_volume = vi.volume;
+  impl->report.occlusal_point = f.origin;
+  impl->cavity_local = vi.hit;
+  Bounds w{{inf, inf, inf}, {-inf, -inf, -inf}};
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 c =
+        f.to_world({k & 1 ? vi.hit.max.x : vi.hit.min.x, k & 2 ? vi.hit.max.y : vi.hit.min.y,
+                    k & 4 ? vi.hit.max.z : vi.hit.min.z});
+    w.min = tooth::vmin(w.min, c);
+    w.max = tooth::vmax(w.max, c);
+  }
+  impl->cavity_world = w;
+  return PreparedTooth(std::move(impl));
+}
+
+PreparedTooth::PreparedTooth(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+const MeshDistance& PreparedTooth::tooth() const { return impl_->tooth; }
+const ToothFrame& PreparedTooth::frame() const { return impl_->frame; }
+const CavityParams& PreparedTooth::params() const { return impl_->params; }
+const CavityReport& PreparedTooth::report() const { return impl_->report; }
+Bounds PreparedTooth::cavity_bounds() const { return impl_->cavity_world; }
+
+SurfacePoint PreparedTooth::cavity_distance(const Vec3& p) const {
+  const ToothFrame& f = impl_->frame;
+  const auto s = impl_->shape.distance(f.to_local(p));
+  const Vec3 g = f.x * s.gradient.x + f.y * s.gradient.y + f.z * s.gradient.z;
+  return {s.distance, p - g * s.distance, g};
+}
+
+SurfacePoint PreparedTooth::distance(const Vec3& p) const {
+  const SurfacePoint t = impl_->tooth.query(p);
+  SurfacePoint c = cavity_distance(p);
+  if (t.distance >= -c.distance) return t;
+  // Outside the cavity's complement the distance is the cavity's, with the sign turned.
+  c.distance = -c.distance;
+  c.normal = -c.normal;
+  return c;
+}
+
+bool PreparedTooth::in_cavity(const Vec3& p) const {
+  return cavity_distance(p).distance < 0 && impl_->tooth.signed_distance(p) < 0;
+}
+
+}  // namespace dentsph

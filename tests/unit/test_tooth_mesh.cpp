@@ -1,0 +1,238 @@
+// Mesh loading, checks and repairs: the real molars, every file format, each repair on a cube
+// built to need it, each refusal and its message, and the built-in crown.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "test_tooth_support.hpp"
+
+namespace dentsph {
+namespace {
+
+using namespace dentsph::testing;
+constexpr real mm = 1e-3;
+
+std::string refusal(const TriMesh& soup) {
+  try {
+    repair_mesh(soup, "test mesh");
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+std::string load_refusal(const fs::path& f, MeshUnits units = MeshUnits::millimetres) {
+  try {
+    load_mesh(f, units);
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// ---- the real molars
+
+TEST(ToothMesh, RealMolarsLoadClosedOutwardAndToothSized) {
+  DENTSPH_NEED_DATA();
+  struct Expect {
+    fs::path file;
+    std::size_t triangles;
+    Vec3 extent;  // mm, from the data's README
+  };
+  for (const Expect& e :
+       {Expect{molar_36, 43980, {13.8, 11.2, 18.0}}, Expect{molar_46, 45040, {13.6, 11.1, 17.4}}}) {
+    SCOPED_TRACE(e.file.string());
+    const LoadedMesh m = load_mesh(e.file);
+    EXPECT_EQ(m.report.triangles_in, e.triangles);
+    EXPECT_EQ(m.mesh.triangles.size(), e.triangles);  // nothing dropped
+    EXPECT_EQ(m.report.dropped_degenerate + m.report.dropped_duplicate + m.report.dropped_pieces,
+              0u);
+    EXPECT_EQ(m.report.turned_triangles, 0u);  // the scans face outwards already
+    EXPECT_TRUE(closed_and_consistent(m.mesh));
+    EXPECT_GT(m.mesh.volume(), 0);
+    // A closed surface of 2 V / 3 triangles per vertex (Euler, genus 0): n_t = 2 n_v - 4.
+    EXPECT_EQ(m.mesh.triangles.size(), 2 * m.mesh.vertices.size() - 4);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m.report.extent[k] / mm, e.extent[k], 0.1);
+    EXPECT_GT(m.report.volume, 600 * mm * mm * mm);  // a molar: roughly 0.6 to 1.2 cm^3
+    EXPECT_LT(m.report.volume, 1200 * mm * mm * mm);
+  }
+}
+
+// ---- formats
+
+TEST(ToothMesh, AsciiStlBinaryStlObjAndPlyOfACubeLoadIdentically) {
+  const TriMesh cube = cube_mesh(10 * mm);
+  const fs::path dir = temp_dir("formats");
+  write_ascii_stl(dir / "cube_ascii.stl", cube);
+  write_binary_stl(dir / "cube_binary.stl", cube);
+  write_obj(dir / "cube.obj", cube);
+  write_ply(dir / "cube.ply", cube);
+  std::vector<std::vector<std::array<real, 3>>> corners;
+  for (const char* name : {"cube_ascii.stl", "cube_binary.stl", "cube.obj", "cube.ply"}) {
+    SCOPED_TRACE(name);
+    const LoadedMesh m = load_mesh(dir / name);
+    EXPECT_EQ(m.mesh.vertices.size(), 8u);
+    EXPECT_EQ(m.mesh.triangles.size(), 12u);
+    EXPECT_NEAR(m.mesh.volume(), 1000 * mm * mm * mm, 1e-15);
+    EXPECT_TRUE(closed_and_consistent(m.mesh));
+    EXPECT_FALSE(m.report.inside_out);
+    EXPECT_EQ(m.report.turned_triangles, 0u);
+    std::vector<std::array<real, 3>> c;
+    for (const Vec3& v : m.mesh.vertices) c.push_back({v.x, v.y, v.z});
+    std::sort(c.begin(), c.end());
+    corners.push_back(c);
+  }
+  for (std::size_t k = 1; k < corners.size(); ++k) EXPECT_EQ(corners[k], corners[0]);
+  EXPECT_EQ(corners[0].front(), (std::array<real, 3>{0, 0, 0}));
+  EXPECT_NEAR(corners[0].back()[0], 10 * mm, 1e-12);  // millimetres read as such
+  fs::remove_all(dir);
+}
+
+TEST(ToothMesh, UnitsScaleTheMeshAndWrongUnitsAreNamed) {
+  const fs::path dir = temp_dir("units");
+  // A 10 mm cube written in metres, read as millimetres: 0.01 mm across.
+  write_ascii_stl(dir / "in_metres.stl", cube_mesh(10 * mm), 1.0);
+  const std::string msg = load_refusal(dir / "in_metres.stl");
+  EXPECT_NE(msg.find("in_metres.stl"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("0.01 mm across"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("MeshUnits::metres"), std::string::npos) << msg;
+  const LoadedMesh ok = load_mesh(dir / "in_metres.stl", MeshUnits::metres);
+  EXPECT_NEAR(ok.report.extent.x, 10 * mm, 1e-9);  // files hold floats
+  // A 10 mm cube in millimetres read as metres: 10 m across.
+  write_ascii_stl(dir / "in_mm.stl", cube_mesh(10 * mm));
+  const std::string big = load_refusal(dir / "in_mm.stl", MeshUnits::metres);
+  EXPECT_NE(big.find("MeshUnits::millimetres"), std::string::npos) << big;
+  fs::remove_all(dir);
+}
+
+TEST(ToothMesh, MissingEmptyAndUnreadableFilesAreRefusedByName) {
+  const fs::path dir = temp_dir("bad_files");
+  EXPECT_NE(load_refusal(dir / "nope.stl").find("nope.stl: no such file"), std::string::npos);
+  std::ofstream(dir / "empty.stl").close();
+  EXPECT_NE(load_refusal(dir / "empty.stl").find("empty.stl: is empty"), std::string::npos);
+  std::ofstream(dir / "junk.obj") << "this is not a mesh\n";
+  const std::string junk = load_refusal(dir / "junk.obj");
+  EXPECT_NE(junk.find("junk.obj"), std::string::npos) << junk;
+  EXPECT_EQ(junk.find("(accepted)"), std::string::npos) << junk;
+  std::ofstream(dir / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  const std::string points = load_refusal(dir / "points.obj");
+  EXPECT_NE(points.find("points.obj"), std::string::npos) << points;
+  EXPECT_EQ(points.find("(accepted)"), std::string::npos) << points;
+  fs::remove_all(dir);
+}
+
+// ---- repairs
+
+TEST(ToothMesh, DuplicateVerticesAreMergedWithinTheTolerance) {
+  TriMesh soup = unshared(cube_mesh(10 * mm));  // 36 corner records for 8 corners
+  soup.vertices[5] += Vec3{1e-9, -1e-9, 0};     // a nanometre off: still the same corner
+  const LoadedMesh m = repair_mesh(soup, "soup");
+  EXPECT_EQ(m.mesh.vertices.size(), 8u);
+  EXPECT_EQ(m.report.merged_vertices, 28u);
+  EXPECT_TRUE(closed_and_consistent(m.mesh));
+  EXPECT_TRUE(m.report.repaired());
+  EXPECT_NE(m.report.summary().find("merged 28 duplicate vertices"), std::string::npos)
+      << m.report.summary();
+  // 10 micrometres off is a different point: the cube is then open.
+  TriMesh apart = unshared(cube_mesh(10 * mm));
+  apart.vertices[5] += Vec3{10e-6, 0, 0};
+  EXPECT_NE(refusal(apart).find("not closed"), std::string::npos);
+}
+
+TEST(ToothMesh, FlippedTrianglesAndInsideOutSurfacesAreTurned) {
+  TriMesh one = cube_mesh(10 * mm);
+  std::swap(one.triangles[7][1], one.triangles[7][2]);
+  const LoadedMesh a = repair_mesh(one, "one flipped");
+  EXPECT_EQ(a.report.turned_triangles, 1u);
+  EXPECT_FALSE(a.report.inside_out);
+  EXPECT_TRUE(closed_and_consistent(a.mesh));
+  EXPECT_NEAR(a.mesh.volume(), 1000 * mm * mm * mm, 1e-15);
+
+  TriMesh inside_out = cube_mesh(10 * mm);
+  for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
+  std::swap(inside_out.triangles[3][1], inside_out.triangles[3][2]);  // and one the other way
+  const LoadedMesh b = repair_mesh(inside_out, "inside out");
+  EXPECT_TRUE(b.report.inside_out);
+  EXPECT_EQ(b.report.turned_triangles, 11u);
+  EXPECT_GT(b.mesh.volume(), 0);
+  EXPECT_TRUE(closed_and_consistent(b.mesh));
+}
+
+TEST(ToothMesh, DegenerateAndRepeatedTrianglesAreDropped) {
+  TriMesh m = cube_mesh(10 * mm);
+  m.triangles.push_back({0, 0, 5});  // two corners at one vertex
+  m.triangles.push_back(m.triangles[2]);
+  const LoadedMesh r = repair_mesh(m, "extras");
+  EXPECT_EQ(r.report.dropped_degenerate, 1u);
+  EXPECT_EQ(r.report.dropped_duplicate, 1u);
+  EXPECT_EQ(r.mesh.triangles.size(), 12u);
+  EXPECT_TRUE(closed_and_consistent(r.mesh));
+}
+
+TEST(ToothMesh, SmallLoosePiecesAreDroppedComparablePiecesRefused) {
+  const TriMesh cube = cube_mesh(10 * mm);
+  const TriMesh debris = translated(cube_mesh(0.5 * mm), {20 * mm, 0, 0});  // 0.25% of the area
+  const LoadedMesh r = repair_mesh(joined(cube, debris), "with debris");
+  EXPECT_EQ(r.report.dropped_pieces, 1u);
+  EXPECT_EQ(r.report.dropped_piece_triangles, 12u);
+  EXPECT_NEAR(r.mesh.volume(), 1000 * mm * mm * mm, 1e-15);
+
+  const std::string two = refusal(joined(cube, translated(cube_mesh(8 * mm), {20 * mm, 0, 0})));
+  EXPECT_NE(two.find("2 separate pieces"), std::string::npos) << two;
+  EXPECT_NE(two.find("one tooth per file"), std::string::npos) << two;
+}
+
+// ---- refusals
+
+TEST(ToothMesh, AMissingTriangleIsRefusedAsOpenWithTheCount) {
+  TriMesh m = cube_mesh(10 * mm);
+  m.triangles.pop_back();
+  const std::string msg = refusal(m);
+  EXPECT_NE(msg.find("test mesh: is not closed: 3 boundary edges"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Close Holes"), std::string::npos) << msg;
+}
+
+TEST(ToothMesh, NonManifoldEdgesAreRefused) {
+  // Two cubes sharing one edge: four triangles meet on it.
+  const TriMesh a = cube_mesh(10 * mm);
+  const TriMesh b = translated(cube_mesh(10 * mm), {10 * mm, 10 * mm, 0});
+  const std::string msg = refusal(joined(a, b));
+  EXPECT_NE(msg.find("not manifold: 1 edges shared by more than two triangles"), std::string::npos)
+      << msg;
+}
+
+TEST(ToothMesh, EmptyFlatAndNonFiniteMeshesAreRefused) {
+  EXPECT_NE(refusal(TriMesh{}).find("holds no triangles"), std::string::npos);
+  TriMesh flat = cube_mesh(10 * mm);
+  for (Vec3& v : flat.vertices) v.z = 0;  // every corner merges with another: all degenerate
+  EXPECT_NE(refusal(flat).find("test mesh:"), std::string::npos);
+  EXPECT_EQ(refusal(flat).find("(accepted)"), std::string::npos);
+  TriMesh nan = cube_mesh(10 * mm);
+  nan.vertices[3].y = std::nan("");
+  EXPECT_NE(refusal(nan).find("non-finite"), std::string::npos);
+  TriMesh out_of_range = cube_mesh(10 * mm);
+  out_of_range.triangles[0][1] = 99;
+  EXPECT_NE(refusal(out_of_range).find("refers to vertex 99"), std::string::npos);
+}
+
+// ---- built-in crown
+
+TEST(ToothMesh, BuiltInCrownPassesTheChecksUnrepairedAndIsMolarSized) {
+  const MolarCrown crown = molar_crown();
+  EXPECT_FALSE(crown.report.repaired()) << crown.report.summary();
+  EXPECT_TRUE(closed_and_consistent(crown.mesh));
+  EXPECT_NEAR(crown.report.extent.x / mm, 11.0, 0.2);
+  EXPECT_NEAR(crown.report.extent.y / mm, 10.0, 0.2);
+  EXPECT_NEAR(crown.report.extent.z / mm, 7.0, 0.2);
+  const Bounds b = crown.mesh.bounds();
+  EXPECT_NEAR(b.min.z, 0, 1e-9);  // flat base on z = 0
+  // It round-trips through a file like any scan.
+  const fs::path dir = temp_dir("crown");
+  write_binary_stl(dir / "crown.stl", crown.mesh);
+  const LoadedMesh back = load_mesh(dir / "crown.stl");
+  EXPECT_EQ(back.mesh.triangles.size(), crown.mesh.triangles.size());
+  EXPECT_NEAR(back.mesh.volume(), crown.mesh.volume(), 1e-6 * crown.mesh.volume());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dentsph
