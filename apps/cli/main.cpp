@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dentsph/bench.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 
@@ -70,11 +71,13 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
 }
 
 int cmd_run(const std::string& file, RunOptions opt, bool quiet) {
-  const Scene sc = load_scene(file);
+  // No scene file: the built-in dental scene (a molar crown with a Class I cavity, paste, a ball
+  // tool), which needs no file.
+  const Scene sc = file.empty() ? default_dental_scene() : load_scene(file);
   if (!quiet) print_scene(sc, make_state(sc));
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
-        "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", file));
+        "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
   if (!quiet) opt.on_progress = print_progress;
   const RunSummary s = run_offline(sc, opt);
   fmt::print("\n{} steps ({:.4g} s simulated) in {:.2f} s: {:.0f} steps/s\n", s.steps, s.sim_time_s, s.wall_time_s,
@@ -106,7 +109,7 @@ int main(int argc, char** argv) {
   RunOptions opt;
   bool quiet = false;
   CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
-  run->add_option("scene", run_scene, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
+  run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in dental scene")->check(CLI::ExistingFile);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
       ->check(CLI::PositiveNumber)

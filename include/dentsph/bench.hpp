@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
 
@@ -31,7 +32,7 @@ struct BenchRow {
 };
 
 struct BenchResult {
-  std::string default_scene;                    // name of the paper-sized scene
+  std::string default_scene;                    // default_dental_scene(): the paper's counts
   std::map<std::string, std::uint32_t> default_particles;  // per role
   std::map<int, double> default_steps_per_second;           // by thread count (median)
   std::map<int, StageTimes> default_stage_us;               // by thread count, per step
@@ -40,9 +41,6 @@ struct BenchResult {
   std::string machine;                          // CPU model and core count
 };
 
-// The scene the default benchmark steps: the paper's counts (about 1600 material particles in
-// a cavity walled by about 1400 boundary particles, a 42-particle ball tool pressing in).
-Scene paper_counts_scene();
 // A cube of side^3 material particles (1 cm spacing) in an open container: the sweep's scenes.
 Scene sweep_block_scene(int side);
 

@@ -118,7 +118,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   BenchResult res;
   res.machine = machine_name();
 
-  const Scene paper = paper_counts_scene();
+  const Scene paper = default_dental_scene();
   res.default_scene = paper.name;
   {
     const State st = make_state(paper);

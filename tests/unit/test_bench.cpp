@@ -9,12 +9,12 @@
 namespace dentsph {
 namespace {
 
-TEST(Bench, PaperCountsSceneHasThePapersCounts) {
-  const Scene sc = paper_counts_scene();
+TEST(Bench, DefaultDentalSceneHasThePapersCounts) {
+  const Scene sc = default_dental_scene();
   const State st = make_state(sc);
   EXPECT_EQ(st.count(Role::material), 1600u);
   EXPECT_EQ(st.count(Role::tool), 42u);
-  EXPECT_GT(st.count(Role::boundary), 1100u);
+  EXPECT_GT(st.count(Role::boundary), 1200u);
   EXPECT_LT(st.count(Role::boundary), 1700u);
   EXPECT_LE(sc.model.dt, stability_limits(sc.model, st).acoustic);
   EXPECT_LE(sc.model.dt, stability_limits(sc.model, st).viscous);

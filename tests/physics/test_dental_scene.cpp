@@ -1,0 +1,40 @@
+// The built-in dental scene: the paper's counts, a stable time step, and paste that stays in the
+// cavity while the tool presses into it.
+#include <gtest/gtest.h>
+
+#include "dentsph/dental.hpp"
+#include "dentsph/step.hpp"
+
+namespace dentsph {
+namespace {
+
+TEST(DentalScene, PaperCountsStableAndNoLeakWhilePressing) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  EXPECT_EQ(st.count(Role::material), 1600u);
+  EXPECT_EQ(st.count(Role::tool), 42u);
+  EXPECT_NEAR(st.count(Role::boundary), 1400, 200);
+  const StabilityLimits l = stability_limits(sc.model, st);
+  EXPECT_LE(sc.model.dt, l.acoustic);
+  EXPECT_LE(sc.model.dt, l.viscous);
+
+  const ToothScene ts = default_tooth_scene();
+  const real s = ts.boundary.spacing;
+  real peak = 0;
+  // 0.1 s: the tool goes down 2.5 spacings into the paste and back up.
+  for (int k = 0; k < 2000; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, StepOptions{2, nullptr});
+    ASSERT_EQ(st.diagnostics.non_finite, 0u) << "step " << k;
+    peak = std::max(peak, norm(st.tool_wrench.force));
+  }
+  EXPECT_GT(peak, 0) << "the tool touched the paste";
+  int leaked = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (st.role[i] == Role::material && ts.tooth.distance(st.pos[i]).distance < -0.5 * s) ++leaked;
+  EXPECT_EQ(leaked, 0) << "material inside the tooth wall";
+  EXPECT_GT(st.bonded_pairs(), 1000u);
+}
+
+}  // namespace
+}  // namespace dentsph
