@@ -16,7 +16,7 @@ namespace dentsph {
 
 struct BenchOptions {
   std::vector<int> threads{1, 2};                  // thread counts to measure
-  std::vector<int> sweep_sides{8, 12, 16, 20, 26, 32, 40};  // material blocks of side^3 particles
+  std::vector<int> sweep_sides{8, 12, 16, 20, 26, 32, 40, 44};  // material blocks of side^3 particles
   std::uint32_t all_pairs_max_particles = 8000;    // the all-pairs step only up to this count
   int repeats = 5;                                 // runs per configuration; the median is kept
   double seconds_per_run = 0.25;                   // wall time of one run (at least 5 steps)
