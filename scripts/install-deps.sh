@@ -5,7 +5,7 @@ packages=(
   cmake ninja-build ccache g++ pkg-config git
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libassimp-dev
+  libassimp-dev libstb-dev
 )
 # --sanitizers: also clang 14 and LLVM's OpenMP, for the tsan preset (Archer makes OpenMP visible
 # to ThreadSanitizer).

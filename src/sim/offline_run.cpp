@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/run.hpp"
+#include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
 
@@ -130,7 +131,10 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     snaps->maybe_write(state, true);
     sum.snapshots = snaps->count();
   }
-  if (!opt.out_dir.empty()) io::write_summary(opt.out_dir / "summary.json", sum);
+  if (!opt.out_dir.empty()) {
+    io::write_summary(opt.out_dir / "summary.json", sum);
+    io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+  }
   return sum;
 }
 

@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <stb/stb_image.h>
+
+#include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
 #include "support/builders.hpp"
@@ -57,6 +60,34 @@ TEST(Vtu, HeaderAndPositionsRoundTrip) {
   EXPECT_EQ(xyz[4], 0.05);
   EXPECT_EQ(xyz[8], 1e3);
   EXPECT_EQ(text.substr(text.size() - 30).find("</VTKFile>") != std::string::npos, true);
+}
+
+TEST(Preview, ShowsMaterialAndWallsInTheirColours) {
+  const Model model = make_model(testing::params_for_spacing(0.01, {0, 0, 0}, {0.1, 0.1, 0.1}));
+  const Material m{0.1, 10, 1000, 5};
+  std::vector<ParticleInit> ps;
+  for (Vec3 p : testing::lattice({0, 0, 0.01}, 0.01, 5, 5, 3)) ps.push_back(testing::particle(Role::material, p, 1e-3, m));
+  for (Vec3 p : testing::lattice({-0.02, -0.02, 0}, 0.01, 9, 9, 1)) ps.push_back(testing::particle(Role::boundary, p, 1e-3, m));
+  State st;
+  st.add_particles(model, ps);
+  const fs::path f = temp_dir("png") / "p.png";
+  io::write_preview_png(f, st, {0, 0, 1}, 0.02, 200);
+  int w = 0, h = 0, c = 0;
+  unsigned char* px = stbi_load(f.c_str(), &w, &h, &c, 3);
+  ASSERT_NE(px, nullptr);
+  EXPECT_EQ(w, 404);
+  EXPECT_EQ(h, 200);
+  int blue = 0, sand = 0, background = 0;
+  for (int i = 0; i < w * h; ++i) {
+    const int r = px[3 * i], g = px[3 * i + 1], b = px[3 * i + 2];
+    blue += b > r + 60 && b > g + 30;
+    sand += r > b + 40 && g > b + 20;
+    background += r > 240 && g > 240 && b > 240;
+  }
+  stbi_image_free(px);
+  EXPECT_GT(blue, 2000) << "material";
+  EXPECT_GT(sand, 1000) << "boundary";
+  EXPECT_GT(background, 5000) << "not all covered";
 }
 
 TEST(Pvd, IndexListsEverySnapshot) {

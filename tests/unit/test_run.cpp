@@ -62,6 +62,7 @@ TEST(Run, WritesSummaryCsvAndSnapshots) {
   EXPECT_GE(sum.snapshots, 6u);
   EXPECT_TRUE(fs::exists(out / "particles.pvd"));
   EXPECT_TRUE(fs::exists(out / "particles" / "step_00000000.vtu"));
+  EXPECT_GT(fs::file_size(out / "preview.png"), 1000u);
 }
 
 TEST(Run, RefusesATimeStepOverTheLimitAndNamesTheField) {
