@@ -16,20 +16,11 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
+#include "progress.hpp"
 
 namespace {
 
 using namespace dentsph;
-
-// Prints a progress line at most every 2 s of wall time, and at the end.
-void print_progress(const RunProgress& p) {
-  static double last_print = -1e9;
-  if (p.step != p.total && p.wall_s - last_print < 2.0) return;
-  last_print = p.wall_s;
-  const double pct = 100.0 * double(p.step) / double(p.total);
-  spdlog::info("step {:>9}/{} ({:5.1f}%)  t = {:.4f} s  {:.0f} steps/s  ETA {:.1f} s", p.step, p.total, pct,
-               p.sim_time, p.wall_s > 0 ? double(p.step) / p.wall_s : 0.0, p.eta_s);
-}
 
 void print_scene(const Scene& sc, const State& st) {
   fmt::print("scene      {} ({})\n", sc.name, sc.source);
@@ -78,7 +69,7 @@ int cmd_run(const std::string& file, RunOptions opt, bool quiet) {
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
-  if (!quiet) opt.on_progress = print_progress;
+  if (!quiet) opt.on_progress = cli::ProgressReporter();
   const RunSummary s = run_offline(sc, opt);
   fmt::print("\n{} steps ({:.4g} s simulated) in {:.2f} s: {:.0f} steps/s\n", s.steps, s.sim_time_s, s.wall_time_s,
              s.steps_per_second);
