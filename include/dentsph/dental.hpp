@@ -20,8 +20,4 @@ struct DentalSceneParams {
 // `material_particles` of paste, a 42-particle ball tool pressing in and lifting every 0.1 s.
 Scene default_dental_scene(const DentalSceneParams& params = {});
 
-// `count` points evenly on a sphere whose area gives each about spacing^2 (a ball tool's
-// particles, in the tool frame).
-std::vector<Vec3> ball_tool_points(int count, real spacing);
-
 }  // namespace dentsph

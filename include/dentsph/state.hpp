@@ -119,6 +119,10 @@ class State {
   // Appends particles (between steps only); tool particles are placed at tool_pose. Sizes every
   // buffer, the bond store and the grid scratch for `model`.
   void add_particles(const Model& model, const std::vector<ParticleInit>& particles);
+  // Removes (between steps) the particles whose current index has remove[i] != 0. Ids stay
+  // dense: the kept particles are renumbered in their id order; bonds between kept particles
+  // survive, bonds to removed ones are dropped (not counted as broken).
+  void remove_particles(const Model& model, const std::vector<std::uint8_t>& remove);
   // Number of particles of each role.
   std::uint32_t count(Role r) const;
   // Bonded pairs now. A pair of moving particles is in both lists, a bond to a boundary particle

@@ -5,21 +5,10 @@
 #include <cmath>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/tools.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {
-
-std::vector<Vec3> ball_tool_points(int count, real spacing) {
-  // A Fibonacci lattice on a sphere whose area gives each particle about spacing^2.
-  const real R = spacing * std::sqrt(count / (4 * kernels::pi));
-  const real golden = kernels::pi * (3 - std::sqrt(5.0));
-  std::vector<Vec3> pts;
-  for (int q = 0; q < count; ++q) {
-    const real z = 1 - 2 * (q + 0.5) / count, r = std::sqrt(1 - z * z);
-    pts.push_back({R * r * std::cos(golden * q), R * r * std::sin(golden * q), R * z});
-  }
-  return pts;
-}
 
 namespace {
 
@@ -80,15 +69,14 @@ Scene default_dental_scene(const DentalSceneParams& dp) {
   for (std::size_t q = 0; q < above.size() && inside.size() + q < std::size_t(dp.material_particles); ++q)
     sc.particles.push_back(make(Role::material, above[q], m, dp.paste));
 
-  // The tool: a ball burnisher of 42 particles, pressing 1.5 spacings into the paste and lifting,
+  // The tool: a ball burnisher of 42 particles, pressing 2.5 spacings into the paste and lifting,
   // every 0.1 s.
-  const std::vector<Vec3> ball = ball_tool_points(42, s);
-  const real R = norm(ball.front());
-  for (const Vec3& b : ball) sc.particles.push_back(make(Role::tool, b, m, dp.wall));
+  const ToolShape ball = tool_by_name("ball_burnisher", s);
+  for (const Vec3& b : ball.points) sc.particles.push_back(make(Role::tool, b, m, dp.wall));
   real top = 0;
   for (const ParticleInit& q : sc.particles)
     if (q.role == Role::material) top = std::max(top, dot(q.pos - fr.origin, fr.z));
-  const Vec3 above_paste = fr.origin + fr.z * (top + R + s);
+  const Vec3 above_paste = fr.origin + fr.z * (top + s);  // the ball's tip is the tool origin
   for (int c = 0; c <= 40; ++c)
     sc.tool.keyframes.push_back({0.05 * c, Pose{above_paste - fr.z * ((c % 2 ? 2.5 : 0.0) * s), {}}});
   sc.duration = 2.0;

@@ -37,6 +37,61 @@ std::uint64_t State::bonded_pairs() const {
   return both_sides / 2 + to_boundary;
 }
 
+void State::remove_particles(const Model& model, const std::vector<std::uint8_t>& remove) {
+  const std::uint32_t n = size();
+  if (remove.size() != n) throw std::invalid_argument("remove_particles: one flag per particle");
+  // New ids: the kept particles in the order of their old ids.
+  constexpr std::uint32_t gone = ~0u;
+  std::vector<std::uint32_t> new_id(n, gone);
+  std::uint32_t kept = 0;
+  for (std::uint32_t old = 0; old < n; ++old)
+    if (!remove[index_of_id[old]]) new_id[old] = kept++;
+  // Bonds, re-keyed.
+  BondStore rebuilt;
+  rebuilt.resize(kept, model.max_bonds_per_particle);
+  rebuilt.counters = bonds.counters;
+  for (std::uint32_t old = 0; old < n; ++old) {
+    if (new_id[old] == gone) continue;
+    for (int b = 0; b < bonds.count(old); ++b)
+      if (const std::uint32_t other = new_id[bonds.partner(old, b)]; other != gone) rebuilt.try_add(new_id[old], other);
+  }
+  bonds = std::move(rebuilt);
+  // Compact every per-particle array in index order.
+  std::uint32_t k = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (remove[i]) continue;
+    id[k] = new_id[id[i]];
+    role[k] = role[i];
+    pos[k] = pos[i];
+    vel[k] = vel[i];
+    mass[k] = mass[i];
+    mu[k] = mu[i];
+    Kp[k] = Kp[i];
+    rho0[k] = rho0[i];
+    Ka[k] = Ka[i];
+    anchor[k] = anchor[i];
+    rho[k] = rho[i];
+    pressure[k] = pressure[i];
+    volume[k] = volume[i];
+    force[k] = force[i];
+    ++k;
+  }
+  for (auto* v : {&id}) v->resize(kept);
+  role.resize(kept);
+  for (auto* v : {&pos, &vel, &anchor, &force}) v->resize(kept);
+  for (auto* v : {&mass, &mu, &Kp, &rho0, &Ka, &rho, &pressure, &volume}) v->resize(kept);
+  index_of_id.resize(kept);
+  for (std::uint32_t i = 0; i < kept; ++i) index_of_id[id[i]] = i;
+  rho_static.assign(kept, 0);
+  rho_static_valid = false;  // the walls may have changed
+  for (auto* v : {&grid.key, &grid.order, &scratch_u32}) v->resize(kept);
+  for (auto* v : {&grid.x, &grid.y, &grid.z, &scratch_real}) v->resize(kept);
+  grid.neighbours.resize(std::size_t(kept) * GridIndex::kNeighbourStride);
+  grid.neighbour_count.resize(kept);
+  scratch_vec.resize(kept);
+  scratch_role.resize(kept);
+}
+
 std::size_t State::bytes_per_particle() const {
   if (size() == 0) return 0;
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +

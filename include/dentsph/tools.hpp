@@ -1,0 +1,41 @@
+// Hand instruments as particle clusters, in the tool frame (tip at the origin, handle along +z),
+// and increments of filling material. The tool's particles follow the device pose as a rigid
+// transform (State::tool_pose).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dentsph/model.hpp"
+#include "dentsph/state.hpp"
+
+namespace dentsph {
+
+struct ToolShape {
+  std::string name;
+  std::vector<Vec3> points;  // m, tool frame
+};
+
+// A ball burnisher: particles evenly on a sphere of `diameter` (a Fibonacci lattice with about
+// one particle per spacing^2 of surface), centred `diameter / 2` above the tip. The paper's tool
+// is about 42 particles: diameter 1.1 mm at 0.3 mm spacing.
+ToolShape ball_burnisher(real diameter, real spacing);
+// A flat plugger: a solid cylinder of `diameter` and `length` on a lattice, its flat face the tip.
+ToolShape flat_plugger(real diameter, real length, real spacing);
+// A condenser: a plugger whose face is serrated (alternate rows of the face set back by a third
+// of a spacing) to grip the paste.
+ToolShape condenser(real diameter, real length, real spacing);
+// A tool by name ("ball_burnisher", "flat_plugger", "condenser") with its default size for a
+// material spacing; throws std::invalid_argument naming the known tools otherwise.
+ToolShape tool_by_name(const std::string& name, real spacing);
+
+// Replaces the tool particles of `state` by `shape`'s (between steps), placed at the current
+// tool pose, with the given mass and material.
+void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material);
+
+// An increment of material: lattice points of `spacing` in a sphere of the given volume (m^3)
+// around `centre`, at least one particle.
+std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
+                                             const Material& material);
+
+}  // namespace dentsph

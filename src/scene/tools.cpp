@@ -1,0 +1,100 @@
+// Instruments and increments as particle clusters (include/dentsph/tools.hpp).
+#include "dentsph/tools.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "physics/kernels.hpp"
+
+namespace dentsph {
+
+ToolShape ball_burnisher(real diameter, real spacing) {
+  // Fibonacci lattice: one particle per spacing^2 of the sphere's area.
+  const real R = 0.5 * diameter;
+  const int count = std::max(4, int(std::lround(4 * kernels::pi * R * R / (spacing * spacing))));
+  const real golden = kernels::pi * (3 - std::sqrt(5.0));
+  ToolShape t{"ball_burnisher", {}};
+  for (int q = 0; q < count; ++q) {
+    const real z = 1 - 2 * (q + 0.5) / count, r = std::sqrt(1 - z * z);
+    t.points.push_back({R * r * std::cos(golden * q), R * r * std::sin(golden * q), R + R * z});
+  }
+  return t;
+}
+
+namespace {
+
+// A solid cylinder on a lattice; `face_offset(i, j)` sets back the face row of lattice column i.
+template <class FaceOffset>
+ToolShape cylinder(const char* name, real diameter, real length, real spacing, FaceOffset&& face_offset) {
+  const real R = 0.5 * diameter;
+  const int n = int(std::floor(R / spacing));
+  const int layers = std::max(1, int(std::lround(length / spacing)) + 1);
+  ToolShape t{name, {}};
+  for (int k = 0; k < layers; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const real x = i * spacing, y = j * spacing;
+        if (x * x + y * y > R * R * (1 + 1e-9)) continue;
+        t.points.push_back({x, y, k * spacing + (k == 0 ? face_offset(i) : 0)});
+      }
+  return t;
+}
+
+}  // namespace
+
+ToolShape flat_plugger(real diameter, real length, real spacing) {
+  return cylinder("flat_plugger", diameter, length, spacing, [](int) { return real(0); });
+}
+
+ToolShape condenser(real diameter, real length, real spacing) {
+  return cylinder("condenser", diameter, length, spacing, [&](int i) { return (i % 2 ? spacing / 3 : real(0)); });
+}
+
+ToolShape tool_by_name(const std::string& name, real spacing) {
+  // Default sizes in spacings: the paper's 42-particle ball at 0.3 mm is 1.1 mm across.
+  if (name == "ball_burnisher") return ball_burnisher(3.65 * spacing, spacing);
+  if (name == "flat_plugger") return flat_plugger(5 * spacing, 3 * spacing, spacing);
+  if (name == "condenser") return condenser(3 * spacing, 3 * spacing, spacing);
+  throw std::invalid_argument("unknown tool \"" + name + "\"; known: ball_burnisher, flat_plugger, condenser");
+}
+
+void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material) {
+  std::vector<std::uint8_t> remove(state.size(), 0);
+  for (std::uint32_t i = 0; i < state.size(); ++i) remove[i] = state.role[i] == Role::tool;
+  state.remove_particles(model, remove);
+  std::vector<ParticleInit> ps;
+  for (const Vec3& p : shape.points) {
+    ParticleInit q;
+    q.role = Role::tool;
+    q.pos = p;
+    q.mass = mass;
+    q.material = material;
+    ps.push_back(q);
+  }
+  state.add_particles(model, ps);
+}
+
+std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
+                                             const Material& material) {
+  const real R = std::cbrt(3 * volume / (4 * kernels::pi));
+  const int n = int(std::ceil(R / spacing));
+  std::vector<ParticleInit> ps;
+  auto add = [&](const Vec3& p) {
+    ParticleInit q;
+    q.role = Role::material;
+    q.pos = p;
+    q.mass = mass;
+    q.material = material;
+    ps.push_back(q);
+  };
+  for (int k = -n; k <= n; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const Vec3 d{i * spacing, j * spacing, k * spacing};
+        if (norm2(d) <= R * R) add(centre + d);
+      }
+  if (ps.empty()) add(centre);
+  return ps;
+}
+
+}  // namespace dentsph
