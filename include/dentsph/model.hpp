@@ -50,7 +50,7 @@ struct ModelParams {
   Vec3 gravity{0, 0, -9.81};      // m/s^2
   AdhesionParams adhesion;        // A, B, eps, zeta (Cd derived)
   Vec3 domain_min, domain_max;    // m, region the grid covers without wrapping
-  int max_bonds_per_particle = 32;
+  int max_bonds_per_particle = 64;
   real cfl_lambda = 0.4;          // acoustic Courant number of the stability limit
   int grid_reach = 1;             // grid cells of h / grid_reach, searched grid_reach deep
 };
@@ -61,7 +61,7 @@ struct Model {
   KernelCoeffs kernel;
   AdhesionParams adhesion;
   GridSpec grid;
-  int max_bonds_per_particle = 32;
+  int max_bonds_per_particle = 64;
   real cfl_lambda = 0.4;
   Vec3 domain_min, domain_max;
 };

@@ -53,6 +53,7 @@ struct RunSummary {
   real first_force_violation_t = -1;        // s, -1 if none
   real peak_tool_force_N = 0;
   std::uint64_t snapshots = 0;
+  std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
   int threads = 1;
 };
 

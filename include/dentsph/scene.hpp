@@ -32,6 +32,17 @@ struct ToolTrajectory {
   Pose at(real t) const;
 };
 
+// Something that happens to a run at a time: an increment of material dropped in, or another
+// instrument taken up. Resolved when the scene is read: the runner only applies it.
+struct ProcedureEvent {
+  enum class Kind { dispense, switch_tool };
+  Kind kind = Kind::dispense;
+  real t = 0;                            // s, applied before the first step at or after t
+  std::vector<ParticleInit> particles;   // dispense: the increment (world frame);
+                                         // switch_tool: the new tool's particles (tool frame)
+  std::string tool;                      // switch_tool: the instrument's name
+};
+
 struct OutputSettings {
   real snapshot_interval = 0.01;  // s of simulated time between particle snapshots (0: none)
   bool vtk = true;                // write .vtu snapshots and the .pvd index
@@ -44,6 +55,7 @@ struct Scene {
   Model model;                           // make_model(params)
   std::vector<ParticleInit> particles;   // material and boundary in world frame; tool in tool frame
   ToolTrajectory tool;                   // empty keyframes when the scene has no tool
+  std::vector<ProcedureEvent> events;    // in time order
   OutputSettings output;
   real duration = 0;                     // s, default run length ("run.duration"); 0 if not given
 };
@@ -55,6 +67,10 @@ Scene parse_scene(const std::string& json_text, const std::string& source);
 
 // The initial state of a scene: tool at its first keyframe, particles added.
 State make_state(const Scene& scene);
+
+// Applies a procedure event to a state between steps (adds the increment, or replaces the tool
+// particles, which then follow the tool pose).
+void apply_event(const Scene& scene, State& state, const ProcedureEvent& event);
 
 // Particle mass that gives a particle inside an infinite simple cubic lattice of `spacing` the
 // density rho0 under the poly6 kernel of `kernel` (sum_j m W_poly6(r_ij) = rho0).

@@ -45,6 +45,7 @@ std::string summary_json(const RunSummary& s) {
                     {"forced", s.forced}};
   j["tool"] = {{"peak_force_N", s.peak_tool_force_N}};
   j["snapshots"] = s.snapshots;
+  j["events_applied"] = s.events_applied;
   return j.dump(2);
 }
 

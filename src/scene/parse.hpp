@@ -63,6 +63,7 @@ std::vector<ParticleInit> parse_block(const Reader& block, const BlockContext& c
 struct ToolPart {
   std::vector<ParticleInit> particles;  // tool frame, Role::tool
   ToolTrajectory trajectory;
+  std::vector<ProcedureEvent> events;   // "events": dispense and switch_tool, in time order
 };
 
 // Reads the "tool" object.

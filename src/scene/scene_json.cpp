@@ -192,6 +192,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
     ToolPart tool = parse_tool(*t, materials, kernel);
     if (!domain.given) domain = bounding_domain(sc.particles, tool, sc.params.h);
     sc.particles.insert(sc.particles.end(), tool.particles.begin(), tool.particles.end());
+    sc.events = std::move(tool.events);
     sc.tool = std::move(tool.trajectory);
   } else if (!domain.given) {
     domain = bounding_domain(sc.particles, {}, sc.params.h);

@@ -2,6 +2,7 @@
 // (docs/scene-format.md, "tool").
 #include <fmt/format.h>
 
+#include "dentsph/tools.hpp"
 #include "scene/parse.hpp"
 
 namespace dentsph::scene {
@@ -43,11 +44,59 @@ ToolTrajectory read_trajectory(const Reader& tool) {
   return traj;
 }
 
+// One event: {"t": s, "dispense": {"volume": m^3, "at": [x, y, z], "spacing": m}} or
+// {"t": s, "switch_tool": {"name": "flat_plugger", "spacing": m}}. Spacing defaults to h / 2;
+// the increment is of roles.material, the instrument of the tool's material.
+ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const MaterialTable& materials,
+                          const Material& tool_material, const KernelCoeffs& kernel) {
+  e.only({"t", "dispense", "switch_tool"});
+  ProcedureEvent ev;
+  ev.t = e.number("t", "the event time in s", Range::non_negative);
+  if (previous != nullptr && ev.t < previous->t)
+    e.fail("t", fmt::format("{} s is before the previous event's {} s", ev.t, previous->t),
+           "list events in time order");
+  if (e.has("dispense") == e.has("switch_tool"))
+    e.fail_here("needs exactly one of \"dispense\" and \"switch_tool\"",
+                "give {\"t\": 1.0, \"dispense\": {\"volume\": 8e-9, \"at\": [0, 0, 0.01]}} or "
+                "{\"t\": 1.0, \"switch_tool\": {\"name\": \"flat_plugger\"}}");
+  if (const std::optional<Reader> d = e.optional_object("dispense", "the increment {\"volume\": m^3, \"at\": [x, y, z]}")) {
+    d->only({"volume", "at", "spacing"});
+    const real volume = d->number("volume", "the increment's volume in m^3, e.g. 8e-9 (8 mm^3)", Range::positive);
+    const Vec3 at = d->vec3("at", "the increment's centre [x, y, z] in m");
+    const real spacing = d->number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
+    const std::optional<Material>& m = materials.default_for(Role::material);
+    if (!m) d->fail_here("has no material", "set roles.material to the paste's material");
+    ev.kind = ProcedureEvent::Kind::dispense;
+    ev.particles = material_increment(at, volume, spacing, lattice_particle_mass(m->rho0, spacing, kernel), *m);
+  } else {
+    const Reader sw = e.object("switch_tool", "the instrument {\"name\": \"flat_plugger\"}");
+    sw.only({"name", "spacing"});
+    ev.kind = ProcedureEvent::Kind::switch_tool;
+    ev.tool = sw.string("name", "ball_burnisher, flat_plugger or condenser");
+    const real spacing = sw.number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
+    ToolShape shape;
+    try {
+      shape = tool_by_name(ev.tool, spacing);
+    } catch (const std::invalid_argument& err) {
+      sw.fail("name", err.what(), "use one of the known instruments");
+    }
+    for (const Vec3& p : shape.points) {
+      ParticleInit q;
+      q.role = Role::tool;
+      q.pos = p;
+      q.mass = lattice_particle_mass(tool_material.rho0, spacing, kernel);
+      q.material = tool_material;
+      ev.particles.push_back(q);
+    }
+  }
+  return ev;
+}
+
 }  // namespace
 
 ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
                     const KernelCoeffs& kernel) {
-  tool.only({"material", "blocks", "keyframes"});
+  tool.only({"material", "blocks", "keyframes", "events"});
   // The tool's own material (default roles.tool) is the default of each of its blocks.
   MaterialDefault tool_material{materials.default_for(Role::tool), "roles.tool"};
   if (tool.has("material"))
@@ -66,6 +115,13 @@ ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
     part.particles.insert(part.particles.end(), ps.begin(), ps.end());
   }
   part.trajectory = read_trajectory(tool);
+  if (tool.has("events")) {
+    if (!tool_material.material) tool.fail("events", "need the tool's material", "set tool.material or roles.tool");
+    const Json& evs = tool.array("events", "a list of events [{\"t\": 1.0, \"dispense\": {...}}]");
+    for (std::size_t i = 0; i < evs.size(); ++i)
+      part.events.push_back(read_event(tool.element(evs, "events", i, "an event"),
+                                       i > 0 ? &part.events.back() : nullptr, materials, *tool_material.material, kernel));
+  }
   return part;
 }
 

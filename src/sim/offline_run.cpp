@@ -70,9 +70,6 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   sum.acoustic_violated = sum.dt > sum.limits.acoustic;
   sum.viscous_violated = sum.dt > sum.limits.viscous;
   sum.forced = opt.allow_unstable && (sum.acoustic_violated || sum.viscous_violated);
-  sum.material = state.count(Role::material);
-  sum.boundary = state.count(Role::boundary);
-  sum.tool = state.count(Role::tool);
 
   const real duration = opt.duration > 0 ? opt.duration : scene.duration;
   const std::uint64_t total = opt.steps > 0 ? opt.steps : std::uint64_t(std::llround(duration / scene.model.dt));
@@ -90,7 +87,13 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const std::uint64_t report_every = std::max<std::uint64_t>(1, total / 100);
   sum.limits.force = std::numeric_limits<real>::infinity();
+  std::size_t next_event = 0;
   for (std::uint64_t k = 0; k < total; ++k) {
+    // Events due by this step (a half step early, so that an event at t lands on the step at t).
+    while (next_event < scene.events.size() && scene.events[next_event].t <= state.time + 0.5 * scene.model.dt) {
+      apply_event(scene, state, scene.events[next_event++]);
+      ++sum.events_applied;
+    }
     const real t_forces = state.time;
     state.tool_pose = scene.tool.at(state.time + scene.model.dt);
     step(scene.model, state, StepOptions{opt.threads, nullptr});
@@ -122,6 +125,9 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     }
   }
   sum.steps = state.steps;
+  sum.material = state.count(Role::material);  // at the end: increments add material
+  sum.boundary = state.count(Role::boundary);
+  sum.tool = state.count(Role::tool);
   sum.sim_time_s = state.time;
   sum.wall_time_s = elapsed();
   sum.steps_per_second = sum.wall_time_s > 0 ? double(sum.steps) / sum.wall_time_s : 0;

@@ -143,7 +143,7 @@ TEST(SceneParse, AppliesDefaults) {
   EXPECT_EQ(sc.name, "base");
   EXPECT_EQ(sc.source, "test.json");
   EXPECT_EQ(sc.params.gravity, (Vec3{0, 0, -9.81}));
-  EXPECT_EQ(sc.model.max_bonds_per_particle, 32);
+  EXPECT_EQ(sc.model.max_bonds_per_particle, 64);
   EXPECT_EQ(sc.model.cfl_lambda, 0.4);
   EXPECT_EQ(sc.model.adhesion.eps, 3);
   EXPECT_EQ(sc.model.adhesion.zeta, 2);
