@@ -40,6 +40,11 @@ struct ParticleInit {
   Material material;
 };
 
+inline ParticleInit make_particle(Role role, const Vec3& pos, real mass, const Material& material,
+                                  const Vec3& vel = {}) {
+  return {role, pos, vel, mass, material};
+}
+
 // The wrench the particles exert on the tool (MODEL.md, "Haptic force").
 struct ToolWrench {
   Vec3 force;   // N, sum over tool particles of m_i a_i (without gravity)

@@ -29,6 +29,11 @@ ToolShape condenser(real diameter, real length, real spacing);
 // material spacing; throws std::invalid_argument naming the known tools otherwise.
 ToolShape tool_by_name(const std::string& name, real spacing);
 
+// The particles of an instrument (tool frame) with the given mass and material.
+std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material);
+// Replaces the tool particles of `state` (between steps) by `particles` (tool frame), placed at
+// the current tool pose.
+void replace_tool_particles(State& state, const Model& model, const std::vector<ParticleInit>& particles);
 // Replaces the tool particles of `state` by `shape`'s (between steps), placed at the current
 // tool pose, with the given mass and material.
 void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material);

@@ -95,14 +95,7 @@ Scene sweep_block_scene(int side) {
   sc.model = make_model(sc.params);
   const real m = lattice_particle_mass(1000, s, sc.model.kernel);
   const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
-  auto add = [&](Role role, Vec3 p, const Material& mat) {
-    ParticleInit q;
-    q.role = role;
-    q.pos = p;
-    q.mass = m;
-    q.material = mat;
-    sc.particles.push_back(q);
-  };
+  auto add = [&](Role role, Vec3 p, const Material& mat) { sc.particles.push_back(make_particle(role, p, m, mat)); };
   // A cube of side^3 material in an open container with two wall layers, one spacing away.
   for (int k = -2; k <= side + 1; ++k)
     for (int j = -2; j <= side + 1; ++j)

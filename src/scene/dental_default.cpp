@@ -10,18 +10,6 @@
 
 namespace dentsph {
 
-namespace {
-
-ParticleInit make(Role role, Vec3 p, real mass, Material m) {
-  ParticleInit q;
-  q.role = role;
-  q.pos = p;
-  q.mass = mass;
-  q.material = m;
-  return q;
-}
-
-}  // namespace
 
 Scene default_dental_scene(const DentalSceneParams& dp) {
   const ToothScene ts = default_tooth_scene();
@@ -45,7 +33,7 @@ Scene default_dental_scene(const DentalSceneParams& dp) {
   sc.model = make_model(p);
   const real m = lattice_particle_mass(dp.paste.rho0, s, sc.model.kernel);
 
-  for (const Vec3& b : ts.boundary.points) sc.particles.push_back(make(Role::boundary, b, m, dp.wall));
+  for (const Vec3& b : ts.boundary.points) sc.particles.push_back(make_particle(Role::boundary, b, m, dp.wall));
 
   // Paste on a lattice of the tooth frame: first the cavity (half a spacing clear of its walls),
   // then layers above the occlusal reference within the cavity's outline, up to the count.
@@ -65,14 +53,14 @@ Scene default_dental_scene(const DentalSceneParams& dp) {
       }
   std::sort(above.begin(), above.end(),
             [&](const Vec3& a, const Vec3& b) { return dot(a - fr.origin, fr.z) < dot(b - fr.origin, fr.z); });
-  for (const Vec3& w : inside) sc.particles.push_back(make(Role::material, w, m, dp.paste));
+  for (const Vec3& w : inside) sc.particles.push_back(make_particle(Role::material, w, m, dp.paste));
   for (std::size_t q = 0; q < above.size() && inside.size() + q < std::size_t(dp.material_particles); ++q)
-    sc.particles.push_back(make(Role::material, above[q], m, dp.paste));
+    sc.particles.push_back(make_particle(Role::material, above[q], m, dp.paste));
 
   // The tool: a ball burnisher of 42 particles, pressing 2.5 spacings into the paste and lifting,
   // every 0.1 s.
   const ToolShape ball = tool_by_name("ball_burnisher", s);
-  for (const Vec3& b : ball.points) sc.particles.push_back(make(Role::tool, b, m, dp.wall));
+  for (const Vec3& b : ball.points) sc.particles.push_back(make_particle(Role::tool, b, m, dp.wall));
   real top = 0;
   for (const ParticleInit& q : sc.particles)
     if (q.role == Role::material) top = std::max(top, dot(q.pos - fr.origin, fr.z));

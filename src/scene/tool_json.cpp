@@ -80,14 +80,7 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
     } catch (const std::invalid_argument& err) {
       sw.fail("name", err.what(), "use one of the known instruments");
     }
-    for (const Vec3& p : shape.points) {
-      ParticleInit q;
-      q.role = Role::tool;
-      q.pos = p;
-      q.mass = lattice_particle_mass(tool_material.rho0, spacing, kernel);
-      q.material = tool_material;
-      ev.particles.push_back(q);
-    }
+    ev.particles = tool_particles(shape, lattice_particle_mass(tool_material.rho0, spacing, kernel), tool_material);
   }
   return ev;
 }

@@ -58,20 +58,21 @@ ToolShape tool_by_name(const std::string& name, real spacing) {
   throw std::invalid_argument("unknown tool \"" + name + "\"; known: ball_burnisher, flat_plugger, condenser");
 }
 
-void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material) {
+std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material) {
+  std::vector<ParticleInit> ps;
+  for (const Vec3& p : shape.points) ps.push_back(make_particle(Role::tool, p, mass, material));
+  return ps;
+}
+
+void replace_tool_particles(State& state, const Model& model, const std::vector<ParticleInit>& particles) {
   std::vector<std::uint8_t> remove(state.size(), 0);
   for (std::uint32_t i = 0; i < state.size(); ++i) remove[i] = state.role[i] == Role::tool;
   state.remove_particles(model, remove);
-  std::vector<ParticleInit> ps;
-  for (const Vec3& p : shape.points) {
-    ParticleInit q;
-    q.role = Role::tool;
-    q.pos = p;
-    q.mass = mass;
-    q.material = material;
-    ps.push_back(q);
-  }
-  state.add_particles(model, ps);
+  state.add_particles(model, particles);  // at tool_pose_applied
+}
+
+void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material) {
+  replace_tool_particles(state, model, tool_particles(shape, mass, material));
 }
 
 std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
@@ -79,14 +80,7 @@ std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, re
   const real R = std::cbrt(3 * volume / (4 * kernels::pi));
   const int n = int(std::ceil(R / spacing));
   std::vector<ParticleInit> ps;
-  auto add = [&](const Vec3& p) {
-    ParticleInit q;
-    q.role = Role::material;
-    q.pos = p;
-    q.mass = mass;
-    q.material = material;
-    ps.push_back(q);
-  };
+  auto add = [&](const Vec3& p) { ps.push_back(make_particle(Role::material, p, mass, material)); };
   for (int k = -n; k <= n; ++k)
     for (int j = -n; j <= n; ++j)
       for (int i = -n; i <= n; ++i) {

@@ -26,13 +26,7 @@ inline ModelParams params_for_spacing(real s, Vec3 lo, Vec3 hi, real dt = 1e-4, 
 }
 
 inline ParticleInit particle(Role role, Vec3 pos, real mass, Material m, Vec3 vel = {}) {
-  ParticleInit p;
-  p.role = role;
-  p.pos = pos;
-  p.vel = vel;
-  p.mass = mass;
-  p.material = m;
-  return p;
+  return make_particle(role, pos, mass, m, vel);
 }
 
 // Points lo + s*(i,j,k) for 0 <= i < n[0] etc.
