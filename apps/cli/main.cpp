@@ -61,11 +61,11 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, RunOptions opt, bool quiet) {
-  // No scene file: the built-in dental scene (a molar crown with a Class I cavity, paste, a ball
-  // tool), which needs no file.
-  const Scene sc = file.empty() ? default_dental_scene() : load_scene(file);
+int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet) {
+  // No scene file: the dental scene, on the built-in molar crown or on the given scanned tooth.
+  const Scene sc = !file.empty() ? load_scene(file) : !mesh.empty() ? dental_scene_from_mesh(mesh) : default_dental_scene();
   if (!quiet) print_scene(sc, make_state(sc));
+  std::fflush(stdout);  // before the progress on stderr
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
@@ -100,7 +100,12 @@ int main(int argc, char** argv) {
   RunOptions opt;
   bool quiet = false;
   CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
-  run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in dental scene")->check(CLI::ExistingFile);
+  auto* scene_opt =
+      run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in dental scene")->check(CLI::ExistingFile);
+  std::string run_mesh;
+  run->add_option("--mesh", run_mesh, "Run the dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
+      ->check(CLI::ExistingFile)
+      ->excludes(scene_opt);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
       ->check(CLI::PositiveNumber)
@@ -128,7 +133,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
-      return cmd_run(run_scene, opt, quiet);
+      return cmd_run(run_scene, run_mesh, opt, quiet);
     }
     if (*validate) return cmd_validate(validate_scene);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);

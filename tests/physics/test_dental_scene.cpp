@@ -2,6 +2,8 @@
 // cavity while the tool presses into it.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "dentsph/dental.hpp"
 #include "dentsph/step.hpp"
 
@@ -34,6 +36,31 @@ TEST(DentalScene, PaperCountsStableAndNoLeakWhilePressing) {
     if (st.role[i] == Role::material && ts.tooth.distance(st.pos[i]).distance < -0.5 * s) ++leaked;
   EXPECT_EQ(leaked, 0) << "material inside the tooth wall";
   EXPECT_GT(st.bonded_pairs(), 1000u);
+}
+
+TEST(DentalScene, BuildsOnAScannedMolar) {
+  const std::filesystem::path mesh = "../shared/data/molar_FDI36_lower_left_first.stl";
+  if (!std::filesystem::exists(mesh)) GTEST_SKIP() << "no ../shared/data: the scanned molars are not here";
+  const Scene sc = dental_scene_from_mesh(mesh);
+  State st = make_state(sc);
+  EXPECT_EQ(st.count(Role::material), 1600u);
+  EXPECT_EQ(st.count(Role::tool), 42u);
+  EXPECT_GT(st.count(Role::boundary), 1000u);
+  EXPECT_EQ(sc.source, mesh.string());
+  for (int k = 0; k < 50; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, StepOptions{2, nullptr});
+  }
+  EXPECT_EQ(st.diagnostics.non_finite, 0u);
+}
+
+TEST(DentalScene, AMissingMeshIsAClearError) {
+  try {
+    dental_scene_from_mesh("no/such/tooth.stl");
+    FAIL();
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("no/such/tooth.stl"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
