@@ -76,6 +76,7 @@ int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bo
   fmt::print("bonds: {} now, {} formed, {} broken, {} overflowed\n", s.bonds_current, s.bonds.formed,
              s.bonds.broken, s.bonds.overflowed);
   fmt::print("peak tool force: {:.4g} N\n", s.peak_tool_force_N);
+  if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
   if (s.force_violation_steps > 0)
     fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "
                "{:.3g} s)\n",

@@ -54,6 +54,8 @@ struct RunSummary {
   real peak_tool_force_N = 0;
   std::uint64_t snapshots = 0;
   std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
+  std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
+  std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
 };
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "dentsph/model.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/state.hpp"
+#include "dentsph/tooth.hpp"
 
 namespace dentsph {
 
@@ -58,6 +60,8 @@ struct Scene {
   std::vector<ProcedureEvent> events;    // in time order
   OutputSettings output;
   real duration = 0;                     // s, default run length ("run.duration"); 0 if not given
+  std::optional<PreparedTooth> tooth;    // dental scenes: the prepared tooth, for the assessment
+  real material_spacing = 0;             // m, dental scenes: the paste's lattice spacing
 };
 
 // Reads and checks a scene file. Throws SceneError.

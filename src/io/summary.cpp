@@ -46,6 +46,7 @@ std::string summary_json(const RunSummary& s) {
   j["tool"] = {{"peak_force_N", s.peak_tool_force_N}};
   j["snapshots"] = s.snapshots;
   j["events_applied"] = s.events_applied;
+  if (!s.assessment_json.empty()) j["assessment"] = nlohmann::json::parse(s.assessment_json);
   return j.dump(2);
 }
 

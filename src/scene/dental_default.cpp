@@ -82,6 +82,8 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   for (int c = 0; c <= 40; ++c)
     sc.tool.keyframes.push_back({0.05 * c, Pose{above_paste - fr.z * ((c % 2 ? 2.5 : 0.0) * s), {}}});
   sc.duration = 2.0;
+  sc.tooth = tooth;
+  sc.material_spacing = s;
   sc.output.snapshot_interval = 0.02;
   return sc;
 }

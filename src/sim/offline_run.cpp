@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "dentsph/assess.hpp"
 #include "dentsph/run.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
@@ -87,6 +89,14 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const std::uint64_t report_every = std::max<std::uint64_t>(1, total / 100);
   sum.limits.force = std::numeric_limits<real>::infinity();
+  // Dental scenes: the cavity voxelised once, the tool force accumulated every step.
+  std::optional<CavityAssessor> assessor;
+  if (scene.tooth) {
+    AssessParams ap;
+    ap.spacing = scene.material_spacing;
+    assessor.emplace(*scene.tooth, ap);
+  }
+  ForceStats forces;
   std::size_t next_event = 0;
   for (std::uint64_t k = 0; k < total; ++k) {
     // Events due by this step (a half step early, so that an event at t lands on the step at t).
@@ -99,6 +109,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     step(scene.model, state, StepOptions{opt.threads, nullptr});
     if (csv) csv->add(t_forces, state.tool_wrench);
     sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
+    forces.add(state.tool_wrench.force, scene.model.dt);
     const real force_limit = stability_limits(scene.model, state).force;
     sum.limits.force = std::min(sum.limits.force, force_limit);
     if (sum.dt > force_limit) {
@@ -136,6 +147,11 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   if (snaps) {
     snaps->maybe_write(state, true);
     sum.snapshots = snaps->count();
+  }
+  if (assessor) {
+    const Assessment a = assessor->assess(state, scene.model, forces);
+    sum.assessment_json = assessment_json(a);
+    sum.assessment_report = a.report();
   }
   if (!opt.out_dir.empty()) {
     io::write_summary(opt.out_dir / "summary.json", sum);

@@ -4,7 +4,10 @@
 
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include "dentsph/dental.hpp"
+#include "dentsph/run.hpp"
 #include "dentsph/step.hpp"
 
 namespace dentsph {
@@ -52,6 +55,22 @@ TEST(DentalScene, BuildsOnAScannedMolar) {
     step(sc.model, st, StepOptions{2, nullptr});
   }
   EXPECT_EQ(st.diagnostics.non_finite, 0u);
+}
+
+TEST(DentalScene, ARunAssessesTheFilling) {
+  RunOptions opt;
+  opt.steps = 20;
+  opt.threads = 2;
+  const RunSummary s = run_offline(default_dental_scene(), opt);
+  ASSERT_FALSE(s.assessment_json.empty());
+  const auto j = nlohmann::json::parse(s.assessment_json);
+  for (const char* k : {"fill_fraction", "void_count", "void_volume_mm3", "overfill_mm3", "leaked_particles",
+                        "lost_particles", "peak_tool_force_N", "mean_tool_force_N", "duration_s"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_GT(j["fill_fraction"].get<double>(), 0.97) << "the scene starts with its cavity full";
+  EXPECT_EQ(j["leaked_particles"], 0);
+  EXPECT_NEAR(j["duration_s"].get<double>(), 20 * 5e-5, 1e-12);
+  EXPECT_NE(s.assessment_report.find("filled"), std::string::npos);
 }
 
 TEST(DentalScene, AMissingMeshIsAClearError) {
