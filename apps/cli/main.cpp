@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   BenchOptions bench_opt;
   std::string bench_json_file;
   bool bench_quick = false;
-  CLI::App* bench = app.add_subcommand("bench", "Measure steps per second: the paper-sized scene and a sweep over particle counts");
+  CLI::App* bench = app.add_subcommand("bench", "Measure steps per second: the built-in dental scene and a sweep over particle counts");
   bench->add_option("--threads", bench_opt.threads, "Thread counts to measure (e.g. --threads 1 2)")->capture_default_str();
   bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();

@@ -1,4 +1,4 @@
-// `dentsph bench`: steps per second of the paper-sized scene for several thread counts, and a
+// `dentsph bench`: steps per second of the built-in dental scene for several thread counts, and a
 // sweep over particle counts (grid and all-pairs, per-stage times), as a table and as JSON.
 #pragma once
 
