@@ -136,6 +136,10 @@ class State {
   // Bytes held per particle by every per-particle array, the bond store and the scratch
   // (the grid's per-cell arrays, which depend on the domain, not the particles, excluded).
   std::size_t bytes_per_particle() const;
+
+ private:
+  // Sizes index_of_id, the bond store and the scratch for n particles (after adding or removing).
+  void size_by_id_and_scratch(const Model& model, std::uint32_t n);
 };
 
 }  // namespace dentsph

@@ -12,17 +12,20 @@ namespace dentsph::stages {
 
 namespace {
 
+// What the density loops read: the sorted coordinates and masses, and particle i's position.
+struct Arrays {
+  const real *x, *y, *z, *m;
+  real xi, yi, zi, h2;
+  Arrays(const Model& model, const State& s, std::int64_t i)
+      : x(s.grid.x.data()), y(s.grid.y.data()), z(s.grid.z.data()), m(s.mass.data()), xi(x[i]), yi(y[i]), zi(z[i]),
+        h2(model.kernel.h2) {}
+};
+
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
 real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
-  const GridIndex& g = s.grid;
-  const real xi = g.x[i], yi = g.y[i], zi = g.z[i];
-  const real h2 = model.kernel.h2;
-  const real* x = g.x.data();
-  const real* y = g.y.data();
-  const real* z = g.z.data();
-  const real* m = s.mass.data();
+  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
   real sum = 0;  // of m_j (h^2 - r^2)^3 over r < h; the kernel's constant is applied once
-  grid::for_each_neighbour_range(model.grid, g, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
+  grid::for_each_neighbour_range(model.grid, s.grid, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free so that the compiler vectorises it: pairs beyond h contribute max(0, .) = 0.
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
@@ -37,12 +40,7 @@ real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit
 // (self excluded) for the force pass.
 real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   GridIndex& g = s.grid;
-  const real xi = g.x[i], yi = g.y[i], zi = g.z[i];
-  const real h2 = model.kernel.h2;
-  const real* x = g.x.data();
-  const real* y = g.y.data();
-  const real* z = g.z.data();
-  const real* m = s.mass.data();
+  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;

@@ -57,39 +57,40 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
   }
   bonds = std::move(rebuilt);
   // Compact every per-particle array in index order.
-  std::uint32_t k = 0;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (remove[i]) continue;
-    id[k] = new_id[id[i]];
-    role[k] = role[i];
-    pos[k] = pos[i];
-    vel[k] = vel[i];
-    mass[k] = mass[i];
-    mu[k] = mu[i];
-    Kp[k] = Kp[i];
-    rho0[k] = rho0[i];
-    Ka[k] = Ka[i];
-    anchor[k] = anchor[i];
-    rho[k] = rho[i];
-    pressure[k] = pressure[i];
-    volume[k] = volume[i];
-    force[k] = force[i];
-    ++k;
-  }
-  for (auto* v : {&id}) v->resize(kept);
-  role.resize(kept);
-  for (auto* v : {&pos, &vel, &anchor, &force}) v->resize(kept);
-  for (auto* v : {&mass, &mu, &Kp, &rho0, &Ka, &rho, &pressure, &volume}) v->resize(kept);
-  index_of_id.resize(kept);
-  for (std::uint32_t i = 0; i < kept; ++i) index_of_id[id[i]] = i;
-  rho_static.assign(kept, 0);
+  auto compact = [&](auto& v) {
+    std::size_t k = 0;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (!remove[i]) v[k++] = v[i];
+    v.resize(kept);
+  };
+  compact(id);
+  for (std::uint32_t& x : id) x = new_id[x];
+  compact(role);
+  for (auto* v : {&pos, &vel, &anchor, &force}) compact(*v);
+  for (auto* v : {&mass, &mu, &Kp, &rho0, &Ka, &rho, &pressure, &volume}) compact(*v);
+  size_by_id_and_scratch(model, kept);
+}
+
+void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
+  // Ids are dense: index_of_id covers [0, n).
+  index_of_id.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) index_of_id[id[i]] = i;
+  bonds.resize(n, model.max_bonds_per_particle);
+  rho_static.assign(n, 0);
   rho_static_valid = false;  // the walls may have changed
-  for (auto* v : {&grid.key, &grid.order, &scratch_u32}) v->resize(kept);
-  for (auto* v : {&grid.x, &grid.y, &grid.z, &scratch_real}) v->resize(kept);
-  grid.neighbours.resize(std::size_t(kept) * GridIndex::kNeighbourStride);
-  grid.neighbour_count.resize(kept);
-  scratch_vec.resize(kept);
-  scratch_role.resize(kept);
+  grid.key.resize(n);
+  grid.order.resize(n);
+  grid.bucket_start.assign(2 * std::size_t(model.grid.cell_count()) + 1, 0);
+  grid.bucket_fill.assign(2 * std::size_t(model.grid.cell_count()), 0);
+  grid.x.resize(n);
+  grid.y.resize(n);
+  grid.z.resize(n);
+  grid.neighbours.resize(std::size_t(n) * GridIndex::kNeighbourStride);
+  grid.neighbour_count.resize(n);
+  scratch_vec.resize(n);
+  scratch_real.resize(n);
+  scratch_u32.resize(n);
+  scratch_role.resize(n);
 }
 
 std::size_t State::bytes_per_particle() const {
@@ -103,11 +104,13 @@ std::size_t State::bytes_per_particle() const {
 }
 
 void State::add_particles(const Model& model, const std::vector<ParticleInit>& particles) {
-  const std::uint32_t n0 = size();
-  const std::uint32_t n = n0 + std::uint32_t(particles.size());
+  // Checked before anything is added, so that a refused call leaves the state as it was.
+  for (const ParticleInit& p : particles)
+    if (!(p.mass > 0) || !(p.material.rho0 > 0))
+      throw std::invalid_argument("add_particles: a particle needs a positive mass and rest density");
+  const std::uint32_t n = size() + std::uint32_t(particles.size());
   for (const ParticleInit& p : particles) {
     const std::uint32_t i = std::uint32_t(pos.size());
-    if (!(p.mass > 0)) throw std::invalid_argument("particle mass must be positive");
     id.push_back(i);
     role.push_back(p.role);
     anchor.push_back(p.role == Role::tool ? p.pos : Vec3{});
@@ -123,26 +126,7 @@ void State::add_particles(const Model& model, const std::vector<ParticleInit>& p
     volume.push_back(p.mass / p.material.rho0);
     force.push_back({});
   }
-  // Ids are dense and equal to the index at insertion; earlier particles may have moved.
-  index_of_id.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i) index_of_id[id[i]] = i;
-  bonds.resize(n, model.max_bonds_per_particle);
-  rho_static.assign(n, 0);
-  rho_static_valid = false;
-
-  grid.key.resize(n);
-  grid.order.resize(n);
-  grid.bucket_start.assign(2 * std::size_t(model.grid.cell_count()) + 1, 0);
-  grid.bucket_fill.assign(2 * std::size_t(model.grid.cell_count()), 0);
-  grid.x.resize(n);
-  grid.y.resize(n);
-  grid.z.resize(n);
-  grid.neighbours.resize(std::size_t(n) * GridIndex::kNeighbourStride);
-  grid.neighbour_count.resize(n);
-  scratch_vec.resize(n);
-  scratch_real.resize(n);
-  scratch_u32.resize(n);
-  scratch_role.resize(n);
+  size_by_id_and_scratch(model, n);
 }
 
 }  // namespace dentsph
