@@ -53,6 +53,8 @@ struct ModelParams {
   int max_bonds_per_particle = 64;
   real cfl_lambda = 0.4;          // acoustic Courant number of the stability limit
   int grid_reach = 1;             // grid cells of h / grid_reach, searched grid_reach deep
+  real neighbour_skin = 0;        // m, neighbour lists reach h + skin and are kept until a
+                                  // particle has moved skin / 2 (0: rebuilt every step)
 };
 
 struct Model {
@@ -63,6 +65,7 @@ struct Model {
   GridSpec grid;
   int max_bonds_per_particle = 64;
   real cfl_lambda = 0.4;
+  real neighbour_skin = 0;  // m, see ModelParams
   Vec3 domain_min, domain_max;
 };
 

@@ -53,6 +53,7 @@ struct ToolWrench {
 
 // What the last step measured about itself.
 struct StepDiagnostics {
+  bool rebuilt = true;       // this step sorted the particles and rebuilt the neighbour lists
   real max_accel = 0;        // m/s^2, largest |a| of a material particle
   real max_speed = 0;        // m/s, largest |v| of a material particle after integration
   std::uint64_t non_finite = 0;  // material particles whose state became NaN or infinite
@@ -76,6 +77,10 @@ struct GridIndex {
   static constexpr int kNeighbourCapacity = kNeighbourStride - 1;
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbour_count;
+  // Positions when the lists were built (sorted order); the lists (radius h + skin) stay valid
+  // until some particle has moved skin / 2 from there.
+  std::vector<Vec3> pos_at_build;
+  bool lists_valid = false;
 };
 
 class State {

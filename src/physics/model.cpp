@@ -45,6 +45,8 @@ Model make_model(const ModelParams& p) {
   if (p.max_bonds_per_particle < 1 || p.max_bonds_per_particle > 1024)
     fail("max_bonds_per_particle", fmt::format("must be in [1, 1024], got {}", p.max_bonds_per_particle));
   require_finite_positive(p.cfl_lambda, "cfl_lambda", "about 0.4 is usual");
+  if (!std::isfinite(p.neighbour_skin) || p.neighbour_skin < 0 || p.neighbour_skin > p.h)
+    fail("neighbour_skin", fmt::format("must be in [0, h] metres, got {}; 0.1 h to 0.3 h is usual", p.neighbour_skin));
   if (p.grid_reach < 1 || p.grid_reach > 3)
     fail("grid_reach", fmt::format("must be 1, 2 or 3 (cells of h / reach), got {}", p.grid_reach));
   if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
@@ -59,6 +61,7 @@ Model make_model(const ModelParams& p) {
   m.kernel = kernels::make_coeffs(p.h, m.adhesion);
   m.max_bonds_per_particle = p.max_bonds_per_particle;
   m.cfl_lambda = p.cfl_lambda;
+  m.neighbour_skin = p.neighbour_skin;
   m.domain_min = p.domain_min;
   m.domain_max = p.domain_max;
 
@@ -67,7 +70,8 @@ Model make_model(const ModelParams& p) {
   GridSpec& g = m.grid;
   g.origin = p.domain_min;
   g.reach = p.grid_reach;
-  g.cell_size = p.h / g.reach;
+  // Cells must hold every pair within h even when the grid is up to skin / 2 of motion old.
+  g.cell_size = (p.h + p.neighbour_skin) / g.reach;
   const Vec3 ext = p.domain_max - p.domain_min;
   constexpr std::int64_t max_cells = std::int64_t(1) << 22;
   for (;;) {

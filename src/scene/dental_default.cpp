@@ -40,6 +40,7 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   p.gravity = fr.z * -9.81;
   p.adhesion.A = 1.2 * s;
   p.adhesion.B = 3 * s;
+  p.neighbour_skin = 0.1 * p.h;  // measured: 1609 -> 1824 steps/s on 2 threads
   const Bounds cb = tooth.cavity_bounds();
   const Vec3 pad{4e-3, 4e-3, 4e-3};
   p.domain_min = cb.min - pad;

@@ -36,38 +36,45 @@ real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit
   return model.kernel.poly6 * sum;
 }
 
-// The density of moving particle i, over all its cells, and its list of neighbours within h
-// (self excluded) for the force pass.
+// Density of moving particle i over its neighbour list (pairs beyond h add nothing), and itself.
+real density_from_list(const Model& model, const State& s, std::int64_t i) {
+  const GridIndex& g = s.grid;
+  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return density_sum(model, s, i, grid::Visit::all);
+  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
+  const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  real sum = m[i] * h2 * h2 * h2;
+  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
+    const std::uint32_t j = list[q];
+    const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
+    const real w = std::max<real>(0, h2 - (dx * dx + dy * dy + dz * dz));
+    sum += m[j] * w * w * w;
+  }
+  return model.kernel.poly6 * sum;
+}
+
+// The density of moving particle i, over all its cells, and its list of neighbours within
+// h + skin (self excluded) for the force pass and the steps until the next rebuild.
 real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   GridIndex& g = s.grid;
   const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
+  const real reach = model.kernel.h + model.neighbour_skin, reach2 = reach * reach;
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;
   std::uint32_t overflow = 0;
-  real sum = 0;
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free filter: every candidate is written (slot `cap` is scratch), the count advances
     // for those within h until the list is full; one more within h marks the overflow.
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
-      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < h2) & (j != std::uint32_t(i));
+      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != std::uint32_t(i));
       list[count] = j;
       overflow |= within & (count == cap);
       count += within & (count < cap);
     }
   });
   g.neighbour_count[i] = std::uint16_t(overflow ? cap + 1 : count);
-  if (overflow) return density_sum(model, s, i, grid::Visit::all);
-  // The density over the list, then the particle itself (r = 0).
-  for (std::uint32_t q = 0; q < count; ++q) {
-    const std::uint32_t j = list[q];
-    const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
-    const real w = h2 - (dx * dx + dy * dy + dz * dz);
-    sum += m[j] * w * w * w;
-  }
-  sum += m[i] * h2 * h2 * h2;
-  return model.kernel.poly6 * sum;
+  return density_from_list(model, s, i);
 }
 
 }  // namespace
@@ -78,13 +85,14 @@ void compute_static_density(const Model& model, State& s) {
   s.rho_static_valid = true;
 }
 
-void compute_density(const Model& model, State& s, int threads) {
+void compute_density(const Model& model, State& s, int threads, bool build_lists) {
   if (!s.rho_static_valid) compute_static_density(model, s);
   const std::int64_t n = s.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     s.rho[i] = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving)
-                                           : density_and_neighbours(model, s, i);
+           : build_lists ? density_and_neighbours(model, s, i)
+                                         : density_from_list(model, s, i);
   }
 }
 

@@ -61,6 +61,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       const std::uint32_t j = list[q];
       const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
       const real r2 = norm2(d);
+      if (r2 >= k.h2) continue;  // in the list's skin, not within h this step
       f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
       bonds::try_form(model, s, i, j, r2, ev);  // A < h: every pair to bond is here
     }

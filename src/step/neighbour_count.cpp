@@ -10,6 +10,7 @@ real mean_neighbours(const Model& model, State& state) {
   stages::compute_cell_keys(model, state, 1);
   stages::sort_by_cell(model, state);
   stages::reorder(state, 1);
+  state.grid.lists_valid = false;  // sorted anew: the lists no longer match the order
   std::uint64_t pairs = 0;
   for (std::uint32_t i = 0; i < state.size(); ++i)
     grid::for_each_in_neighbourhood(model.grid, state.grid, state.pos[i], grid::Visit::all, [&](std::uint32_t j) {

@@ -34,13 +34,22 @@ class StageClock {
 void step(const Model& model, State& state, const StepOptions& opt) {
   const int t = opt.threads < 1 ? 1 : opt.threads;
   StageClock clock(opt.times);
-  stages::compute_cell_keys(model, state, t);      // 1. broad phase
-  clock.lap(&StageTimes::hash_us);
-  stages::sort_by_cell(model, state);              // 2. sort, cell ranges
-  clock.lap(&StageTimes::sort_us);
-  stages::reorder(state, t);                       //    and reorder
-  clock.lap(&StageTimes::reorder_us);
-  stages::compute_density(model, state, t);        // 3. density
+  // The broad phase, the sort and the reorder run when the neighbour lists must be rebuilt: every
+  // step without a skin, else once some particle has moved half the skin (neighbour_lists.cpp).
+  const bool rebuild = stages::lists_need_rebuild(model, state, t);
+  if (rebuild) {
+    stages::compute_cell_keys(model, state, t);    // 1. broad phase
+    clock.lap(&StageTimes::hash_us);
+    stages::sort_by_cell(model, state);            // 2. sort, cell ranges
+    clock.lap(&StageTimes::sort_us);
+    stages::reorder(state, t);                     //    and reorder
+    stages::remember_build_positions(state, t);
+    clock.lap(&StageTimes::reorder_us);
+  } else {
+    stages::refresh_coordinates(state, t);
+    clock.lap(&StageTimes::reorder_us);
+  }
+  stages::compute_density(model, state, t, rebuild);  // 3. density (and the lists on a rebuild)
   clock.lap(&StageTimes::density_us);
   stages::compute_pressure(state, t);              // 4. pressure
   clock.lap(&StageTimes::pressure_us);
@@ -50,6 +59,7 @@ void step(const Model& model, State& state, const StepOptions& opt) {
   clock.lap(&StageTimes::wrench_us);
   stages::integrate(model, state, t);              // 6. integration
   clock.lap(&StageTimes::integrate_us);
+  state.diagnostics.rebuilt = rebuild;
 }
 
 }  // namespace dentsph

@@ -24,6 +24,7 @@ struct Config {
   bool with_tool;
   unsigned seed;
   int reach = 2;       // grid cells of h / reach
+  real skin = 0;       // neighbour-list skin, in h
 };
 
 State build(const Model& model, const Config& c) {
@@ -98,7 +99,8 @@ void compare(const State& g, const State& r, int step) {
 
 void PrintTo(const Config& c, std::ostream* os) {
   *os << "material" << c.n_side << "cubed_jitter" << int(c.jitter * 100) << "pct" << (c.on_borders ? "_on_cell_borders" : "")
-      << (c.far_outliers ? "_far_outliers" : "") << (c.with_tool ? "_tool" : "") << "_reach" << c.reach;
+      << (c.far_outliers ? "_far_outliers" : "") << (c.with_tool ? "_tool" : "") << "_reach" << c.reach
+      << "_skin" << int(c.skin * 100) << "pct";
 }
 
 class GridParity : public ::testing::TestWithParam<Config> {};
@@ -108,6 +110,7 @@ TEST_P(GridParity, MatchesAllPairsOver100Steps) {
   const real ext = (c.n_side + 6) * s;
   ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {ext, ext, ext}, 2e-4, {0, 0, -9.81});
   mp.grid_reach = c.reach;
+  mp.neighbour_skin = c.skin * mp.h;
   const Model model = make_model(mp);
   State g = build(model, c), r = build(model, c);
   for (int k = 0; k < 100; ++k) {
@@ -127,6 +130,26 @@ TEST_P(GridParity, MatchesAllPairsOver100Steps) {
   EXPECT_EQ(g.diagnostics.non_finite, 0u);
 }
 
+TEST(GridParity, SkinSkipsRebuildsAndStillMatchesAllPairs) {
+  ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81});
+  mp.neighbour_skin = 0.2 * mp.h;
+  const Model model = make_model(mp);
+  const Config c{6, 0.2, false, false, true, 12};
+  State g = build(model, c), r = build(model, c);
+  int rebuilds = 0;
+  for (int k = 0; k < 100; ++k) {
+    g.tool_pose.position.z -= 0.03 * s;
+    r.tool_pose.position.z -= 0.03 * s;
+    step(model, g, StepOptions{2, nullptr});
+    step_all_pairs(model, r);
+    rebuilds += g.diagnostics.rebuilt;
+    compare(g, r, k);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(rebuilds, 1) << "the tool's motion forces rebuilds";
+  EXPECT_LT(rebuilds, 50) << "most steps reuse the lists";
+}
+
 INSTANTIATE_TEST_SUITE_P(Configs, GridParity,
                          ::testing::Values(Config{3, 0.2, false, false, false, 1},
                                            Config{5, 0.25, true, false, true, 2},
@@ -134,7 +157,10 @@ INSTANTIATE_TEST_SUITE_P(Configs, GridParity,
                                            Config{8, 0.3, false, true, true, 4},
                                            Config{5, 0.25, true, false, true, 5, 1},
                                            Config{6, 0.2, false, true, true, 6, 1},
-                                           Config{5, 0.2, true, true, true, 7, 3}));
+                                           Config{5, 0.2, true, true, true, 7, 3},
+                                           Config{6, 0.25, true, true, true, 8, 1, 0.1},
+                                           Config{7, 0.3, false, false, true, 9, 1, 0.3},
+                                           Config{5, 0.2, true, false, true, 10, 2, 0.2}));
 
 TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   // Two material particles pulled apart by their initial velocities: the bond formed at r < A

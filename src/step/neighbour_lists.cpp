@@ -1,0 +1,39 @@
+// Neighbour lists with a skin (Verlet lists): built with radius h + skin when the particles are
+// sorted, and kept while no particle has moved more than skin / 2 since, so that every pair
+// within h is still in them (two particles closing in at most skin between them). Between
+// rebuilds the step skips the broad phase, the sort and the reorder.
+#include <algorithm>
+
+#include "step/stages.hpp"
+
+namespace dentsph::stages {
+
+bool lists_need_rebuild(const Model& model, const State& s, int threads) {
+  const real skin = model.neighbour_skin;
+  if (skin <= 0 || !s.grid.lists_valid) return true;
+  const real limit2 = 0.25 * skin * skin;
+  const std::int64_t n = s.size();
+  real moved2 = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : moved2)
+  for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, norm2(s.pos[i] - s.grid.pos_at_build[i]));
+  return !(moved2 <= limit2);  // a non-finite position rebuilds too
+}
+
+void refresh_coordinates(State& s, int threads) {
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    s.grid.x[i] = s.pos[i].x;
+    s.grid.y[i] = s.pos[i].y;
+    s.grid.z[i] = s.pos[i].z;
+  }
+}
+
+void remember_build_positions(State& s, int threads) {
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) s.grid.pos_at_build[i] = s.pos[i];
+  s.grid.lists_valid = true;
+}
+
+}  // namespace dentsph::stages
