@@ -1,7 +1,7 @@
 // Stage 3: rho_i = sum_j m_j W_poly6(r_ij) over all roles, self included (MODEL.md; the paper's
 // eq. 6 has a stray minus sign). Boundary particles never move, so the part of a boundary
 // particle's density that comes from other boundary particles is computed once
-// (compute_static_density) and each step adds only its moving neighbours.
+// (compute_static_density) and each step adds only its moving neighbours, from its list.
 #include <algorithm>
 
 #include "physics/kernels.hpp"
@@ -23,50 +23,59 @@ struct Arrays {
 
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
 real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
-  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
+  const Arrays a(model, s, i);
   real sum = 0;  // of m_j (h^2 - r^2)^3 over r < h; the kernel's constant is applied once
   grid::for_each_neighbour_range(model.grid, s.grid, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free so that the compiler vectorises it: pairs beyond h contribute max(0, .) = 0.
     for (std::uint32_t j = b; j < e; ++j) {
-      const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
-      const real w = std::max<real>(0, h2 - (dx * dx + dy * dy + dz * dz));
-      sum += m[j] * w * w * w;
+      const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
+      const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+      sum += a.m[j] * w * w * w;
     }
   });
   return model.kernel.poly6 * sum;
 }
 
-// Density of moving particle i over its neighbour list (pairs beyond h add nothing), and itself.
-real density_from_list(const Model& model, const State& s, std::int64_t i) {
-  const GridIndex& g = s.grid;
-  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return density_sum(model, s, i, grid::Visit::all);
-  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
-  const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
-  real sum = m[i] * h2 * h2 * h2;
-  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
-    const std::uint32_t j = list[q];
-    const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
-    const real w = std::max<real>(0, h2 - (dx * dx + dy * dy + dz * dz));
-    sum += m[j] * w * w * w;
-  }
-  return model.kernel.poly6 * sum;
+// Which neighbours particle i lists: a moving particle all within reach, a boundary particle the
+// moving ones (its boundary part is static, rho_static).
+grid::Visit listed(const State& s, std::int64_t i) {
+  return s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
 }
 
-// The density of moving particle i, over all its cells, and its list of neighbours within
-// h + skin (self excluded) for the force pass and the steps until the next rebuild.
+// Density of particle i over its neighbour list (pairs beyond h add nothing), and its own part:
+// itself for a moving particle, the static boundary around it for a boundary particle.
+real density_from_list(const Model& model, const State& s, std::int64_t i) {
+  const GridIndex& g = s.grid;
+  const bool boundary = s.role[i] == Role::boundary;
+  const real own = boundary ? s.rho_static[s.id[i]] : 0;
+  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i));
+  const Arrays a(model, s, i);
+  const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
+  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
+    const std::uint32_t j = list[q];
+    const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
+    const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+    sum += a.m[j] * w * w * w;
+  }
+  return own + model.kernel.poly6 * sum;
+}
+
+// The density of particle i, over its cells, and its list of neighbours within h + skin (self
+// excluded) for the force pass and the steps until the next rebuild.
 real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   GridIndex& g = s.grid;
-  const auto [x, y, z, m, xi, yi, zi, h2] = Arrays(model, s, i);
+  const Arrays a(model, s, i);
   const real reach = model.kernel.h + model.neighbour_skin, reach2 = reach * reach;
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;
   std::uint32_t overflow = 0;
-  grid::for_each_neighbour_range(model.grid, g, s.pos[i], grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
+  grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free filter: every candidate is written (slot `cap` is scratch), the count advances
     // for those within h until the list is full; one more within h marks the overflow.
     for (std::uint32_t j = b; j < e; ++j) {
-      const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
+      const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
       const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != std::uint32_t(i));
       list[count] = j;
       overflow |= within & (count == cap);
@@ -90,9 +99,11 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
   const std::int64_t n = s.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    s.rho[i] = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving)
-           : build_lists ? density_and_neighbours(model, s, i)
-                                         : density_from_list(model, s, i);
+    // Without a skin a boundary particle's list would serve one step only: search directly.
+    if (s.role[i] == Role::boundary && model.neighbour_skin <= 0)
+      s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving);
+    else
+      s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
   }
 }
 
