@@ -70,7 +70,7 @@ struct Domain {
 ModelParams read_simulation(const Reader& root, Domain& domain) {
   const Reader sim =
       root.object("simulation", "the simulation settings {\"dt\": 5e-4, \"h\": 0.02, ...}");
-  sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "domain"});
+  sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "neighbour_skin", "grid_reach", "domain"});
   ModelParams p;
   p.dt = sim.number("dt", "the time step in s, e.g. 5e-4", Range::positive);
   p.h = sim.number("h", "the kernel support in m, about twice the spacing, e.g. 0.02",
@@ -81,6 +81,11 @@ ModelParams read_simulation(const Reader& root, Domain& domain) {
       std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
   p.cfl_lambda = sim.number_or("cfl_lambda", p.cfl_lambda, "the acoustic Courant number, about 0.4",
                                Range::positive);
+  // Checked against h by make_model (its message names the field).
+  p.neighbour_skin = sim.number_or("neighbour_skin", p.neighbour_skin,
+                                   "the neighbour lists' skin in m, 0 to h (about 0.1 h)", Range::non_negative);
+  p.grid_reach = int(sim.integer_or("grid_reach", p.grid_reach, "1, 2 or 3", std::numeric_limits<int>::min(),
+                                    std::numeric_limits<int>::max()));
   if (const std::optional<Reader> d = sim.optional_object(
           "domain", "the grid region {\"min\": [x, y, z], \"max\": [x, y, z]} in m")) {
     d->only({"min", "max"});

@@ -84,6 +84,25 @@ TEST(Procedure, ARunAppliesEachEventOnceAtItsTime) {
   EXPECT_EQ(s.status, "completed");
 }
 
+TEST(SimulationSettings, SkinAndReachAreReadAndChecked) {
+  const std::string h = R"("h": 0.02})";
+  const std::string one = R"([{"t": 0, "dispense": {"volume": 1e-6, "at": [0, 0, 0.05]}}])";
+  std::string text = with_events(one);
+  text.replace(text.find(h), h.size(), R"("h": 0.02, "neighbour_skin": 0.002, "grid_reach": 2})");
+  const Scene sc = parse_scene(text, "p.json");
+  EXPECT_DOUBLE_EQ(sc.model.neighbour_skin, 0.002);
+  EXPECT_EQ(sc.model.grid.reach, 2);
+  EXPECT_NEAR(sc.model.grid.cell_size, 0.011, 1e-12) << "(h + skin) / reach";
+  std::string bad = with_events(one);
+  bad.replace(bad.find(h), h.size(), R"("h": 0.02, "neighbour_skin": 0.05})");
+  try {
+    parse_scene(bad, "p.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("neighbour_skin"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Procedure, ExampleSceneLoads) {
   const Scene sc = load_scene("scenes/incremental_fill.json");
   EXPECT_EQ(sc.events.size(), 4u);
