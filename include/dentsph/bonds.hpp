@@ -24,9 +24,8 @@ class BondStore {
   std::uint32_t partner(std::uint32_t id, int k) const { return partner_[std::size_t(id) * capacity_ + k]; }
   bool has(std::uint32_t id, std::uint32_t other) const;
 
-  // Adds `other` to the list of `id`; false (and counted) when the list is full.
-  bool add(std::uint32_t id, std::uint32_t other);
-  // The same without counting (the step counts per thread and adds up).
+  // Adds `other` to the list of `id`; false when the list is full (the caller counts the
+  // overflow: the step per thread, then into `counters`).
   bool try_add(std::uint32_t id, std::uint32_t other) {
     if (count_[id] >= capacity_) return false;
     partner_[std::size_t(id) * capacity_ + count_[id]++] = other;

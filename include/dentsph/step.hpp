@@ -45,5 +45,7 @@ struct StabilityLimits {
   real sound_speed = 0;  // m/s, c = sqrt(max Kp); material moving at many times c has exploded
 };
 StabilityLimits stability_limits(const Model& model, const State& state);
+// The force limit alone, from the last step's largest acceleration (infinite before any).
+real force_time_step_limit(const Model& model, const StepDiagnostics& diagnostics);
 
 }  // namespace dentsph

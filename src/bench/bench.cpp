@@ -23,14 +23,14 @@ struct Measured {
 template <class Prepare>
 Measured measure(const Model& model, State& state, bool all_pairs, int threads, const BenchOptions& opt,
                  Prepare&& prepare) {
-  auto one = [&] {
+  auto one = [&](StageTimes* times) {
     prepare(state);
     if (all_pairs)
       step_all_pairs(model, state);
     else
-      step(model, state, StepOptions{threads, nullptr});
+      step(model, state, StepOptions{threads, times});
   };
-  for (int k = 0; k < 10; ++k) one();  // warm-up: first bonds, caches
+  for (int k = 0; k < 10; ++k) one(nullptr);  // warm-up: first bonds, caches
   std::vector<Measured> runs;
   for (int r = 0; r < std::max(1, opt.repeats); ++r) {
     StageTimes t;
@@ -38,11 +38,7 @@ Measured measure(const Model& model, State& state, bool all_pairs, int threads, 
     std::uint64_t steps = 0;
     double elapsed = 0;
     while (steps < 5 || elapsed < opt.seconds_per_run) {
-      prepare(state);
-      if (all_pairs)
-        step_all_pairs(model, state);
-      else
-        step(model, state, StepOptions{threads, &t});
+      one(&t);
       ++steps;
       elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }

@@ -25,12 +25,6 @@ bool BondStore::has(std::uint32_t id, std::uint32_t other) const {
   return false;
 }
 
-bool BondStore::add(std::uint32_t id, std::uint32_t other) {
-  if (try_add(id, other)) return true;
-  ++counters.overflowed;
-  return false;
-}
-
 void BondStore::remove_at(std::uint32_t id, int k) {
   std::uint32_t* p = &partner_[std::size_t(id) * capacity_];
   p[k] = p[--count_[id]];

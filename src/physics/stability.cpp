@@ -20,8 +20,12 @@ StabilityLimits stability_limits(const Model& model, const State& s) {
   l.sound_speed = std::sqrt(kp_max);
   l.acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
   l.viscous = 0.125 * h * h * rho_over_mu_min;
-  l.force = s.diagnostics.max_accel > 0 ? 0.25 * std::sqrt(h / s.diagnostics.max_accel) : inf;
+  l.force = force_time_step_limit(model, s.diagnostics);
   return l;
+}
+
+real force_time_step_limit(const Model& model, const StepDiagnostics& d) {
+  return d.max_accel > 0 ? 0.25 * std::sqrt(model.kernel.h / d.max_accel) : std::numeric_limits<real>::infinity();
 }
 
 }  // namespace dentsph

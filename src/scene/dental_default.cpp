@@ -7,7 +7,6 @@
 
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
-#include "physics/kernels.hpp"
 
 namespace dentsph {
 

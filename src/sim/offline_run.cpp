@@ -110,7 +110,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     if (csv) csv->add(t_forces, state.tool_wrench);
     sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
     forces.add(state.tool_wrench.force, scene.model.dt);
-    const real force_limit = stability_limits(scene.model, state).force;
+    const real force_limit = force_time_step_limit(scene.model, state.diagnostics);
     sum.limits.force = std::min(sum.limits.force, force_limit);
     if (sum.dt > force_limit) {
       if (sum.force_violation_steps++ == 0) sum.first_force_violation_t = t_forces;
