@@ -62,6 +62,11 @@ struct Scene {
   real duration = 0;                     // s, default run length ("run.duration"); 0 if not given
   std::optional<PreparedTooth> tooth;    // dental scenes: the prepared tooth, for the assessment
   real material_spacing = 0;             // m, dental scenes: the paste's lattice spacing
+  // N rendered on a haptic device per N of tool force in the simulation. The simulated paste is
+  // soft (the tool force is of the order of 1e-4 N); this maps it to what a hand should feel. The
+  // haptic runtime uses it as its default scale; the leak test presses with the device's largest
+  // force divided by it.
+  real force_scale = 1;
 };
 
 // Reads and checks a scene file. Throws SceneError.
