@@ -1,0 +1,104 @@
+// Input scripts (input_script.hpp), read with the scene files' checked reader.
+#include "input_script.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "colour_map.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/tools.hpp"
+#include "scene/reader.hpp"
+
+namespace dentsph::viewer {
+
+namespace {
+
+struct KindName {
+  ScriptAction::Kind kind;
+  std::string_view name;
+};
+constexpr KindName kKinds[] = {{ScriptAction::Kind::move, "move"},         {ScriptAction::Kind::press, "press"},
+                               {ScriptAction::Kind::release, "release"},   {ScriptAction::Kind::dispense, "dispense"},
+                               {ScriptAction::Kind::switch_tool, "switch_tool"}, {ScriptAction::Kind::pause, "pause"},
+                               {ScriptAction::Kind::resume, "resume"},     {ScriptAction::Kind::reset, "reset"},
+                               {ScriptAction::Kind::colour_by, "colour_by"}, {ScriptAction::Kind::end, "end"}};
+
+}  // namespace
+
+InputScript parse_input_script(const std::string& json_text, const std::string& source) {
+  scene::Json doc;
+  try {
+    doc = scene::Json::parse(json_text);
+  } catch (const scene::Json::parse_error& e) {
+    scene::fail(source, "(file)", fmt::format("is not valid JSON ({})", e.what()),
+                "fix the syntax (a missing comma or bracket)");
+  }
+  const scene::Reader top(doc, "", source, "an input script");
+  top.only({"actions"});
+  const scene::Json& actions = top.array("actions", "the list of actions, e.g. [{\"step\": 0, \"action\": \"dispense\"}]");
+  InputScript script;
+  script.source = source;
+  std::vector<std::string_view> names;
+  for (const KindName& k : kKinds) names.push_back(k.name);
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    const scene::Reader a = top.element(actions, "actions", i, "an action");
+    a.only({"step", "action", "position_mm", "tool", "mode"});
+    ScriptAction act;
+    act.step = std::uint64_t(a.integer("step", "the simulation step it happens at, e.g. 400", 0, std::int64_t(1) << 40));
+    const std::string kind = a.string("action", "what happens: move, press, release, dispense, switch_tool, pause, "
+                                                "resume, reset, colour_by or end");
+    bool known = false;
+    for (const KindName& k : kKinds)
+      if (kind == k.name) {
+        act.kind = k.kind;
+        known = true;
+      }
+    if (!known) {
+      const std::string_view near = scene::closest(kind, names);
+      a.fail("action", fmt::format("'{}' is not an action", kind),
+             near.empty() ? "use one of move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, end"
+                          : fmt::format("did you mean '{}'?", near));
+    }
+    if (!script.actions.empty() && act.step < script.actions.back().step)
+      a.fail("step", fmt::format("{} is before the previous action's step {}", act.step, script.actions.back().step),
+             "list the actions in step order");
+    switch (act.kind) {
+      case ScriptAction::Kind::move:
+        act.position_mm = a.vec3("position_mm", "the tool tip's position in mm, e.g. [0, 0, 2]");
+        break;
+      case ScriptAction::Kind::switch_tool:
+        act.name = a.string("tool", "the instrument: ball_burnisher, flat_plugger or condenser");
+        try {
+          (void)tool_by_name(act.name, 3e-4);
+        } catch (const std::exception& e) {
+          a.fail("tool", e.what(), "use ball_burnisher, flat_plugger or condenser");
+        }
+        break;
+      case ScriptAction::Kind::colour_by:
+        act.name = a.string("mode", "role, pressure, density, speed or bonds");
+        try {
+          (void)colour_by_from_name(act.name);
+        } catch (const std::exception& e) {
+          a.fail("mode", e.what(), "use role, pressure, density, speed or bonds");
+        }
+        break;
+      default:
+        break;
+    }
+    script.actions.push_back(act);
+  }
+  return script;
+}
+
+InputScript load_input_script(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in)
+    scene::fail(file.string(), "(file)", "cannot be opened", "check the path of --script");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_input_script(text.str(), file.string());
+}
+
+}  // namespace dentsph::viewer

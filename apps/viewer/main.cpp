@@ -1,0 +1,76 @@
+// dentsph-viewer: see the tooth, move the tool, fill the cavity, watch the forces.
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "dentsph/dental.hpp"
+#include "dentsph/run.hpp"
+#include "dentsph/scene.hpp"
+#include "colour_map.hpp"
+#include "input_script.hpp"
+#include "sim_session.hpp"
+#include "viewer_app.hpp"
+
+int main(int argc, char** argv) {
+  using namespace dentsph;
+  CLI::App app{"dentsph-viewer: the dental filling simulation in a window. The mouse moves the tool (left drag; "
+               "wheel for depth; space presses), D dispenses an increment, P pauses, N steps, R resets, T switches "
+               "the tool, C changes the colouring, X cuts a section, B hides the boundary particles"};
+  std::string scene_file, mesh_file, script_file, screenshot;
+  viewer::ViewerOptions vo;
+  viewer::SessionOptions so;
+  so.threads = int(std::max(1u, std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() - 1 : 1u));
+  auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON); none: the built-in dental scene")
+                        ->check(CLI::ExistingFile);
+  app.add_option("--mesh", mesh_file, "The dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
+      ->check(CLI::ExistingFile)
+      ->excludes(scene_opt);
+  app.add_option("--screenshot", screenshot, "Write a PNG of the window after --frames frames, then exit");
+  app.add_option("--frames", vo.frames, "Frames to draw before the screenshot (or before exiting)");
+  app.add_option("--script", script_file, "A sequence of inputs to replay (JSON; see docs/viewer.md)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--width", vo.width, "Window width in pixels")->check(CLI::Range(64, 8192))->capture_default_str();
+  app.add_option("--height", vo.height, "Window height in pixels")->check(CLI::Range(64, 8192))->capture_default_str();
+  app.add_option("--threads", so.threads, "Threads of the simulation step")->check(CLI::Range(1, 1024))->capture_default_str();
+  app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed or bonds")->capture_default_str();
+  app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
+  app.add_flag("--paused", so.start_paused, "Start paused");
+  app.add_option("--timeout", vo.timeout_s, "Give up after this many seconds (exit code 4); 0: never")
+      ->check(CLI::NonNegativeNumber);
+  bool no_vsync = false;
+  app.add_flag("--no-vsync", no_vsync, "Draw as fast as possible (to measure frames per second)");
+  CLI11_PARSE(app, argc, argv);
+  vo.vsync = !no_vsync;
+  if (!screenshot.empty() && vo.frames == 0) vo.frames = 1;
+  vo.screenshot = screenshot;
+
+  try {
+    (void)viewer::colour_by_from_name(vo.colour_by);
+    if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
+    Scene sc = !scene_file.empty() ? load_scene(scene_file)
+               : !mesh_file.empty() ? dental_scene_from_mesh(mesh_file)
+                                    : default_dental_scene();
+    check_time_step(sc, make_state(sc), false);
+    viewer::SimSession session(std::move(sc), so);
+    std::signal(SIGINT, [](int) { viewer::request_close(); });
+    std::signal(SIGTERM, [](int) { viewer::request_close(); });
+    const viewer::ViewerResult r = viewer::run_viewer(session, vo);
+    fmt::print("viewer: {} frames, {:.1f} fps (median), frame time p50 {:.2f} ms, p99 {:.2f} ms; simulation {} steps, "
+               "{:.0f} steps/s\n",
+               r.frames, r.fps_median, r.frame_p50_ms, r.frame_p99_ms, r.sim_steps, r.sim_steps_per_second);
+    if (!screenshot.empty() && !r.closed_by_user && !r.timed_out) fmt::print("wrote {}\n", screenshot);
+    if (r.closed_by_user) fmt::print("viewer: closed before the end; the simulation stopped cleanly\n");
+    if (r.timed_out) {
+      fmt::print(stderr, "error: gave up after {:.0f} s (--timeout) before the frames and the script were done\n",
+                 vo.timeout_s);
+      return 4;
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,168 @@
+// Panels (panels.hpp).
+#include "panels.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+namespace dentsph::viewer {
+
+namespace {
+
+void simulation_panel(const Snapshot& s, UiState& ui, const std::vector<std::string>& tools,
+                      std::vector<Command>& out) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Simulation");
+  ImGui::Text("t = %.4f s   step %llu", double(s.time), static_cast<unsigned long long>(s.steps));
+  ImGui::Text("%.0f steps/s%s%s", s.steps_per_second, s.paused ? "   paused" : "", s.diverged ? "   DIVERGED" : "");
+  if (ImGui::Button(s.paused ? "Run (P)" : "Pause (P)")) out.push_back({s.paused ? Command::Kind::resume : Command::Kind::pause});
+  ImGui::SameLine();
+  if (ImGui::Button("Step (N)")) out.push_back({Command::Kind::single_step});
+  ImGui::SameLine();
+  if (ImGui::Button("Reset (R)")) out.push_back({Command::Kind::reset});
+  ImGui::SameLine();
+  if (ImGui::Button("Dispense (D)")) out.push_back({Command::Kind::dispense});
+  std::vector<const char*> names;
+  for (const std::string& t : tools) names.push_back(t.c_str());
+  if (ImGui::Combo("tool (T)", &ui.tool_index, names.data(), int(names.size()))) {
+    Command c{Command::Kind::switch_tool};
+    c.tool = tools[std::size_t(ui.tool_index)];
+    out.push_back(c);
+  }
+  ImGui::TextDisabled("in use: %s", s.tool_name.c_str());
+  if (!s.message.empty()) ui.last_message = s.message;
+  if (!ui.last_message.empty()) ImGui::TextWrapped("%s", ui.last_message.c_str());
+  ImGui::Separator();
+  ImGui::TextDisabled("left drag: move the tool   wheel: depth\nspace: press   right drag: orbit\nshift+right drag: pan   ctrl+wheel: zoom");
+  ImGui::End();
+}
+
+void display_panel(const Snapshot& s, UiState& ui) {
+  ImGui::SetNextWindowPos(ImVec2(10, 260), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Display");
+  int mode = 0;
+  for (std::size_t k = 0; k < kColourModes.size(); ++k)
+    if (kColourModes[k] == ui.colour_by) mode = int(k);
+  const char* modes[] = {"role", "pressure", "density", "speed", "bonds"};
+  if (ImGui::Combo("colour by (C)", &mode, modes, 5)) ui.colour_by = kColourModes[std::size_t(mode)];
+  ImGui::Checkbox("boundary particles (B)", &ui.show_boundary);
+  ImGui::Checkbox("section (X)", &ui.cut);
+  if (ui.colour_by != ColourBy::role) {
+    ImGui::Checkbox("automatic range", &ui.auto_range);
+    if (!ui.auto_range) ImGui::DragFloatRange2("range", &ui.range.lo, &ui.range.hi, std::max(1e-3f, 0.01f * (ui.range.hi - ui.range.lo)));
+    // The colour bar.
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x, h = 14;
+    constexpr int kSteps = 32;
+    for (int k = 0; k < kSteps; ++k) {
+      const Rgb a = colour_map(float(k) / kSteps), b = colour_map(float(k + 1) / kSteps);
+      const ImU32 ca = ImGui::ColorConvertFloat4ToU32(ImVec4(a[0], a[1], a[2], 1));
+      const ImU32 cb = ImGui::ColorConvertFloat4ToU32(ImVec4(b[0], b[1], b[2], 1));
+      dl->AddRectFilledMultiColor(ImVec2(p.x + w * k / kSteps, p.y), ImVec2(p.x + w * (k + 1) / kSteps, p.y + h), ca, cb, cb, ca);
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::Text("%.4g", double(ui.range.lo));
+    ImGui::SameLine(w - 60);
+    ImGui::Text("%.4g %s", double(ui.range.hi), colour_by_unit(ui.colour_by));
+  }
+  (void)s;
+  ImGui::End();
+}
+
+void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
+  if (!ui.material_loaded) {
+    ui.material = s.material;
+    ui.material_loaded = true;
+  }
+  ImGui::SetNextWindowPos(ImVec2(10, 430), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Material");
+  MaterialEdit& m = ui.material;
+  auto field = [](const char* label, real& v, float lo, float hi, const char* fmt_str) {
+    float f = float(v);
+    if (ImGui::DragFloat(label, &f, std::max(1e-6f, 0.005f * std::abs(f)), lo, hi, fmt_str)) v = f;
+  };
+  field("Kp (m^2/s^2)", m.Kp, 0.1f, 1e4f, "%.3g");
+  field("Ka (Pa)", m.Ka, 0.f, 1e5f, "%.3g");
+  field("mu (Pa s)", m.mu, 0.f, 1e3f, "%.3g");
+  float a_mm = float(m.A * 1e3), b_mm = float(m.B * 1e3);
+  if (ImGui::DragFloat("A (mm)", &a_mm, 0.002f, 0.f, 5.f, "%.3f")) m.A = a_mm * 1e-3;
+  if (ImGui::DragFloat("B (mm)", &b_mm, 0.002f, 0.f, 5.f, "%.3f")) m.B = b_mm * 1e-3;
+  field("eps", m.eps, 0.5f, 10.f, "%.2f");
+  field("zeta", m.zeta, 0.1f, 10.f, "%.2f");
+  if (ImGui::Button("Apply")) {
+    Command c{Command::Kind::set_material};
+    c.material = m;
+    out.push_back(c);
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Revert")) m = s.material;
+  const StabilityLimits& l = s.limits;
+  auto limit = [&](const char* name, real v) {
+    const bool bad = s.dt > v;
+    ImGui::TextColored(bad ? ImVec4(1, 0.3f, 0.3f, 1) : ImVec4(0.6f, 0.9f, 0.6f, 1), "%-9s limit %.3g s %s", name,
+                       double(v), bad ? "(dt over it)" : "");
+  };
+  ImGui::Text("dt = %.3g s", double(s.dt));
+  limit("acoustic", l.acoustic);
+  limit("viscous", l.viscous);
+  limit("force", l.force);
+  ImGui::End();
+}
+
+void force_panel(const Snapshot& s, UiState& ui) {
+  ImGui::SetNextWindowPos(ImVec2(320, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Tool force");
+  const float f = float(norm(s.tool_force_N));
+  std::vector<float> h(ui.force_history.begin(), ui.force_history.end());
+  const float peak = h.empty() ? 0.f : *std::max_element(h.begin(), h.end());
+  const std::string label = fmt::format("{:.3g} N", f);
+  ImGui::PlotLines("##force", h.data(), int(h.size()), 0, label.c_str(), 0.f, std::max(peak * 1.1f, 1e-12f),
+                   ImVec2(ImGui::GetContentRegionAvail().x, 90));
+  ImGui::Text("|F| = %.4g N   (%.3g, %.3g, %.3g)", double(f), double(s.tool_force_N.x), double(s.tool_force_N.y),
+              double(s.tool_force_N.z));
+  ImGui::End();
+}
+
+void assessment_panel(const Snapshot& s) {
+  if (!s.assessment) return;
+  const Assessment& a = *s.assessment;
+  ImGui::SetNextWindowPos(ImVec2(320, 190), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Assessment");
+  ImGui::Text("filled     %.1f %% of %.2f mm^3", 100 * double(a.fill_fraction), double(a.cavity_volume_mm3));
+  ImGui::Text("voids      %d (%.3f mm^3)", a.void_count, double(a.void_volume_mm3));
+  ImGui::Text("overfill   %.3f mm^3", double(a.overfill_mm3));
+  ImGui::Text("leaked     %u   lost %u   of %u", a.leaked_particles, a.lost_particles, a.material_particles);
+  ImGui::Text("tool force peak %.3g N, mean %.3g N", double(a.peak_tool_force_N), double(a.mean_tool_force_N));
+  ImGui::End();
+}
+
+void loops_panel(const Snapshot& s, const FrameStats& st) {
+  ImGui::SetNextWindowPos(ImVec2(320, 320), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Loops");
+  ImGui::Text("render      %.1f fps  frame p50 %.2f ms  p99 %.2f ms", st.fps, st.frame_p50_ms, st.frame_p99_ms);
+  ImGui::Text("simulation  %.0f steps/s  (%.3g x real time)", s.steps_per_second, s.steps_per_second * double(s.dt));
+  ImGui::End();
+}
+
+}  // namespace
+
+void draw_panels(const Snapshot& snap, UiState& ui, const FrameStats& stats, const std::vector<std::string>& tools,
+                 std::vector<Command>& commands) {
+  simulation_panel(snap, ui, tools, commands);
+  display_panel(snap, ui);
+  material_panel(snap, ui, commands);
+  force_panel(snap, ui);
+  assessment_panel(snap);
+  loops_panel(snap, stats);
+}
+
+}  // namespace dentsph::viewer

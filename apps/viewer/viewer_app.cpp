@@ -1,0 +1,362 @@
+// The render loop (viewer_app.hpp).
+#include "viewer_app.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "camera.hpp"
+#include "colour_map.hpp"
+#include "panels.hpp"
+#include "renderers.hpp"
+#include "screenshot.hpp"
+
+namespace dentsph::viewer {
+
+namespace {
+
+std::atomic<bool> g_close_requested{false};
+
+using clock_type = std::chrono::steady_clock;
+
+glm::vec3 g(const Vec3& v) { return {float(v.x), float(v.y), float(v.z)}; }
+
+struct Window {
+  GLFWwindow* handle = nullptr;
+  Window(int w, int h) {
+    glfwSetErrorCallback([](int, const char*) {});
+    if (!glfwInit())
+      throw std::runtime_error("cannot open a window: no display (set DISPLAY, or run headless under "
+                               "xvfb-run -a -s '-screen 0 1280x800x24' dentsph-viewer ...)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    handle = glfwCreateWindow(w, h, "dentsph viewer", nullptr, nullptr);
+    if (!handle) {
+      glfwTerminate();
+      throw std::runtime_error("cannot open a window with OpenGL 3.3 core: update the graphics driver (Mesa's "
+                               "llvmpipe works without a GPU)");
+    }
+    glfwMakeContextCurrent(handle);
+  }
+  ~Window() {
+    glfwDestroyWindow(handle);
+    glfwTerminate();
+  }
+};
+
+// The camera's starting view: the cavity from above and aside, or the whole domain.
+Camera initial_camera(const Scene& sc) {
+  Camera c;
+  if (sc.tooth) {
+    const ToothFrame& f = sc.tooth->frame();
+    c.up = f.z;
+    c.side = f.x;
+    c.target = f.origin - f.z * 1e-3;
+    c.distance = 0.024f;
+    c.pitch = 0.75f;
+  } else {
+    const Vec3 up = norm(sc.model.gravity) > 0 ? -sc.model.gravity / norm(sc.model.gravity) : Vec3{0, 0, 1};
+    c.up = up;
+    const Vec3 helper = std::abs(up.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 side = helper - up * dot(helper, up);
+    c.side = side / norm(side);
+    c.target = 0.5 * (sc.model.domain_min + sc.model.domain_max);
+    c.distance = float(1.3 * norm(sc.model.domain_max - sc.model.domain_min));
+  }
+  return c;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return v[k];
+}
+
+// Mouse and keys: the tool (a stand-in haptic device), the camera, shortcuts.
+struct Input {
+  bool dragging_tool = false, orbiting = false, panning = false;
+  double last_x = 0, last_y = 0;
+  float wheel = 0;
+};
+
+Input* g_input = nullptr;
+
+}  // namespace
+
+void request_close() { g_close_requested.store(true); }
+
+ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
+  const Scene& sc = session.scene();
+  Window win(opt.width, opt.height);
+  glfwSwapInterval(opt.vsync ? 1 : 0);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(win.handle, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  struct ImGuiGuard {
+    ~ImGuiGuard() {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+  } imgui_guard;
+
+  ParticleRenderer particles;
+  std::unique_ptr<ToothRenderer> tooth;
+  if (sc.tooth) tooth = std::make_unique<ToothRenderer>(*sc.tooth);
+  ArrowRenderer arrows;
+  Camera cam = initial_camera(sc);
+  UiState ui;
+  ui.colour_by = colour_by_from_name(opt.colour_by);
+  ui.cut = opt.cut;
+  const std::vector<std::string> tools = session.tools();
+  const real spacing = sc.material_spacing > 0 ? sc.material_spacing : 0.5 * sc.model.kernel.h;
+
+  Input input;
+  g_input = &input;
+  glfwSetScrollCallback(win.handle, [](GLFWwindow* w, double dx, double dy) {
+    ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
+    if (g_input && !ImGui::GetIO().WantCaptureMouse) g_input->wheel += float(dy);
+  });
+
+  // The script: simulation actions scheduled at their steps now; view actions applied when the
+  // snapshots reach their steps.
+  std::vector<ScriptAction> view_actions;
+  auto to_world = [&](const Vec3& mm) { return sc.tooth ? sc.tooth->frame().to_world(mm * 1e-3) : mm * 1e-3; };
+  if (opt.script) {
+    for (const ScriptAction& a : opt.script->actions) {
+      Command c;
+      switch (a.kind) {
+        case ScriptAction::Kind::move: c = {Command::Kind::tool_target}; c.target = to_world(a.position_mm); break;
+        case ScriptAction::Kind::press: c = {Command::Kind::press}; c.pressed = true; break;
+        case ScriptAction::Kind::release: c = {Command::Kind::press}; c.pressed = false; break;
+        case ScriptAction::Kind::dispense: c = {Command::Kind::dispense}; break;
+        case ScriptAction::Kind::switch_tool: c = {Command::Kind::switch_tool}; c.tool = a.name; break;
+        case ScriptAction::Kind::pause: c = {Command::Kind::pause}; break;
+        case ScriptAction::Kind::resume: c = {Command::Kind::resume}; break;
+        case ScriptAction::Kind::reset: c = {Command::Kind::reset}; break;
+        case ScriptAction::Kind::colour_by:
+        case ScriptAction::Kind::end: view_actions.push_back(a); continue;
+      }
+      session.post_at(a.step, c);
+    }
+  }
+  std::size_t next_view_action = 0;
+  const std::uint64_t script_end = opt.script ? opt.script->end_step() : 0;
+
+  session.start();
+  Snapshot snap;
+  session.latest(snap);
+  Vec3 tool_target = snap.tool_pose.position;
+  std::uint64_t last_version = 0;
+  std::vector<float> xyz, rgb, vis_xyz, vis_rgb;
+  std::vector<double> frame_ms;
+  std::vector<double> fps_samples;
+  FrameStats stats;
+  ViewerResult result;
+  const auto t_start = clock_type::now();
+  auto t_second = t_start;
+  std::uint64_t frames_this_second = 0;
+  auto t_frame = t_start;
+  float force_peak = 0;
+
+  for (;;) {
+    if (glfwWindowShouldClose(win.handle) || g_close_requested.load()) {
+      result.closed_by_user = true;
+      break;
+    }
+    glfwPollEvents();
+    std::vector<Command> commands;
+
+    // ---- input -------------------------------------------------------------------------------
+    ImGuiIO& io = ImGui::GetIO();
+    double mx, my;
+    glfwGetCursorPos(win.handle, &mx, &my);
+    const float dx = float(mx - input.last_x), dy = float(my - input.last_y);
+    input.last_x = mx;
+    input.last_y = my;
+    int fb_w = 1, fb_h = 1;
+    glfwGetFramebufferSize(win.handle, &fb_w, &fb_h);
+    if (!io.WantCaptureMouse) {
+      const bool left = glfwGetMouseButton(win.handle, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      const bool right = glfwGetMouseButton(win.handle, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+      const bool shift = glfwGetKey(win.handle, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+      const bool ctrl = glfwGetKey(win.handle, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS;
+      if (left && (dx != 0 || dy != 0)) {
+        tool_target += cam.view_plane_offset(dx, dy, fb_h);
+        Command c{Command::Kind::tool_target};
+        c.target = tool_target;
+        commands.push_back(c);
+      }
+      if (right && shift) cam.pan(dx, dy, fb_h);
+      else if (right) cam.orbit(dx, dy);
+      if (input.wheel != 0) {
+        if (ctrl) {
+          cam.zoom(input.wheel);
+        } else {
+          tool_target += cam.forward() * (input.wheel * 0.5 * spacing);
+          Command c{Command::Kind::tool_target};
+          c.target = tool_target;
+          commands.push_back(c);
+        }
+        input.wheel = 0;
+      }
+    }
+    if (!io.WantCaptureKeyboard) {
+      static bool space_was = false;
+      const bool space = glfwGetKey(win.handle, GLFW_KEY_SPACE) == GLFW_PRESS;
+      if (space != space_was) {
+        Command c{Command::Kind::press};
+        c.pressed = space;
+        commands.push_back(c);
+        space_was = space;
+      }
+      auto pressed_once = [&](int key) {
+        static bool down[GLFW_KEY_LAST + 1] = {};
+        const bool now = glfwGetKey(win.handle, key) == GLFW_PRESS;
+        const bool edge = now && !down[key];
+        down[key] = now;
+        return edge;
+      };
+      if (pressed_once(GLFW_KEY_P)) commands.push_back({snap.paused ? Command::Kind::resume : Command::Kind::pause});
+      if (pressed_once(GLFW_KEY_N)) commands.push_back({Command::Kind::single_step});
+      if (pressed_once(GLFW_KEY_R)) commands.push_back({Command::Kind::reset});
+      if (pressed_once(GLFW_KEY_D)) commands.push_back({Command::Kind::dispense});
+      if (pressed_once(GLFW_KEY_T)) {
+        ui.tool_index = (ui.tool_index + 1) % int(tools.size());
+        Command c{Command::Kind::switch_tool};
+        c.tool = tools[std::size_t(ui.tool_index)];
+        commands.push_back(c);
+      }
+      if (pressed_once(GLFW_KEY_C)) {
+        std::size_t k = 0;
+        while (kColourModes[k] != ui.colour_by) ++k;
+        ui.colour_by = kColourModes[(k + 1) % kColourModes.size()];
+      }
+      if (pressed_once(GLFW_KEY_B)) ui.show_boundary = !ui.show_boundary;
+      if (pressed_once(GLFW_KEY_X)) ui.cut = !ui.cut;
+      if (pressed_once(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win.handle, GLFW_TRUE);
+    }
+
+    // ---- the newest snapshot -------------------------------------------------------------------
+    if (session.latest(snap) && snap.version != last_version) {
+      last_version = snap.version;
+      const float f = float(norm(snap.tool_force_N));
+      ui.force_history.push_back(std::isfinite(f) ? f : 0.f);
+      while (ui.force_history.size() > 600) ui.force_history.pop_front();
+      force_peak = *std::max_element(ui.force_history.begin(), ui.force_history.end());
+    }
+    while (next_view_action < view_actions.size() && view_actions[next_view_action].step <= snap.steps) {
+      const ScriptAction& a = view_actions[next_view_action++];
+      if (a.kind == ScriptAction::Kind::colour_by) ui.colour_by = colour_by_from_name(a.name);
+    }
+
+    // ---- draw ------------------------------------------------------------------------------------
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(0.11f, 0.12f, 0.14f, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    ViewUniforms u;
+    u.view = cam.view();
+    u.proj = cam.projection(float(fb_w) / float(std::max(fb_h, 1)));
+    u.viewport_h = float(fb_h);
+    if (ui.cut) {
+      const Vec3 n = sc.tooth ? sc.tooth->frame().y : cam.right();
+      u.clip_plane = glm::vec4(g(n), float(-dot(n, cam.target)));
+    }
+    if (tooth) tooth->draw(u);
+    const std::span<const float> field =
+        ui.colour_by == ColourBy::pressure ? std::span<const float>(snap.pressure)
+        : ui.colour_by == ColourBy::density ? std::span<const float>(snap.density)
+        : ui.colour_by == ColourBy::speed   ? std::span<const float>(snap.speed)
+                                            : std::span<const float>(snap.bonds);
+    if (ui.colour_by != ColourBy::role && ui.auto_range) ui.range = auto_range(field, snap.role);
+    particle_colours(ui.colour_by, field, snap.role, ui.range, rgb);
+    vis_xyz.clear();
+    vis_rgb.clear();
+    for (std::size_t i = 0; i < snap.role.size(); ++i) {
+      if (!ui.show_boundary && snap.role[i] == Role::boundary) continue;
+      vis_xyz.insert(vis_xyz.end(), {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
+      vis_rgb.insert(vis_rgb.end(), {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]});
+    }
+    particles.draw(u, vis_xyz, vis_rgb, float(0.5 * spacing));
+    // The force on the tool, from its tip: 5 mm at the largest force of the last 10 s.
+    const float f = float(norm(snap.tool_force_N));
+    if (f > 0 && force_peak > 0 && std::isfinite(f)) {
+      const glm::vec3 dir = g(snap.tool_force_N) / f;
+      arrows.add(g(snap.tool_pose.position), dir * (5e-3f * f / force_peak), float(0.12 * spacing),
+                 glm::vec3(0.9f, 0.15f, 0.2f));
+    }
+    arrows.draw(u);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    draw_panels(snap, ui, stats, tools, commands);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    for (const Command& c : commands) session.post(c);
+
+    // ---- frame statistics and the end of a counted run -------------------------------------------
+    ++result.frames;
+    const auto now = clock_type::now();
+    frame_ms.push_back(std::chrono::duration<double, std::milli>(now - t_frame).count());
+    t_frame = now;
+    ++frames_this_second;
+    if (now - t_second >= std::chrono::seconds(1)) {
+      stats.fps = double(frames_this_second) / std::chrono::duration<double>(now - t_second).count();
+      fps_samples.push_back(stats.fps);
+      const std::size_t keep = std::min<std::size_t>(frame_ms.size(), 600);
+      std::vector<double> recent(frame_ms.end() - std::ptrdiff_t(keep), frame_ms.end());
+      stats.frame_p50_ms = percentile(recent, 0.5);
+      stats.frame_p99_ms = percentile(recent, 0.99);
+      frames_this_second = 0;
+      t_second = now;
+    }
+    stats.frames = result.frames;
+    const bool frames_done = opt.frames > 0 && result.frames >= opt.frames;
+    const bool script_done = !opt.script || (session.schedule_done() && snap.steps >= script_end &&
+                                             next_view_action == view_actions.size());
+    if (frames_done && script_done) {
+      if (!opt.screenshot.empty()) write_screenshot(opt.screenshot, fb_w, fb_h);
+      glfwSwapBuffers(win.handle);
+      break;
+    }
+    glfwSwapBuffers(win.handle);
+    if (opt.timeout_s > 0 && std::chrono::duration<double>(now - t_start).count() > opt.timeout_s) {
+      result.timed_out = true;
+      break;
+    }
+  }
+  session.stop();
+  g_input = nullptr;
+  Snapshot last;
+  session.latest(last);
+  result.sim_steps = last.steps;
+  result.sim_steps_per_second = last.steps_per_second;
+  result.fps_median = percentile(fps_samples, 0.5);
+  if (fps_samples.empty() && !frame_ms.empty()) {
+    const double total = std::chrono::duration<double>(clock_type::now() - t_start).count();
+    result.fps_median = total > 0 ? double(result.frames) / total : 0;
+  }
+  result.frame_p50_ms = percentile(frame_ms, 0.5);
+  result.frame_p99_ms = percentile(frame_ms, 0.99);
+  return result;
+}
+
+}  // namespace dentsph::viewer
