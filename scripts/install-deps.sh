@@ -6,6 +6,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libstb-dev
+  # dentsph-viewer, and its tests under a virtual display with Mesa's software OpenGL
+  libglfw3-dev libepoxy-dev libimgui-dev libglm-dev xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
 # --sanitizers: also clang 14 and LLVM's OpenMP, for the tsan preset (Archer makes OpenMP visible
 # to ThreadSanitizer).

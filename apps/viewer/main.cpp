@@ -3,8 +3,11 @@
 #include <cstdio>
 #include <thread>
 
+#include <fstream>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
@@ -13,6 +16,30 @@
 #include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
+
+namespace {
+
+// What a run of the viewer did, for scripts and tests.
+void write_summary(const std::string& file, const dentsph::viewer::ViewerResult& r) {
+  using nlohmann::json;
+  std::uint32_t material = 0;
+  for (dentsph::Role role : r.last.role) material += role == dentsph::Role::material;
+  json j = {{"frames", r.frames},
+            {"fps_median", r.fps_median},
+            {"frame_p50_ms", r.frame_p50_ms},
+            {"frame_p99_ms", r.frame_p99_ms},
+            {"closed_by_user", r.closed_by_user},
+            {"timed_out", r.timed_out},
+            {"sim", {{"steps", r.sim_steps}, {"steps_per_second", r.sim_steps_per_second}, {"time_s", r.last.time}}},
+            {"particles", {{"material", material}, {"total", r.last.role.size()}}},
+            {"tool", r.last.tool_name}};
+  if (r.last.assessment) j["assessment"] = json::parse(dentsph::assessment_json(*r.last.assessment));
+  std::ofstream out(file);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary (--summary)", file));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace dentsph;
@@ -40,6 +67,8 @@ int main(int argc, char** argv) {
   app.add_flag("--paused", so.start_paused, "Start paused");
   app.add_option("--timeout", vo.timeout_s, "Give up after this many seconds (exit code 4); 0: never")
       ->check(CLI::NonNegativeNumber);
+  std::string summary_file;
+  app.add_option("--summary", summary_file, "Write the frame and simulation rates and the final assessment as JSON");
   bool no_vsync = false;
   app.add_flag("--no-vsync", no_vsync, "Draw as fast as possible (to measure frames per second)");
   CLI11_PARSE(app, argc, argv);
@@ -62,6 +91,7 @@ int main(int argc, char** argv) {
                "{:.0f} steps/s\n",
                r.frames, r.fps_median, r.frame_p50_ms, r.frame_p99_ms, r.sim_steps, r.sim_steps_per_second);
     if (!screenshot.empty() && !r.closed_by_user && !r.timed_out) fmt::print("wrote {}\n", screenshot);
+    if (!summary_file.empty()) write_summary(summary_file, r);
     if (r.closed_by_user) fmt::print("viewer: closed before the end; the simulation stopped cleanly\n");
     if (r.timed_out) {
       fmt::print(stderr, "error: gave up after {:.0f} s (--timeout) before the frames and the script were done\n",

@@ -14,8 +14,8 @@ namespace {
 void simulation_panel(const Snapshot& s, UiState& ui, const std::vector<std::string>& tools,
                       std::vector<Command>& out) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Simulation");
+  ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("t = %.4f s   step %llu", double(s.time), static_cast<unsigned long long>(s.steps));
   ImGui::Text("%.0f steps/s%s%s", s.steps_per_second, s.paused ? "   paused" : "", s.diverged ? "   DIVERGED" : "");
   if (ImGui::Button(s.paused ? "Run (P)" : "Pause (P)")) out.push_back({s.paused ? Command::Kind::resume : Command::Kind::pause});
@@ -42,8 +42,8 @@ void simulation_panel(const Snapshot& s, UiState& ui, const std::vector<std::str
 
 void display_panel(const Snapshot& s, UiState& ui) {
   ImGui::SetNextWindowPos(ImVec2(10, 260), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Display");
+  ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Display", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   int mode = 0;
   for (std::size_t k = 0; k < kColourModes.size(); ++k)
     if (kColourModes[k] == ui.colour_by) mode = int(k);
@@ -80,8 +80,8 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
     ui.material_loaded = true;
   }
   ImGui::SetNextWindowPos(ImVec2(10, 430), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Material");
+  ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Material", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   MaterialEdit& m = ui.material;
   auto field = [](const char* label, real& v, float lo, float hi, const char* fmt_str) {
     float f = float(v);
@@ -116,9 +116,9 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
 }
 
 void force_panel(const Snapshot& s, UiState& ui) {
-  ImGui::SetNextWindowPos(ImVec2(320, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Tool force");
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Tool force", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   const float f = float(norm(s.tool_force_N));
   std::vector<float> h(ui.force_history.begin(), ui.force_history.end());
   const float peak = h.empty() ? 0.f : *std::max_element(h.begin(), h.end());
@@ -133,9 +133,9 @@ void force_panel(const Snapshot& s, UiState& ui) {
 void assessment_panel(const Snapshot& s) {
   if (!s.assessment) return;
   const Assessment& a = *s.assessment;
-  ImGui::SetNextWindowPos(ImVec2(320, 190), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Assessment");
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 190), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Assessment", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("filled     %.1f %% of %.2f mm^3", 100 * double(a.fill_fraction), double(a.cavity_volume_mm3));
   ImGui::Text("voids      %d (%.3f mm^3)", a.void_count, double(a.void_volume_mm3));
   ImGui::Text("overfill   %.3f mm^3", double(a.overfill_mm3));
@@ -145,10 +145,11 @@ void assessment_panel(const Snapshot& s) {
 }
 
 void loops_panel(const Snapshot& s, const FrameStats& st) {
-  ImGui::SetNextWindowPos(ImVec2(320, 320), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Loops");
-  ImGui::Text("render      %.1f fps  frame p50 %.2f ms  p99 %.2f ms", st.fps, st.frame_p50_ms, st.frame_p99_ms);
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 330), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Loops", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::Text("render      %.1f fps", st.fps);
+  ImGui::Text("            frame p50 %.1f ms, p99 %.1f ms", st.frame_p50_ms, st.frame_p99_ms);
   ImGui::Text("simulation  %.0f steps/s  (%.3g x real time)", s.steps_per_second, s.steps_per_second * double(s.dt));
   ImGui::End();
 }

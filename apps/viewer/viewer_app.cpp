@@ -64,8 +64,8 @@ Camera initial_camera(const Scene& sc) {
     c.up = f.z;
     c.side = f.x;
     c.target = f.origin - f.z * 1e-3;
-    c.distance = 0.024f;
-    c.pitch = 0.75f;
+    c.distance = 0.021f;
+    c.pitch = 1.0f;
   } else {
     const Vec3 up = norm(sc.model.gravity) > 0 ? -sc.model.gravity / norm(sc.model.gravity) : Vec3{0, 0, 1};
     c.up = up;
@@ -345,10 +345,9 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   }
   session.stop();
   g_input = nullptr;
-  Snapshot last;
-  session.latest(last);
-  result.sim_steps = last.steps;
-  result.sim_steps_per_second = last.steps_per_second;
+  session.latest(result.last);
+  result.sim_steps = result.last.steps;
+  result.sim_steps_per_second = result.last.steps_per_second;
   result.fps_median = percentile(fps_samples, 0.5);
   if (fps_samples.empty() && !frame_ms.empty()) {
     const double total = std::chrono::duration<double>(clock_type::now() - t_start).count();

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "dentsph/assess.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
 
@@ -33,6 +34,7 @@ struct ViewerResult {
   std::uint64_t sim_steps = 0;
   bool closed_by_user = false;             // window closed (or SIGINT / SIGTERM) before the end
   bool timed_out = false;
+  Snapshot last;                           // the simulation when the loop ended
 };
 
 // Opens the window and runs until it is closed, or the frames (and the script) are done.

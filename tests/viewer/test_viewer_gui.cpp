@@ -1,0 +1,174 @@
+// dentsph-viewer as a user runs it, in a virtual display (Xvfb with Mesa's software OpenGL):
+// the default scene rendered and saved, scripted input changing the picture and the metrics,
+// broken input and closing mid-run ending cleanly. Skipped, with a message, where xvfb-run is
+// missing (scripts/install-deps.sh installs it; CI always has it).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kViewer = DENTSPH_VIEWER_BIN;
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+fs::path temp(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("dentsph_viewer_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+std::string slurp(const fs::path& f) {
+  std::ifstream in(f);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs the viewer under a fresh virtual display, killed after 240 s whatever happens (a hang is a
+// failure, never a stuck test). `inner` may wrap the viewer's command line (e.g. in `timeout`).
+Result run_viewer(const std::string& args, const std::string& inner = "") {
+  const fs::path out = temp("stdout.txt"), err = temp("stderr.txt");
+  const std::string cmd = fmt::format(
+      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' {} '{}' --width 800 --height 600 --threads 1 "
+      "--timeout 200 {} >'{}' 2>'{}'",
+      inner, kViewer.string(), args, out.string(), err.string());
+  const int raw = std::system(cmd.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+#define REQUIRE_XVFB()                                                                                  \
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps.sh installs it); " \
+                                    "the viewer's window tests need a virtual display"
+
+struct Image {
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  explicit Image(const fs::path& f) {
+    int n = 0;
+    unsigned char* p = stbi_load(f.c_str(), &w, &h, &n, 3);
+    if (p) rgb.assign(p, p + std::size_t(w) * std::size_t(h) * 3);
+    stbi_image_free(p);
+  }
+  template <class Pred>
+  double share(Pred pred) const {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) k += pred(rgb[i], rgb[i + 1], rgb[i + 2]);
+    return rgb.empty() ? 0 : double(k) / double(rgb.size() / 3);
+  }
+};
+
+// The tooth: bright, warm, unsaturated ivory. The paste: clearly blue.
+bool tooth_pixel(int r, int g, int b) { return r > 150 && g > 140 && b > 110 && r >= g && g >= b && r - b < 70; }
+bool paste_pixel(int r, int g, int b) { return b > r + 60 && b > g + 20; }
+
+TEST(ViewerGui, DefaultSceneRendersTheToothAndThePaste) {
+  REQUIRE_XVFB();
+  const fs::path png = temp("default.png");
+  fs::remove(png);
+  const Result r = run_viewer(fmt::format("--frames 20 --screenshot '{}'", png.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("wrote"), std::string::npos);
+  const Image img(png);
+  ASSERT_EQ(img.w, 800);
+  ASSERT_EQ(img.h, 600);
+  const double tooth = img.share(tooth_pixel), paste = img.share(paste_pixel);
+  EXPECT_GT(tooth, 0.05) << "the tooth's ivory covers " << tooth;
+  EXPECT_GT(paste, 0.005) << "the paste's blue covers " << paste;
+  // Not blank: the background is far from everything.
+  EXPECT_LT(img.share([](int r_, int g_, int b_) { return r_ < 40 && g_ < 40 && b_ < 45; }), 0.9);
+}
+
+TEST(ViewerGui, ScriptedInputChangesThePictureAndTheMetrics) {
+  REQUIRE_XVFB();
+  const fs::path idle = temp("idle.json"), busy = temp("busy.json");
+  std::ofstream(idle) << R"({"actions": [{"step": 150, "action": "end"}]})";
+  std::ofstream(busy) << R"({"actions": [
+      {"step": 0, "action": "move", "position_mm": [1.5, 0, 3]},
+      {"step": 10, "action": "dispense"},
+      {"step": 20, "action": "colour_by", "mode": "speed"},
+      {"step": 150, "action": "end"}]})";
+  const fs::path png_a = temp("a.png"), png_b = temp("b.png"), sum_a = temp("a.json"), sum_b = temp("b.json");
+  auto args = [](const fs::path& script, const fs::path& png, const fs::path& sum) {
+    return fmt::format("--frames 5 --script '{}' --screenshot '{}' --summary '{}'", script.string(), png.string(),
+                       sum.string());
+  };
+  const Result a = run_viewer(args(idle, png_a, sum_a));
+  const Result b = run_viewer(args(busy, png_b, sum_b));
+  ASSERT_EQ(a.status, 0) << a.out << a.err;
+  ASSERT_EQ(b.status, 0) << b.out << b.err;
+  const auto ja = nlohmann::json::parse(slurp(sum_a)), jb = nlohmann::json::parse(slurp(sum_b));
+  EXPECT_GE(ja["sim"]["steps"].get<int>(), 150);
+  EXPECT_GT(jb["particles"]["material"].get<int>(), ja["particles"]["material"].get<int>());
+  EXPECT_GT(jb["assessment"]["material_particles"].get<int>(), ja["assessment"]["material_particles"].get<int>());
+  EXPECT_GT(jb["assessment"]["overfill_mm3"].get<double>() + jb["assessment"]["outside_particles"].get<double>(),
+            ja["assessment"]["overfill_mm3"].get<double>() + ja["assessment"]["outside_particles"].get<double>());
+  const Image ia(png_a), ib(png_b);
+  ASSERT_EQ(ia.rgb.size(), ib.rgb.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i + 2 < ia.rgb.size(); i += 3)
+    differ += std::abs(ia.rgb[i] - ib.rgb[i]) + std::abs(ia.rgb[i + 1] - ib.rgb[i + 1]) +
+                  std::abs(ia.rgb[i + 2] - ib.rgb[i + 2]) > 60;
+  EXPECT_GT(double(differ) / double(ia.rgb.size() / 3), 0.01);
+  // Coloured by speed, the paste is no longer the role's blue.
+  EXPECT_LT(ib.share(paste_pixel), ia.share(paste_pixel));
+}
+
+TEST(ViewerGui, BrokenSceneMeshOrScriptEndsWithAMessage) {
+  REQUIRE_XVFB();
+  const fs::path scene = temp("broken_scene.json"), mesh = temp("open.stl"), script = temp("bad_script.json");
+  std::ofstream(scene) << R"({"name": "x", "simulation": {"dt": 1e-4})";
+  // One triangle: an open surface.
+  std::ofstream(mesh) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 10 0 0\nvertex 0 10 0\n"
+                         "endloop\nendfacet\nendsolid t\n";
+  std::ofstream(script) << R"({"actions": [{"step": 0, "action": "explode"}]})";
+  Result r = run_viewer(fmt::format("'{}' --frames 5", scene.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("broken_scene.json"), std::string::npos) << r.err;
+  r = run_viewer(fmt::format("--mesh '{}' --frames 5", mesh.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("open.stl"), std::string::npos) << r.err;
+  r = run_viewer(fmt::format("--script '{}' --frames 5", script.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("actions[0].action"), std::string::npos) << r.err;
+}
+
+TEST(ViewerGui, ClosingMidRunStopsCleanly) {
+  REQUIRE_XVFB();
+  // No frame count: it would run until closed. SIGTERM after 4 s takes the window-close path.
+  const Result r = run_viewer("", "timeout --preserve-status -s TERM 4");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("closed before the end"), std::string::npos) << r.out << r.err;
+}
+
+TEST(ViewerGui, NoDisplayIsAClearError) {
+  const fs::path err = temp("nodisplay.txt");
+  const std::string cmd = fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY timeout -s KILL 60 '{}' --frames 1 2>'{}' >/dev/null",
+                                      kViewer.string(), err.string());
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 2);
+  EXPECT_NE(slurp(err).find("xvfb-run"), std::string::npos) << slurp(err);
+}
+
+}  // namespace

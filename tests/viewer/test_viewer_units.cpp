@@ -1,0 +1,226 @@
+// The viewer's parts that need no window: colour maps, the camera's mouse mapping, input
+// scripts, and the simulation session's commands (exact steps, edits, refusals).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "camera.hpp"
+#include "colour_map.hpp"
+#include "dentsph/scene.hpp"
+#include "input_script.hpp"
+#include "sim_session.hpp"
+#include "support/builders.hpp"
+
+namespace dentsph::viewer {
+namespace {
+
+std::string error_of(const std::string& json) {
+  try {
+    parse_input_script(json, "inputs.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ColourMap, EndsClampsAndFlagsNaN) {
+  const Rgb lo = colour_map(0), hi = colour_map(1);
+  EXPECT_LT(lo[1], 0.1f);  // dark purple
+  EXPECT_GT(hi[0], 0.9f);  // yellow
+  EXPECT_GT(hi[1], 0.8f);
+  EXPECT_EQ(colour_map(-3), lo);
+  EXPECT_EQ(colour_map(7), hi);
+  EXPECT_EQ(colour_map(NAN), (Rgb{1, 0, 1}));
+  // Brighter along the map (green channel rises monotonically in viridis).
+  float prev = -1;
+  for (int k = 0; k <= 20; ++k) {
+    const float gch = colour_map(float(k) / 20)[1];
+    EXPECT_GT(gch, prev);
+    prev = gch;
+  }
+}
+
+TEST(ColourMap, AutoRangeUsesMaterialPercentiles) {
+  std::vector<float> v;
+  std::vector<Role> r;
+  for (int i = 0; i <= 100; ++i) {
+    v.push_back(float(i));
+    r.push_back(Role::material);
+  }
+  v.push_back(1e6f);  // a wall particle's huge value does not set the scale
+  r.push_back(Role::boundary);
+  const Range range = auto_range(v, r);
+  EXPECT_NEAR(range.lo, 2, 1e-6);
+  EXPECT_NEAR(range.hi, 98, 1e-6);
+  const Range flat = auto_range(std::vector<float>{5, 5}, std::vector<Role>{Role::material, Role::material});
+  EXPECT_LT(flat.lo, 5);
+  EXPECT_GT(flat.hi, 5);
+  std::vector<float> rgb;
+  particle_colours(ColourBy::speed, v, r, range, rgb);
+  ASSERT_EQ(rgb.size(), 3 * v.size());
+  EXPECT_EQ((Rgb{rgb[0], rgb[1], rgb[2]}), colour_map(0));  // material by the field
+  EXPECT_GT(rgb[3 * 101], 0.8f);                             // the wall muted towards white
+  particle_colours(ColourBy::role, v, r, range, rgb);
+  EXPECT_EQ((Rgb{rgb[3 * 101], rgb[3 * 101 + 1], rgb[3 * 101 + 2]}), role_colour(Role::boundary));
+  EXPECT_THROW(colour_by_from_name("temperature"), std::invalid_argument);
+  EXPECT_EQ(colour_by_from_name("bonds"), ColourBy::bonds);
+}
+
+TEST(Camera, MouseDragFollowsTheCursorInTheViewPlane) {
+  Camera c;
+  c.target = {0.01, 0.02, 0.03};
+  c.distance = 0.05f;
+  EXPECT_NEAR(norm(c.eye() - c.target), 0.05, 1e-6);
+  const Vec3 d = c.view_plane_offset(100, 0, 1000);
+  // 100 of 1000 pixels of a view 2 d tan(fov / 2) high.
+  EXPECT_NEAR(norm(d), 0.1 * 2 * 0.05 * std::tan(0.5 * c.fov_y), 1e-7);
+  EXPECT_NEAR(dot(d, c.right()), norm(d), 1e-9);
+  EXPECT_NEAR(dot(d, c.forward()), 0, 1e-9);
+  const Vec3 up = c.view_plane_offset(0, -100, 1000);  // the cursor moving up the screen
+  EXPECT_GT(dot(up, c.screen_up()), 0);
+  c.orbit(0, 1e4);
+  EXPECT_LE(c.pitch, 1.5f);
+}
+
+TEST(InputScript, ReadsActionsInStepOrder) {
+  const InputScript s = parse_input_script(R"({"actions": [
+    {"step": 0, "action": "move", "position_mm": [1, 2, 3]},
+    {"step": 10, "action": "dispense"},
+    {"step": 20, "action": "switch_tool", "tool": "flat_plugger"},
+    {"step": 20, "action": "colour_by", "mode": "pressure"},
+    {"step": 90, "action": "end"}]})",
+                                           "inputs.json");
+  ASSERT_EQ(s.actions.size(), 5u);
+  EXPECT_EQ(s.actions[0].kind, ScriptAction::Kind::move);
+  EXPECT_EQ(s.actions[0].position_mm, (Vec3{1, 2, 3}));
+  EXPECT_EQ(s.actions[2].name, "flat_plugger");
+  EXPECT_EQ(s.end_step(), 90u);
+}
+
+TEST(InputScript, ErrorsNameTheFileTheFieldAndTheFix) {
+  std::string e = error_of(R"({"actions": [{"step": 0, "action": "dispence"}]})");
+  EXPECT_NE(e.find("inputs.json: actions[0].action"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'dispense'"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 50, "action": "press"}, {"step": 10, "action": "release"}]})");
+  EXPECT_NE(e.find("actions[1].step"), std::string::npos) << e;
+  EXPECT_NE(e.find("step order"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 0, "action": "move"}]})");
+  EXPECT_NE(e.find("actions[0].position_mm"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 0, "action": "switch_tool", "tool": "drill"}]})");
+  EXPECT_NE(e.find("actions[0].tool"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 0, "action": "colour_by", "mode": "heat"}]})");
+  EXPECT_NE(e.find("actions[0].mode"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": -1, "action": "end"}]})");
+  EXPECT_NE(e.find("actions[0].step"), std::string::npos) << e;
+  e = error_of(R"({"actions": [)");
+  EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+  e = error_of(R"({"action": []})");
+  EXPECT_NE(e.find("inputs.json"), std::string::npos) << e;
+}
+
+// A block of paste on a plate and a one-particle tool above it.
+Scene small_scene() {
+  constexpr real s = 0.01;
+  Scene sc;
+  sc.name = "small";
+  sc.source = "small";
+  sc.params = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.1, 0.1, 0.1}, 1e-4, {0, 0, -9.81});
+  sc.model = make_model(sc.params);
+  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
+  const Material paste{0.5, 60, 1000, 100}, wall{0.5, 200, 1000, 0};
+  for (Vec3 p : testing::lattice({0, 0, 0}, s, 4, 4, 3)) sc.particles.push_back(testing::particle(Role::material, p, m, paste));
+  for (Vec3 p : testing::lattice({-2 * s, -2 * s, -2 * s}, s, 8, 8, 2))
+    sc.particles.push_back(testing::particle(Role::boundary, p, m, wall));
+  sc.particles.push_back(testing::particle(Role::tool, {0, 0, 0}, m, wall));
+  sc.tool.keyframes = {{0.0, Pose{{0.015, 0.015, 0.06}, {}}}};
+  sc.material_spacing = s;
+  return sc;
+}
+
+// Waits (up to 20 s) until `done` holds for the newest snapshot, which it returns.
+template <class Pred>
+Snapshot wait_for(const SimSession& session, Pred done) {
+  Snapshot s;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < until) {
+    session.latest(s);
+    if (done(s)) return s;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ADD_FAILURE() << "the session did not get there in 20 s (at step " << s.steps << ")";
+  return s;
+}
+
+std::uint32_t count(const Snapshot& s, Role r) {
+  return std::uint32_t(std::count(s.role.begin(), s.role.end(), r));
+}
+
+TEST(SimSession, ScheduledCommandsApplyAtTheirStepsSoRunsRepeat) {
+  auto run = [] {
+    SimSession session(small_scene(), SessionOptions{});
+    Command move{Command::Kind::tool_target};
+    move.target = {0.015, 0.015, 0.035};
+    session.post_at(5, move);
+    session.post_at(20, Command{Command::Kind::dispense});
+    session.post_at(60, Command{Command::Kind::pause});
+    session.start();
+    const Snapshot s = wait_for(session, [](const Snapshot& x) { return x.paused && x.steps == 60; });
+    session.stop();
+    return s;
+  };
+  const Snapshot a = run(), b = run();
+  EXPECT_EQ(a.steps, 60u);
+  EXPECT_GT(count(a, Role::material), 48u);  // the increment arrived
+  EXPECT_EQ(a.xyz, b.xyz);                   // the same simulation, whatever the timing
+  EXPECT_NEAR(a.tool_pose.position.z, 0.06 - 55 * 1e-4 * 0.02, 1e-9);  // followed at 0.02 m/s for 55 steps
+}
+
+TEST(SimSession, EditsAreCheckedAndUnstableOnesRefused) {
+  SimSession session(small_scene(), SessionOptions{.start_paused = true});
+  session.start();
+  Snapshot s = wait_for(session, [](const Snapshot& x) { return x.version > 0; });
+  MaterialEdit m = s.material;
+  EXPECT_EQ(m.Kp, 60);
+  m.Kp = 1e9;  // acoustic limit far below dt
+  Command c{Command::Kind::set_material};
+  c.material = m;
+  session.post(c);
+  s = wait_for(session, [](const Snapshot& x) { return !x.message.empty(); });
+  EXPECT_NE(s.message.find("acoustic"), std::string::npos) << s.message;
+  EXPECT_EQ(s.material.Kp, 60);
+  m = s.material;
+  m.B = m.A / 2;  // the adhesion kernel needs A < B
+  c.material = m;
+  session.post(c);
+  s = wait_for(session, [](const Snapshot& x) { return x.message.find("adhesion") != std::string::npos; });
+  m = s.material;
+  m.Kp = 80;
+  m.Ka = 10;
+  c.material = m;
+  session.post(c);
+  s = wait_for(session, [](const Snapshot& x) { return x.material.Kp == 80; });
+  EXPECT_TRUE(s.message.empty()) << s.message;
+  EXPECT_EQ(s.material.Ka, 10);
+  Command t{Command::Kind::switch_tool};
+  t.tool = "flat_plugger";
+  session.post(t);
+  s = wait_for(session, [](const Snapshot& x) { return x.tool_name == "flat_plugger"; });
+  EXPECT_GT(count(s, Role::tool), 1u);
+  t.tool = "drill";
+  session.post(t);
+  s = wait_for(session, [](const Snapshot& x) { return !x.message.empty(); });
+  EXPECT_NE(s.message.find("drill"), std::string::npos);
+  session.post(Command{Command::Kind::single_step});
+  s = wait_for(session, [](const Snapshot& x) { return x.steps == 1; });
+  session.post(Command{Command::Kind::dispense});
+  s = wait_for(session, [](const Snapshot& x) { return count(x, Role::material) > 48; });
+  session.post(Command{Command::Kind::reset});
+  s = wait_for(session, [](const Snapshot& x) { return count(x, Role::material) == 48 && x.steps == 0; });
+  EXPECT_EQ(s.material.Kp, 80);  // a reset keeps the edited paste
+  session.stop();
+}
+
+}  // namespace
+}  // namespace dentsph::viewer
