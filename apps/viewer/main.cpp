@@ -70,7 +70,10 @@ int main(int argc, char** argv) {
   std::string summary_file;
   app.add_option("--summary", summary_file, "Write the frame and simulation rates and the final assessment as JSON");
   bool no_vsync = false;
-  app.add_flag("--no-vsync", no_vsync, "Draw as fast as possible (to measure frames per second)");
+  app.add_flag("--no-vsync", no_vsync, "Do not wait for the display's refresh");
+  app.add_option("--max-fps", vo.max_fps, "Frames per second at most; 0: as fast as possible (to measure)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   vo.vsync = !no_vsync;
   if (!screenshot.empty() && vo.frames == 0) vo.frames = 1;

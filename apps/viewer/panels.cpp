@@ -116,7 +116,7 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
 }
 
 void force_panel(const Snapshot& s, UiState& ui) {
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 360, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Tool force", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   const float f = float(norm(s.tool_force_N));
@@ -124,16 +124,16 @@ void force_panel(const Snapshot& s, UiState& ui) {
   const float peak = h.empty() ? 0.f : *std::max_element(h.begin(), h.end());
   const std::string label = fmt::format("{:.3g} N", f);
   ImGui::PlotLines("##force", h.data(), int(h.size()), 0, label.c_str(), 0.f, std::max(peak * 1.1f, 1e-12f),
-                   ImVec2(ImGui::GetContentRegionAvail().x, 90));
-  ImGui::Text("|F| = %.4g N   (%.3g, %.3g, %.3g)", double(f), double(s.tool_force_N.x), double(s.tool_force_N.y),
-              double(s.tool_force_N.z));
+                   ImVec2(320, 90));
+  ImGui::Text("|F| = %.4g N", double(f));
+  ImGui::Text("F = (%.3g, %.3g, %.3g) N", double(s.tool_force_N.x), double(s.tool_force_N.y), double(s.tool_force_N.z));
   ImGui::End();
 }
 
 void assessment_panel(const Snapshot& s) {
   if (!s.assessment) return;
   const Assessment& a = *s.assessment;
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 190), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 360, 190), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Assessment", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("filled     %.1f %% of %.2f mm^3", 100 * double(a.fill_fraction), double(a.cavity_volume_mm3));
@@ -145,7 +145,7 @@ void assessment_panel(const Snapshot& s) {
 }
 
 void loops_panel(const Snapshot& s, const FrameStats& st) {
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 350, 330), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 360, 330), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Loops", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("render      %.1f fps", st.fps);

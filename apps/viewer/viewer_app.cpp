@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -295,11 +296,12 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       vis_rgb.insert(vis_rgb.end(), {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]});
     }
     particles.draw(u, vis_xyz, vis_rgb, float(0.5 * spacing));
-    // The force on the tool, from its tip: 5 mm at the largest force of the last 10 s.
+    // The force on the tool, from its tip: 1.5 mm (out of the instrument) plus 4 mm at the largest
+    // force of the last 10 s.
     const float f = float(norm(snap.tool_force_N));
     if (f > 0 && force_peak > 0 && std::isfinite(f)) {
       const glm::vec3 dir = g(snap.tool_force_N) / f;
-      arrows.add(g(snap.tool_pose.position), dir * (5e-3f * f / force_peak), float(0.12 * spacing),
+      arrows.add(g(snap.tool_pose.position), dir * (1.5e-3f + 4e-3f * f / force_peak), float(0.12 * spacing),
                  glm::vec3(0.9f, 0.15f, 0.2f));
     }
     arrows.draw(u);
@@ -329,6 +331,12 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       t_second = now;
     }
     stats.frames = result.frames;
+    if (fps_samples.empty() && frame_ms.size() >= 2) {
+      // Before the first full second: the mean so far.
+      stats.fps = double(result.frames) / std::max(1e-9, std::chrono::duration<double>(now - t_start).count());
+      stats.frame_p50_ms = percentile(frame_ms, 0.5);
+      stats.frame_p99_ms = percentile(frame_ms, 0.99);
+    }
     const bool frames_done = opt.frames > 0 && result.frames >= opt.frames;
     const bool script_done = !opt.script || (session.schedule_done() && snap.steps >= script_end &&
                                              next_view_action == view_actions.size());
@@ -338,6 +346,14 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       break;
     }
     glfwSwapBuffers(win.handle);
+    if (opt.max_fps > 0) {
+      // Sleep out the rest of the frame's time share.
+      static auto next_frame = clock_type::now();
+      next_frame = std::max(next_frame + std::chrono::duration_cast<clock_type::duration>(
+                                             std::chrono::duration<double>(1.0 / opt.max_fps)),
+                            clock_type::now() - std::chrono::milliseconds(100));
+      std::this_thread::sleep_until(next_frame);
+    }
     if (opt.timeout_s > 0 && std::chrono::duration<double>(now - t_start).count() > opt.timeout_s) {
       result.timed_out = true;
       break;

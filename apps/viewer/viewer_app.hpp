@@ -24,6 +24,8 @@ struct ViewerOptions {
   std::string colour_by = "role";
   bool cut = false;
   bool vsync = true;
+  double max_fps = 60;               // frames per second at most (0: no limit): software OpenGL draws on
+                                     // the same cores the simulation uses, so the render loop sleeps
 };
 
 struct ViewerResult {
