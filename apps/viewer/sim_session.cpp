@@ -56,7 +56,16 @@ SimSession::~SimSession() { stop(); }
 
 void SimSession::reset_state() {
   state_ = make_state(scene_);
-  // The paste as edited, not as the scene first gave it.
+  apply_paste();  // the paste as edited, not as the scene first gave it
+  tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
+  target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
+  state_.tool_pose = state_.tool_pose_applied;
+  forces_ = {};
+  diverged_ = false;
+  steps_.store(0, std::memory_order_release);
+}
+
+void SimSession::apply_paste() {
   for (std::uint32_t i = 0; i < state_.size(); ++i)
     if (state_.role[i] == Role::material) {
       state_.Kp[i] = paste_.Kp;
@@ -64,12 +73,6 @@ void SimSession::reset_state() {
       state_.mu[i] = paste_.mu;
     }
   sound_speed_ = stability_limits(scene_.model, state_).sound_speed;
-  tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
-  target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
-  state_.tool_pose = state_.tool_pose_applied;
-  forces_ = {};
-  diverged_ = false;
-  steps_.store(0, std::memory_order_release);
 }
 
 std::vector<std::string> SimSession::tools() const { return {"ball_burnisher", "flat_plugger", "condenser"}; }
@@ -187,13 +190,7 @@ void SimSession::apply(const Command& c) {
       paste_.Kp = m.Kp;
       paste_.Ka = m.Ka;
       paste_.mu = m.mu;
-      for (std::uint32_t i = 0; i < state_.size(); ++i)
-        if (state_.role[i] == Role::material) {
-          state_.Kp[i] = m.Kp;
-          state_.Ka[i] = m.Ka;
-          state_.mu[i] = m.mu;
-        }
-      sound_speed_ = stability_limits(scene_.model, state_).sound_speed;
+      apply_paste();
       return;
     }
   }

@@ -101,6 +101,7 @@ class SimSession {
   void apply(const Command& c);
   void publish(bool with_assessment, double steps_per_second);
   void reset_state();
+  void apply_paste();  // paste_ onto every material particle
   Vec3 tool_tip_goal() const;
 
   Scene scene_;

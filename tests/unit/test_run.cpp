@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/run.hpp"
-#include "support/builders.hpp"
+#include "support/small_scene.hpp"
 
 namespace dentsph {
 namespace {
@@ -16,22 +16,8 @@ namespace fs = std::filesystem;
 
 constexpr real s = 0.01;
 
-// A small scene built in code: a block of paste on a plate, a tool above it moving down.
 Scene small_scene(real dt) {
-  Scene sc;
-  sc.name = "small";
-  sc.source = "small.json";
-  sc.params = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.1, 0.1, 0.1}, dt, {0, 0, -9.81});
-  sc.model = make_model(sc.params);
-  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
-  const Material paste{0.5, 60, 1000, 100}, wall{0.5, 200, 1000, 0};
-  for (Vec3 p : testing::lattice({0, 0, 0}, s, 4, 4, 3)) sc.particles.push_back(testing::particle(Role::material, p, m, paste));
-  for (Vec3 p : testing::lattice({-2 * s, -2 * s, -2 * s}, s, 8, 8, 2))
-    sc.particles.push_back(testing::particle(Role::boundary, p, m, wall));
-  sc.particles.push_back(testing::particle(Role::tool, {0, 0, 0}, m, wall));
-  sc.tool.keyframes = {{0.0, Pose{{0.015, 0.015, 0.05}, {}}}, {0.1, Pose{{0.015, 0.015, 0.02}, {}}}};
-  sc.output.snapshot_interval = 0.01;
-  return sc;
+  return testing::small_paste_scene(dt, {{0.0, Pose{{0.015, 0.015, 0.05}, {}}}, {0.1, Pose{{0.015, 0.015, 0.02}, {}}}});
 }
 
 TEST(Run, WritesSummaryCsvAndSnapshots) {

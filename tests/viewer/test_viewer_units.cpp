@@ -11,7 +11,7 @@
 #include "dentsph/scene.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
-#include "support/builders.hpp"
+#include "support/small_scene.hpp"
 
 namespace dentsph::viewer {
 namespace {
@@ -121,23 +121,7 @@ TEST(InputScript, ErrorsNameTheFileTheFieldAndTheFix) {
 }
 
 // A block of paste on a plate and a one-particle tool above it.
-Scene small_scene() {
-  constexpr real s = 0.01;
-  Scene sc;
-  sc.name = "small";
-  sc.source = "small";
-  sc.params = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.1, 0.1, 0.1}, 1e-4, {0, 0, -9.81});
-  sc.model = make_model(sc.params);
-  const real m = lattice_particle_mass(1000, s, sc.model.kernel);
-  const Material paste{0.5, 60, 1000, 100}, wall{0.5, 200, 1000, 0};
-  for (Vec3 p : testing::lattice({0, 0, 0}, s, 4, 4, 3)) sc.particles.push_back(testing::particle(Role::material, p, m, paste));
-  for (Vec3 p : testing::lattice({-2 * s, -2 * s, -2 * s}, s, 8, 8, 2))
-    sc.particles.push_back(testing::particle(Role::boundary, p, m, wall));
-  sc.particles.push_back(testing::particle(Role::tool, {0, 0, 0}, m, wall));
-  sc.tool.keyframes = {{0.0, Pose{{0.015, 0.015, 0.06}, {}}}};
-  sc.material_spacing = s;
-  return sc;
-}
+Scene small_scene() { return testing::small_paste_scene(1e-4, {{0.0, Pose{{0.015, 0.015, 0.06}, {}}}}); }
 
 // Waits (up to 20 s) until `done` holds for the newest snapshot, which it returns.
 template <class Pred>
