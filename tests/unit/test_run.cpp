@@ -14,7 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 Scene small_scene(real dt) {
   return testing::small_paste_scene(dt, {{0.0, Pose{{0.015, 0.015, 0.05}, {}}}, {0.1, Pose{{0.015, 0.015, 0.02}, {}}}});
 }
