@@ -17,6 +17,7 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "progress.hpp"
+#include "realtime.hpp"
 
 namespace {
 
@@ -61,11 +62,12 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet) {
+int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet, cli::RealtimeCommand& rt) {
   // No scene file: the dental scene, on the built-in molar crown or on the given scanned tooth.
   const Scene sc = !file.empty() ? load_scene(file) : !mesh.empty() ? dental_scene_from_mesh(mesh) : default_dental_scene();
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
+  if (rt.enabled()) return rt.run(sc, opt, quiet);
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
@@ -108,7 +110,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile)
       ->excludes(scene_opt);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
-  run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
+  run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
       ->check(CLI::PositiveNumber)
       ->excludes(steps);
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
@@ -116,6 +118,8 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress output");
   opt.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
+  cli::RealtimeCommand realtime;
+  realtime.add_options(*run);
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -134,7 +138,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
-      return cmd_run(run_scene, run_mesh, opt, quiet);
+      return cmd_run(run_scene, run_mesh, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
