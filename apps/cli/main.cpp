@@ -130,6 +130,17 @@ int main(int argc, char** argv) {
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
   bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 3 repeats)");
 
+  std::string replay_dir, replay_scene, replay_mesh;
+  int replay_threads = 1;
+  CLI::App* replay = app.add_subcommand("replay", "Replay a realtime run's recording into its scene and compare the tool forces");
+  replay->add_option("recording", replay_dir, "Recording folder (OUT/recording of dentsph run --realtime)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  auto* replay_scene_opt = replay->add_option("scene", replay_scene, "The scene that was run (none: the built-in dental scene)")
+                               ->check(CLI::ExistingFile);
+  replay->add_option("--mesh", replay_mesh, "The dental scene on this scanned tooth")->check(CLI::ExistingFile)->excludes(replay_scene_opt);
+  replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
+
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
@@ -141,6 +152,11 @@ int main(int argc, char** argv) {
       return cmd_run(run_scene, run_mesh, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
+    if (*replay)
+      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene)
+                                   : !replay_mesh.empty() ? dental_scene_from_mesh(replay_mesh)
+                                                          : default_dental_scene(),
+                                   replay_dir, replay_threads);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -1,5 +1,6 @@
 #include "realtime.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 
@@ -92,6 +93,22 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
     return 3;
   }
   return 0;
+}
+
+int replay_recording(const Scene& scene, const std::string& dir, int threads) {
+  const Recording r = load_recording(dir);
+  const std::vector<Vec3> f = replay_steps(scene, r, threads);
+  double worst = 0, peak = 0;
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    worst = std::max(worst, double(norm(f[k] - r.steps[k].tool_force)));
+    peak = std::max(peak, double(norm(r.steps[k].tool_force)));
+    differ += !(f[k] == r.steps[k].tool_force);
+  }
+  fmt::print("replayed {} steps and {} events of {}: {} tool forces differ from the recording (largest difference "
+             "{:.3g} N; recorded peak {:.4g} N)\n",
+             f.size(), r.events.size(), dir, differ, worst, peak);
+  return differ == 0 ? 0 : 4;
 }
 
 }  // namespace dentsph::cli

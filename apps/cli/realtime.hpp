@@ -31,4 +31,8 @@ class RealtimeCommand {
   CouplingParams coupling_;
 };
 
+// `dentsph replay RECORDING [SCENE]`: steps the scene on the recorded tool poses and compares
+// the tool forces with the recorded ones. Returns 0 when they agree bit for bit, 4 otherwise.
+int replay_recording(const Scene& scene, const std::string& recording_dir, int threads);
+
 }  // namespace dentsph::cli

@@ -311,3 +311,25 @@ TEST(Recording, SavesAndLoadsExactly) {
 
 }  // namespace
 }  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+TEST(SceneFile, HapticsForceScaleIsReadAndChecked) {
+  const std::string base = R"({"name": "s", "simulation": {"dt": 1e-4, "h": 0.02},
+    "adhesion": {"A": 0.012, "B": 0.03},
+    "materials": {"paste": {"viscosity": 0.5, "stiffness": 60, "rest_density": 1000, "adhesion": 0}},
+    "roles": {"material": "paste"},
+    "blocks": [{"role": "material", "shape": "box", "min": [0, 0, 0], "max": [0.02, 0.02, 0.02], "spacing": 0.01}])";
+  EXPECT_EQ(parse_scene(base + "}", "a.json").force_scale, 1.0);
+  EXPECT_EQ(parse_scene(base + R"(, "haptics": {"force_scale": 20}})", "a.json").force_scale, 20.0);
+  try {
+    parse_scene(base + R"(, "haptics": {"force_scale": -2}})", "a.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("force_scale"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
