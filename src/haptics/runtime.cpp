@@ -1,4 +1,5 @@
-// The runtime: checks the options, starts the haptic, simulation and consumer threads, stops them
+// The runtime: checks the options, starts the haptic and consumer threads, runs the simulation loop
+// on the calling thread, and stops them
 // when the device finishes, the duration passes, the caller asks or the simulation diverges,
 // and gathers the reports, the recording and the shared summary.
 #include <algorithm>
@@ -80,24 +81,21 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
     sp.sched_priority = 20;
     res.haptic.realtime_priority = pthread_setschedparam(ht.native_handle(), SCHED_FIFO, &sp) == 0;
   }
-  std::thread st([&] { sim.run(t0); });
   std::thread ct([&] { consumer.run(t0); });
-  std::int64_t sim_end_seen = -1;
-  while (true) {
-    haptics::sleep_until_ns(haptics::now_ns() + 2'000'000, 0);
-    const std::int64_t now = haptics::now_ns();
-    if (opt.duration_s > 0 && double(now - t0) * 1e-9 >= opt.duration_s) break;
-    if (shared.device_finished.load(std::memory_order_acquire)) break;
-    if (opt.stop && opt.stop->load(std::memory_order_relaxed)) break;
-    if (shared.sim_ended.load(std::memory_order_acquire)) {
-      // Diverged: let the watchdog bring the force down before stopping.
-      if (sim_end_seen < 0) sim_end_seen = now;
-      if (double(now - sim_end_seen) * 1e-9 > opt.watchdog.sim_timeout_s + opt.watchdog.ramp_down_s + 0.01) break;
-    }
+  // The simulation runs on the calling thread: the State stays with its owner, and OpenMP's
+  // parallel regions always start from the same thread.
+  sim.run(t0, [&](std::int64_t now) {
+    return (opt.duration_s > 0 && double(now - t0) * 1e-9 >= opt.duration_s) ||
+           shared.device_finished.load(std::memory_order_acquire) ||
+           (opt.stop && opt.stop->load(std::memory_order_relaxed));
+  });
+  if (!shared.stop.load(std::memory_order_relaxed)) {
+    // Diverged: let the watchdog bring the force down before stopping.
+    haptics::sleep_until_ns(
+        haptics::now_ns() + std::int64_t((opt.watchdog.sim_timeout_s + opt.watchdog.ramp_down_s + 0.01) * 1e9), 0);
+    shared.stop.store(true, std::memory_order_relaxed);
   }
-  shared.stop.store(true, std::memory_order_relaxed);
   ht.join();
-  st.join();
   ct.join();
   const double wall = double(haptics::now_ns() - t0) * 1e-9;
 

@@ -27,7 +27,6 @@ struct RuntimeShared {
   TripleBuffer<Snapshot> snapshots;   // simulation -> consumer
   std::atomic<bool> stop{false};
   std::atomic<bool> device_finished{false};
-  std::atomic<bool> sim_ended{false};  // the simulation stopped by itself (diverged)
 };
 
 }  // namespace dentsph::haptics

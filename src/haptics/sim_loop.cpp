@@ -34,7 +34,7 @@ bool SimLoop::diverged() {
   return true;
 }
 
-void SimLoop::run(std::int64_t t0_ns) {
+void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop) {
   t0_ns_ = t0_ns;
   const real dt = scene_.model.dt;
   const std::int64_t min_step_ns = opt_.sim_rate_limit_hz > 0 ? std::int64_t(1e9 / opt_.sim_rate_limit_hz) : 0;
@@ -47,6 +47,10 @@ void SimLoop::run(std::int64_t t0_ns) {
   bool proxy_started = false;
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     std::int64_t now = now_ns();
+    if (should_stop(now)) {
+      shared_.stop.store(true, std::memory_order_relaxed);
+      break;
+    }
     // ---- pacing ---------------------------------------------------------------------------------
     if (opt_.faults.sim_stall_at_s >= 0 && !stalled && double(now - t0_ns) * 1e-9 >= opt_.faults.sim_stall_at_s) {
       stalled = true;
@@ -114,7 +118,6 @@ void SimLoop::run(std::int64_t t0_ns) {
     }
   }
   end_ns_ = now_ns();
-  shared_.sim_ended.store(true, std::memory_order_release);
 }
 
 void SimLoop::publish_snapshot(std::int64_t now_ns) {

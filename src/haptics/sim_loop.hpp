@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dentsph/haptics.hpp"
@@ -16,7 +17,9 @@ namespace dentsph::haptics {
 class SimLoop {
  public:
   SimLoop(const Scene& scene, State& state, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
-  void run(std::int64_t t0_ns);
+  // Runs on the calling thread from t0_ns until shared.stop is set or should_stop(now) says so
+  // (then it sets shared.stop), or the simulation diverges.
+  void run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop);
   SimReport report() const;
 
   std::vector<StepSample> steps;    // every step's tool pose and force

@@ -196,8 +196,9 @@ TEST(HapticRuntime, SimulationStallRampsTheForceDownAndItRecovers) {
   std::printf("force before the stall %.3f N, after %.3f N\n", before, norm(later.force));
   EXPECT_EQ(later.gain, 1.0);
   EXPECT_EQ(later.status & (proto::kSimStale | proto::kPoseStale), 0u);
-  EXPECT_GT(norm(later.force), 0.05);
-  EXPECT_LT(norm(later.force - later.target), 1e-9);  // rendered as computed again
+  // Rendered as computed again (its size is the paste's business: it relaxes during the hold).
+  EXPECT_GT(norm(later.force), 0.0);
+  EXPECT_LT(norm(later.force - later.target), 1e-9);
 }
 
 TEST(HapticRuntime, UdpFaultsAreCountedAndStalePosesRenderZero) {
