@@ -70,20 +70,23 @@ const char* decode_error_name(DecodeError e) {
   return "?";
 }
 
-std::size_t encode_header_only(const Header& h, std::span<std::uint8_t> out) {
-  Header hh = h;
-  hh.payload_bytes = 0;
+// A writer positioned after a header of `type` for a message of `total` bytes.
+static Writer begin(const Header& header, Type type, std::size_t total, std::span<std::uint8_t> out) {
+  Header h = header;
+  h.type = type;
+  h.payload_bytes = std::uint16_t(total - kHeaderBytes);
   Writer w{out.data()};
-  write_header(w, hh);
+  write_header(w, h);
+  return w;
+}
+
+std::size_t encode_header_only(const Header& h, std::span<std::uint8_t> out) {
+  begin(h, h.type, kHeaderBytes, out);
   return kHeaderBytes;
 }
 
 std::size_t encode(const PosePacket& p, std::span<std::uint8_t> out) {
-  Header h = p.header;
-  h.type = Type::pose;
-  h.payload_bytes = std::uint16_t(kPoseBytes - kHeaderBytes);
-  Writer w{out.data()};
-  write_header(w, h);
+  Writer w = begin(p.header, Type::pose, kPoseBytes, out);
   for (double v : p.position) w.f64(v);
   for (double v : p.orientation) w.f64(v);
   w.uint<std::uint32_t>(p.buttons);
@@ -92,11 +95,7 @@ std::size_t encode(const PosePacket& p, std::span<std::uint8_t> out) {
 }
 
 std::size_t encode(const ForcePacket& p, std::span<std::uint8_t> out) {
-  Header h = p.header;
-  h.type = Type::force;
-  h.payload_bytes = std::uint16_t(kForceBytes - kHeaderBytes);
-  Writer w{out.data()};
-  write_header(w, h);
+  Writer w = begin(p.header, Type::force, kForceBytes, out);
   for (double v : p.force) w.f64(v);
   w.uint<std::uint32_t>(p.pose_sequence);
   w.uint<std::uint32_t>(p.status);

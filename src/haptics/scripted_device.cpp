@@ -1,38 +1,30 @@
 // A scripted device: the hand follows the scene's tool keyframes in real time.
 #include <memory>
 
-#include "dentsph/haptics/device.hpp"
 #include "dentsph/scene.hpp"
+#include "haptics/playback_device.hpp"
 
 namespace dentsph {
 
 namespace {
 
-class ScriptedDevice final : public Device {
+class ScriptedDevice final : public haptics::PlaybackDevice {
  public:
   ScriptedDevice(const ToolTrajectory& trajectory, const WorkspaceMap& map, double end_s)
       : trajectory_(trajectory), map_(map), end_s_(end_s) {}
   std::string name() const override { return "scripted"; }
-  void start(std::int64_t t0_ns) override { t0_ns_ = t0_ns; }
-  bool read(std::int64_t now_ns, DeviceSample& s) override {
-    const double t = double(now_ns - t0_ns_) * 1e-9;
+
+ protected:
+  Pose pose_at(double t) override {
     const Pose p = trajectory_.keyframes.empty() ? Pose{} : trajectory_.at(real(t));
-    s.pose = {map_.to_device(p.position), p.orientation};
-    s.stamp_ns = now_ns;
-    s.device_time_s = t;
-    s.sequence = ++sequence_;
-    s.valid = true;
-    return true;
+    return {map_.to_device(p.position), p.orientation};
   }
-  void write(std::int64_t, const ForceCommand&) override {}
-  bool finished(std::int64_t now_ns) const override { return double(now_ns - t0_ns_) * 1e-9 >= end_s_; }
+  double end_s() const override { return end_s_; }
 
  private:
   const ToolTrajectory& trajectory_;
   WorkspaceMap map_;
   double end_s_;
-  std::int64_t t0_ns_ = 0;
-  std::uint32_t sequence_ = 0;
 };
 
 }  // namespace

@@ -52,21 +52,28 @@ void expect_safe(const RealtimeResult& r, const DeviceProfile& p) {
   }
 }
 
-TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
+// The press scene under the runtime with a UDP device, the reference client (given arguments)
+// playing it from a separate process; the runtime's result and the client's report.
+std::pair<RealtimeResult, nlohmann::json> run_with_client(const RealtimeOptions& o, std::vector<std::string> args,
+                                                          const std::string& tag) {
   const Scene scene = press_scene();
   std::uint16_t port = 0;
   auto device = make_udp_device({"127.0.0.1", 0}, &port);
-  ClientProcess client(port, {"--rate", "1000", "--duration", "3", "--motion", "press", "--depth", "0.04", "--period",
-                              "1.5", "--limit", "9"},
-                       "plain");
-  ASSERT_TRUE(client.started());
+  ClientProcess client(port, std::move(args), tag);
+  if (!client.started()) return {};
+  RealtimeResult r = run_realtime(scene, *device, o);
+  nlohmann::json c = client.wait();
+  print_timing(r);
+  std::printf("client: %s\n", c.dump().c_str());
+  return {std::move(r), std::move(c)};
+}
+
+TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   RealtimeOptions o = options(ForceMode::coupling);
   o.duration_s = 3.4;
-  const RealtimeResult r = run_realtime(scene, *device, o);
-  const nlohmann::json c = client.wait();
-  print_timing(r);
+  const auto [r, c] = run_with_client(o, {"--rate", "1000", "--duration", "3", "--motion", "press", "--depth", "0.04",
+                                          "--period", "1.5", "--limit", "9"}, "plain");
   ASSERT_FALSE(c.is_null()) << "the client failed";
-  std::printf("client: %s\n", c.dump().c_str());
   const nlohmann::json s = realtime_sections(r);
   const nlohmann::json& d = s["device"];
   // What the client saw: every force finite, within 9 N, answering a pose it sent (echoing that
@@ -202,21 +209,13 @@ TEST(HapticRuntime, SimulationStallRampsTheForceDownAndItRecovers) {
 }
 
 TEST(HapticRuntime, UdpFaultsAreCountedAndStalePosesRenderZero) {
-  const Scene scene = press_scene();
-  std::uint16_t port = 0;
-  auto device = make_udp_device({"127.0.0.1", 0}, &port);
-  ClientProcess client(port, {"--rate", "1000", "--duration", "2", "--motion", "circle", "--depth", "0.04", "--drop",
-                              "0.03", "--duplicate", "0.03", "--reorder", "0.03", "--truncate", "0.03", "--garbage",
-                              "0.03", "--pause-at", "1.0", "--pause-for", "0.3", "--seed", "7"},
-                       "faults");
-  ASSERT_TRUE(client.started());
   RealtimeOptions o = options(ForceMode::coupling);
   o.duration_s = 2.4;
-  const RealtimeResult r = run_realtime(scene, *device, o);
-  const nlohmann::json c = client.wait();
-  print_timing(r);
-  ASSERT_FALSE(c.is_null());
-  std::printf("client: %s\n", c.dump().c_str());
+  const auto [r, c] = run_with_client(o, {"--rate", "1000", "--duration", "2", "--motion", "circle", "--depth", "0.04",
+                                          "--drop", "0.03", "--duplicate", "0.03", "--reorder", "0.03", "--truncate",
+                                          "0.03", "--garbage", "0.03", "--pause-at", "1.0", "--pause-for", "0.3",
+                                          "--seed", "7"}, "faults");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
   const nlohmann::json d = realtime_sections(r)["device"];
   std::printf("runtime saw: %s\n", d.dump().c_str());
   EXPECT_GT(c["dropped"].get<int>(), 0);
