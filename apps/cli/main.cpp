@@ -17,6 +17,7 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "progress.hpp"
+#include "realtime.hpp"
 
 namespace {
 
@@ -61,11 +62,12 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet) {
+int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet, cli::RealtimeCommand& rt) {
   // No scene file: the dental scene, on the built-in molar crown or on the given scanned tooth.
   const Scene sc = !file.empty() ? load_scene(file) : !mesh.empty() ? dental_scene_from_mesh(mesh) : default_dental_scene();
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
+  if (rt.enabled()) return rt.run(sc, opt, quiet);
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
@@ -108,7 +110,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile)
       ->excludes(scene_opt);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
-  run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
+  run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
       ->check(CLI::PositiveNumber)
       ->excludes(steps);
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
@@ -116,6 +118,8 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress output");
   opt.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
+  cli::RealtimeCommand realtime;
+  realtime.add_options(*run);
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -126,6 +130,17 @@ int main(int argc, char** argv) {
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
   bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 3 repeats)");
 
+  std::string replay_dir, replay_scene, replay_mesh;
+  int replay_threads = 1;
+  CLI::App* replay = app.add_subcommand("replay", "Replay a realtime run's recording into its scene and compare the tool forces");
+  replay->add_option("recording", replay_dir, "Recording folder (OUT/recording of dentsph run --realtime)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  auto* replay_scene_opt = replay->add_option("scene", replay_scene, "The scene that was run (none: the built-in dental scene)")
+                               ->check(CLI::ExistingFile);
+  replay->add_option("--mesh", replay_mesh, "The dental scene on this scanned tooth")->check(CLI::ExistingFile)->excludes(replay_scene_opt);
+  replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
+
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
@@ -134,9 +149,14 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
-      return cmd_run(run_scene, run_mesh, opt, quiet);
+      return cmd_run(run_scene, run_mesh, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
+    if (*replay)
+      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene)
+                                   : !replay_mesh.empty() ? dental_scene_from_mesh(replay_mesh)
+                                                          : default_dental_scene(),
+                                   replay_dir, replay_threads);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -57,6 +57,8 @@ struct RunSummary {
   std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
+  std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",
+                                     // "consumer", "device") are added to summary.json
 };
 
 // The acoustic and viscous limits of a scene's initial state, and an error (UnstableTimeStep)

@@ -47,6 +47,7 @@ std::string summary_json(const RunSummary& s) {
   j["snapshots"] = s.snapshots;
   j["events_applied"] = s.events_applied;
   if (!s.assessment_json.empty()) j["assessment"] = nlohmann::json::parse(s.assessment_json);
+  if (!s.realtime_json.empty()) j.update(nlohmann::json::parse(s.realtime_json));
   return j.dump(2);
 }
 

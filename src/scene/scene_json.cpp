@@ -173,7 +173,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   const Json json = parse_json(json_text, source);
   const Reader root(json, "", source, "a scene");
   root.only({"name", "description", "simulation", "adhesion", "materials", "roles", "blocks",
-             "tool", "output", "run"});
+             "tool", "output", "run", "haptics"});
 
   Scene sc;
   sc.source = source;
@@ -204,6 +204,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   }
   sc.output = read_output(root);
   sc.duration = read_duration(root);
+  if (const std::optional<Reader> h = root.optional_object("haptics", "{\"force_scale\": 20}")) {
+    h->only({"force_scale"});
+    sc.force_scale = h->number_or("force_scale", sc.force_scale,
+                                  "device N per simulated N of tool force for the haptic runtime, e.g. 20",
+                                  Range::positive);
+  }
 
   sc.params.domain_min = domain.min;
   sc.params.domain_max = domain.max;

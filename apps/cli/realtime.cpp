@@ -1,0 +1,114 @@
+#include "realtime.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+
+#include <fmt/format.h>
+
+namespace dentsph::cli {
+
+namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+}  // namespace
+
+void RealtimeCommand::add_options(CLI::App& run) {
+  auto* rt = run.add_flag("--realtime", realtime_,
+                          "Run the haptic runtime: a haptic loop, the simulation and a consumer on their own threads");
+  auto need = [rt](CLI::Option* o) { o->needs(rt); };
+  need(run.add_option("--device", device_, "Haptic device: scripted (the scene's keyframes), replay (a recording), udp (the network bridge)")
+           ->check(CLI::IsMember({"scripted", "replay", "udp"}))
+           ->capture_default_str());
+  need(run.add_option("--replay", replay_dir_, "Recording folder for --device replay (OUT/recording of a realtime run)")
+           ->check(CLI::ExistingDirectory));
+  need(run.add_option("--mode", mode_, "Force rendering: coupling (virtual coupling) or direct (the paper's)")
+           ->check(CLI::IsMember({"coupling", "direct"}))
+           ->capture_default_str());
+  need(run.add_option("--haptic-rate", haptic_rate_, "Haptic loop rate (Hz)")->check(CLI::Range(500.0, 4000.0))->capture_default_str());
+  need(run.add_option("--force-scale", force_scale_, "Device N per simulated N (default: the scene's force_scale)")
+           ->check(CLI::PositiveNumber));
+  need(run.add_option("--profile", profile_, "Device force limits: falcon (9 N), omega (12 N), touch (3.3 N)")
+           ->check(CLI::IsMember({"falcon", "omega", "touch"}))
+           ->capture_default_str());
+  need(run.add_option("--port", udp_.port, "UDP port of the bridge (--device udp)")->capture_default_str());
+  need(run.add_option("--address", udp_.address, "IPv4 address the bridge listens on (0.0.0.0: every interface)")->capture_default_str());
+  need(run.add_option("--workspace-scale", workspace_scale_, "Scene m per device m")->check(CLI::PositiveNumber)->capture_default_str());
+  need(run.add_option("--workspace-origin", origin_, "Scene position of the device's origin (m; default: the tool's first keyframe)")
+           ->expected(3));
+  need(run.add_option("--stiffness", coupling_.stiffness_N_per_m, "Virtual coupling stiffness (N/m)")->check(CLI::PositiveNumber)->capture_default_str());
+  need(run.add_option("--damping", coupling_.damping_N_s_per_m, "Virtual coupling damping (N s/m)")->check(CLI::NonNegativeNumber)->capture_default_str());
+  need(run.add_option("--sim-rate", sim_rate_, "Cap the simulation at this many steps per second (0: no cap)")->check(CLI::NonNegativeNumber));
+  need(run.add_flag("--free-run", free_run_, "Step as fast as possible (default: never ahead of the wall clock)"));
+  need(run.add_option("--snapshot-rate", snapshot_rate_, "Consumer loop rate (Hz, 30 to 60)")->check(CLI::Range(30.0, 60.0))->capture_default_str());
+}
+
+int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
+  if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
+  RealtimeOptions o;
+  o.haptic_rate_hz = haptic_rate_;
+  o.duration_s = double(offline.duration);
+  o.mode = force_mode_from_name(mode_);
+  if (force_scale_ > 0) o.force_scale = force_scale_;
+  o.profile = device_profile(profile_);
+  o.coupling = coupling_;
+  o.pace_realtime = !free_run_;
+  o.sim_rate_limit_hz = sim_rate_;
+  o.snapshot_rate_hz = snapshot_rate_;
+  o.threads = offline.threads;
+  o.allow_unstable = offline.allow_unstable;
+  o.out_dir = offline.out_dir;
+  o.workspace.scale = workspace_scale_;
+  o.workspace.origin = origin_.size() == 3 ? Vec3{origin_[0], origin_[1], origin_[2]}
+                       : scene.tool.keyframes.empty() ? Vec3{}
+                                                      : scene.tool.keyframes.front().pose.position;
+  o.stop = &g_stop;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  std::unique_ptr<Device> device;
+  if (device_ == "scripted") {
+    device = make_scripted_device(scene, o.workspace, o.duration_s);
+  } else if (device_ == "replay") {
+    if (replay_dir_.empty()) throw std::invalid_argument("--device replay needs --replay FOLDER (OUT/recording of a realtime run)");
+    device = make_replay_device(replay_dir_);
+  } else {
+    std::uint16_t port = 0;
+    device = make_udp_device(udp_, &port);
+    if (o.duration_s <= 0 && !quiet) fmt::print("no --duration: runs until Ctrl-C\n");
+    fmt::print("listening for a haptic client on udp {}:{} (dentsph-haptic-client --port {})\n", udp_.address, port, port);
+  }
+  std::fflush(stdout);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  fmt::print("\n{}", realtime_report(r));
+  fmt::print("{} steps ({:.4g} s simulated) in {:.2f} s; peak tool force {:.4g} N (simulated)\n", r.run.steps,
+             r.run.sim_time_s, r.run.wall_time_s, r.run.peak_tool_force_N);
+  if (!r.haptic.realtime_priority && !quiet)
+    fmt::print("note: the haptic thread runs without real-time priority (SCHED_FIFO needs root or CAP_SYS_NICE)\n");
+  if (!o.out_dir.empty())
+    fmt::print("wrote {}: summary.json (haptic, sim, consumer, device), recording/ (haptic.csv, steps.csv, events.csv)\n",
+               o.out_dir.string());
+  if (r.run.status != "completed") {
+    fmt::print(stderr, "error: the simulation diverged: {}\n", r.run.message);
+    return 3;
+  }
+  return 0;
+}
+
+int replay_recording(const Scene& scene, const std::string& dir, int threads) {
+  const Recording r = load_recording(dir);
+  const std::vector<Vec3> f = replay_steps(scene, r, threads);
+  double worst = 0, peak = 0;
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    worst = std::max(worst, double(norm(f[k] - r.steps[k].tool_force)));
+    peak = std::max(peak, double(norm(r.steps[k].tool_force)));
+    differ += !(f[k] == r.steps[k].tool_force);
+  }
+  fmt::print("replayed {} steps and {} events of {}: {} tool forces differ from the recording (largest difference "
+             "{:.3g} N; recorded peak {:.4g} N)\n",
+             f.size(), r.events.size(), dir, differ, worst, peak);
+  return differ == 0 ? 0 : 4;
+}
+
+}  // namespace dentsph::cli

@@ -1,0 +1,38 @@
+// `dentsph run --realtime`: the haptic runtime's options on the run command and the run itself
+// (docs/haptics.md).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "dentsph/haptics.hpp"
+
+namespace dentsph::cli {
+
+class RealtimeCommand {
+ public:
+  // Adds --realtime and its options to `run`.
+  void add_options(CLI::App& run);
+  bool enabled() const { return realtime_; }
+  // Runs `scene` under the runtime; `offline` carries --duration, --out, --threads and
+  // --allow-unstable. Returns the exit code.
+  int run(const Scene& scene, const RunOptions& offline, bool quiet);
+
+ private:
+  bool realtime_ = false, free_run_ = false;
+  std::string device_ = "scripted", mode_ = "coupling", profile_ = "falcon", replay_dir_;
+  UdpDeviceOptions udp_;
+  double haptic_rate_ = 1000, snapshot_rate_ = 30, sim_rate_ = 0, workspace_scale_ = 1;
+  double force_scale_ = 0;  // 0: the scene's
+  std::vector<double> origin_;
+  CouplingParams coupling_;
+};
+
+// `dentsph replay RECORDING [SCENE]`: steps the scene on the recorded tool poses and compares
+// the tool forces with the recorded ones. Returns 0 when they agree bit for bit, 4 otherwise.
+int replay_recording(const Scene& scene, const std::string& recording_dir, int threads);
+
+}  // namespace dentsph::cli

@@ -1,0 +1,256 @@
+// dentsph-haptic-client: the reference client of the haptic bridge (docs/haptic-protocol.md).
+// It plays a haptic device: at a fixed rate it sends a pose (a scripted motion in the device
+// frame), and reads the forces dentsph sends back, checking each one (finite, within the limit,
+// answering a pose it sent). A program written with a haptic SDK does the same with the device's
+// pose and renders the force. Faults can be injected (dropped, duplicated, reordered, truncated
+// and garbage packets, a silence) to exercise the runtime; --report writes what it saw as JSON.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <span>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "dentsph/haptics/protocol.hpp"
+
+namespace proto = dentsph::haptic_protocol;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::uint64_t now_ns() {
+  return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count());
+}
+
+struct Options {
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 47000;
+  double rate_hz = 1000, duration_s = 3;
+  std::string motion = "press";  // press | hold | circle | still
+  double depth_m = 0.03, period_s = 1.0;
+  double limit_N = 9.0;
+  double drop = 0, duplicate = 0, reorder = 0, truncate = 0, garbage = 0;
+  double pause_at_s = -1, pause_for_s = 0;
+  bool bye = true;
+  unsigned seed = 1;
+  std::string report;
+};
+
+// The device's position at time t (m, device frame): the motion a hand would make.
+std::array<double, 3> motion(const Options& o, double t) {
+  const double w = 2 * std::numbers::pi / o.period_s;
+  if (o.motion == "press") return {0, 0, -o.depth_m * 0.5 * (1 - std::cos(w * t))};
+  if (o.motion == "hold") {
+    const double s = std::min(1.0, t / (0.3 * o.period_s));
+    return {0, 0, -o.depth_m * s * s * (3 - 2 * s)};
+  }
+  if (o.motion == "circle") return {0.5 * o.depth_m * std::cos(w * t), 0.5 * o.depth_m * std::sin(w * t), -o.depth_m};
+  return {0, 0, 0};
+}
+
+struct Stats {
+  std::uint64_t poses_sent = 0, dropped = 0, duplicated = 0, reordered = 0, truncated = 0, garbage = 0;
+  std::uint64_t forces = 0, heartbeats = 0, malformed = 0, non_finite = 0, over_limit = 0;
+  std::uint64_t ack_ahead = 0, ack_backwards = 0, echo_mismatch = 0;
+  double max_force_N = 0;
+  std::vector<double> lags, rtts_us;
+};
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"dentsph-haptic-client: plays a haptic device over UDP against `dentsph run --realtime --device udp`"};
+  app.add_option("--host", o.host, "dentsph's IPv4 address")->capture_default_str();
+  app.add_option("--port", o.port, "dentsph's UDP port")->capture_default_str();
+  app.add_option("--rate", o.rate_hz, "Poses per second")->check(CLI::Range(1.0, 10000.0))->capture_default_str();
+  app.add_option("--duration", o.duration_s, "Seconds to run")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--motion", o.motion, "press (down and up), hold (down and stay), circle, still")
+      ->check(CLI::IsMember({"press", "hold", "circle", "still"}))
+      ->capture_default_str();
+  app.add_option("--depth", o.depth_m, "Depth of the motion (m, device frame)")->capture_default_str();
+  app.add_option("--period", o.period_s, "Period of the motion (s)")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--limit", o.limit_N, "The device's force limit (N): larger forces are reported")->capture_default_str();
+  app.add_option("--drop", o.drop, "Probability that a pose is not sent")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--duplicate", o.duplicate, "Probability that a pose is sent twice")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--reorder", o.reorder, "Probability that a pose is sent after the next one")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--truncate", o.truncate, "Probability that a pose is cut short")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--garbage", o.garbage, "Probability of a random datagram after a pose")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--pause-at", o.pause_at_s, "Go silent at this time (s)");
+  app.add_option("--pause-for", o.pause_for_s, "For this long (s)");
+  app.add_flag("!--no-bye", o.bye, "Leave without saying bye");
+  app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
+  app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
+  CLI11_PARSE(app, argc, argv);
+
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(o.port);
+  if (fd < 0 || ::inet_pton(AF_INET, o.host.c_str(), &to.sin_addr) != 1) {
+    fmt::print(stderr, "error: cannot use {}:{} (an IPv4 address is needed)\n", o.host, o.port);
+    return 2;
+  }
+  auto send = [&](std::span<const std::uint8_t> b) {
+    ::sendto(fd, b.data(), b.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  };
+
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  Stats st;
+  std::vector<std::uint64_t> sent_stamp(1 << 16, 0);  // timestamp of each sequence (mod 65536)
+  std::uint32_t seq = 0, last_ack = 0;
+  bool have_ack = false;
+  std::vector<std::uint8_t> held;  // a pose held back to be sent after the next one
+  std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
+  std::array<std::uint8_t, 2048> in{};
+
+  auto receive = [&] {
+    while (true) {
+      const ssize_t n = ::recv(fd, in.data(), in.size(), MSG_DONTWAIT);
+      if (n < 0) return;
+      const std::uint64_t t = now_ns();
+      proto::Header h;
+      const std::span<const std::uint8_t> d(in.data(), std::size_t(n));
+      if (proto::decode_header(d, h) != proto::DecodeError::none) {
+        ++st.malformed;
+        continue;
+      }
+      if (h.type == proto::Type::heartbeat) {
+        ++st.heartbeats;
+        continue;
+      }
+      proto::ForcePacket f;
+      const proto::DecodeError e = proto::decode(d, f);
+      if (e == proto::DecodeError::non_finite) {
+        ++st.non_finite;
+        ++st.forces;
+        continue;
+      }
+      if (e != proto::DecodeError::none) {
+        ++st.malformed;
+        continue;
+      }
+      ++st.forces;
+      const double mag = std::sqrt(f.force[0] * f.force[0] + f.force[1] * f.force[1] + f.force[2] * f.force[2]);
+      st.max_force_N = std::max(st.max_force_N, mag);
+      if (mag > o.limit_N) ++st.over_limit;
+      // The force answers a pose: one we sent (not ahead of us), never an older one than before.
+      if (proto::sequence_newer(f.pose_sequence, seq)) ++st.ack_ahead;
+      if (have_ack && proto::sequence_newer(last_ack, f.pose_sequence)) ++st.ack_backwards;
+      if (sent_stamp[f.pose_sequence & 0xffff] != f.pose_timestamp_ns) ++st.echo_mismatch;
+      st.lags.push_back(double(seq - f.pose_sequence));
+      st.rtts_us.push_back(double(t - f.pose_timestamp_ns) * 1e-3);
+      last_ack = f.pose_sequence;
+      have_ack = true;
+    }
+  };
+
+  const auto period = std::chrono::nanoseconds(std::int64_t(1e9 / o.rate_hz));
+  const auto start = Clock::now();
+  auto next = start;
+  bool paused_done = false;
+  for (;;) {
+    std::this_thread::sleep_until(next);
+    next += period;
+    const double t = std::chrono::duration<double>(Clock::now() - start).count();
+    if (t >= o.duration_s) break;
+    receive();
+    if (o.pause_at_s >= 0 && !paused_done && t >= o.pause_at_s) {
+      if (!held.empty()) send(held), held.clear();
+      std::this_thread::sleep_for(std::chrono::duration<double>(o.pause_for_s));
+      paused_done = true;
+      next = Clock::now();
+      continue;
+    }
+    proto::PosePacket p;
+    p.header.sequence = ++seq;
+    p.header.timestamp_ns = now_ns();
+    sent_stamp[seq & 0xffff] = p.header.timestamp_ns;
+    const auto x = motion(o, t);
+    std::copy(x.begin(), x.end(), p.position);
+    const std::size_t n = proto::encode(p, buf);
+    ++st.poses_sent;
+    const std::span<const std::uint8_t> pkt(buf.data(), n);
+    // One fault at most per pose, none on the pose that releases a held one, none in the last
+    // 50 ms (so that every skipped pose is followed by one that reveals the gap).
+    const double r = t < o.duration_s - 0.05 ? u(rng) : 1.0;
+    double c = 0;
+    if (!held.empty()) {
+      send(pkt);
+      send(held);
+      held.clear();
+    } else if (r < (c += o.drop)) {
+      ++st.dropped;
+    } else if (r < (c += o.duplicate)) {
+      send(pkt), send(pkt);
+      ++st.duplicated;
+    } else if (r < (c += o.reorder)) {
+      held.assign(pkt.begin(), pkt.end());
+      ++st.reordered;
+    } else if (r < (c += o.truncate)) {
+      send(pkt.first(std::size_t(u(rng) * double(n - 1))));
+      ++st.truncated;
+    } else {
+      send(pkt);
+    }
+    if (u(rng) < o.garbage && t < o.duration_s - 0.05) {
+      std::vector<std::uint8_t> g(1 + std::size_t(u(rng) * 200));
+      for (auto& b : g) b = std::uint8_t(rng());
+      send(g);
+      ++st.garbage;
+    }
+  }
+  if (!held.empty()) send(held);
+  const auto drain_until = Clock::now() + std::chrono::milliseconds(20);
+  while (Clock::now() < drain_until) {
+    receive();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  if (o.bye) {
+    proto::Header h;
+    h.type = proto::Type::bye;
+    h.sequence = ++seq;
+    h.timestamp_ns = now_ns();
+    send(std::span<const std::uint8_t>(buf.data(), proto::encode_header_only(h, buf)));
+  }
+  ::close(fd);
+
+  nlohmann::json j = {{"poses_sent", st.poses_sent},     {"dropped", st.dropped},
+                      {"duplicated", st.duplicated},     {"reordered", st.reordered},
+                      {"truncated", st.truncated},       {"garbage", st.garbage},
+                      {"forces_received", st.forces},    {"heartbeats_received", st.heartbeats},
+                      {"malformed_received", st.malformed}, {"non_finite_forces", st.non_finite},
+                      {"forces_over_limit", st.over_limit}, {"max_force_N", st.max_force_N},
+                      {"acks_ahead", st.ack_ahead},      {"acks_backwards", st.ack_backwards},
+                      {"echo_mismatches", st.echo_mismatch},
+                      {"ack_lag_p50", quantile(st.lags, 0.5)}, {"ack_lag_p99", quantile(st.lags, 0.99)},
+                      {"ack_lag_max", st.lags.empty() ? 0.0 : *std::max_element(st.lags.begin(), st.lags.end())},
+                      {"rtt_p50_us", quantile(st.rtts_us, 0.5)}, {"rtt_p99_us", quantile(st.rtts_us, 0.99)}};
+  if (o.report.empty())
+    fmt::print("{}\n", j.dump(2));
+  else
+    std::ofstream(o.report) << j.dump(2) << "\n";
+  return 0;
+}

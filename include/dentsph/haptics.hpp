@@ -1,0 +1,137 @@
+// The haptic runtime (docs/haptics.md): three loops on their own threads.
+//  - the haptic loop, at a fixed rate (default 1 kHz, 500 Hz to 4 kHz), reads the device pose and
+//    writes the device force; it never blocks, allocates, locks, logs or touches the State;
+//  - the simulation loop owns the State: it takes the newest tool pose, steps, and publishes the
+//    newest tool force (paced to real time or as fast as it can);
+//  - the consumer loop takes particle snapshots at 30 to 60 Hz (recording, rendering).
+// Data passes between them through lock-free triple buffers. The force a device receives is
+// finite, within the device profile's magnitude and rate limits, and ramps to zero when the
+// simulation stalls or the device goes quiet.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dentsph/haptics/device.hpp"
+#include "dentsph/haptics/recording.hpp"
+#include "dentsph/run.hpp"
+#include "dentsph/scene.hpp"
+
+namespace dentsph {
+
+enum class ForceMode {
+  direct,    // the paper's: the tool moves with the device, the tool force is rendered
+  coupling,  // virtual coupling: the tool is a proxy tied to the device by a spring and damper;
+             // the coupling force is rendered and drives the proxy
+};
+const char* force_mode_name(ForceMode m);
+ForceMode force_mode_from_name(const std::string& name);  // throws std::invalid_argument
+
+// Virtual coupling, in the device frame. The proxy (mass m) feels the spring-damper to the
+// device and the scaled tool force of the simulation, and a little drag; it is integrated
+// implicitly on the haptic thread at the haptic rate (stable for any stiffness).
+struct CouplingParams {
+  double stiffness_N_per_m = 400;
+  double damping_N_s_per_m = 2;      // relative velocity of proxy and device
+  double proxy_mass_kg = 0.05;
+  double proxy_drag_N_s_per_m = 2;   // proxy against the world (dissipates energy)
+};
+
+struct WatchdogParams {
+  double sim_timeout_s = 0.025;   // the newest simulation output older than this: fault
+  double pose_timeout_s = 0.02;   // no new device pose for this long: fault
+  double ramp_down_s = 0.01;      // force gain 1 -> 0 after a fault
+  double ramp_up_s = 0.1;         // force gain 0 -> 1 after recovery
+};
+
+// Faults injected for tests and demonstrations.
+struct FaultInjection {
+  double sim_stall_at_s = -1;  // the simulation thread sleeps at this wall time (s since start)
+  double sim_stall_s = 0;      // for this long
+};
+
+struct RealtimeOptions {
+  double haptic_rate_hz = 1000;       // 500 .. 4000
+  double duration_s = 0;              // wall seconds; 0: until the device finishes (or stop is set)
+  ForceMode mode = ForceMode::coupling;
+  std::optional<double> force_scale;  // device N per simulated N; default: Scene::force_scale
+  DeviceProfile profile;              // force limits
+  CouplingParams coupling;
+  WatchdogParams watchdog;
+  WorkspaceMap workspace;             // device -> scene
+  bool pace_realtime = true;          // the simulation never runs ahead of the wall clock
+  double sim_rate_limit_hz = 0;       // > 0: at most this many steps per second
+  double snapshot_rate_hz = 30;       // 30 .. 60; 0: no consumer loop
+  int threads = 1;                    // threads of the simulation step
+  bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread (best effort)
+  bool allow_unstable = false;
+  double record_capacity_s = 120;     // haptic-rate recording preallocated for this long (176 B a tick)
+  std::filesystem::path out_dir;      // summary.json and the recording (empty: nothing written)
+  FaultInjection faults;
+  const std::atomic<bool>* stop = nullptr;  // set by the caller (a signal) to end the run
+  // Called on the consumer thread with each snapshot's particle positions (scene frame) and sim
+  // time; for rendering and tests.
+  std::function<void(std::span<const Vec3> positions, double sim_time)> on_snapshot;
+};
+
+// Rate and period jitter of a loop.
+struct LoopTiming {
+  std::uint64_t ticks = 0;
+  double rate_hz = 0;
+  double period_p50_us = 0, period_p99_us = 0, period_max_us = 0;
+  std::uint64_t deadline_misses = 0;  // ticks that started more than half a period late
+};
+
+struct HapticReport {
+  double target_rate_hz = 0;
+  bool realtime_priority = false;         // the haptic thread got SCHED_FIFO
+  LoopTiming timing;
+  double force_age_p50_us = 0, force_age_p99_us = 0, force_age_max_us = 0;  // now - stamp of the pose the
+                                                                            // simulation output answered
+  double max_force_N = 0;                 // largest force sent to the device
+  double max_force_step_N = 0;            // largest change between consecutive ticks
+  std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
+  std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
+  std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
+};
+
+struct SimReport {
+  std::uint64_t steps = 0;
+  double steps_per_second = 0;
+  double realtime_factor = 0;  // simulated s per wall s
+  double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;
+  std::uint64_t stalls_injected = 0;
+};
+
+struct ConsumerReport {
+  std::uint64_t frames = 0;
+  double rate_hz = 0;
+  double snapshot_age_p99_us = 0;  // from publication by the simulation to the consumer taking it
+};
+
+struct RealtimeResult {
+  RunSummary run;                 // the shared summary (scene, steps, particles, bonds, tool, ...)
+  HapticReport haptic;
+  SimReport sim;
+  ConsumerReport consumer;
+  std::string device_name;
+  std::string device_json;        // the device's own counters
+  Recording recording;            // device pose and rendered force per tick, tool pose per step
+};
+
+// Runs `scene` with `device` until the device finishes, duration_s passes or *stop is set.
+// Throws UnstableTimeStep (like run_offline) and std::invalid_argument for bad options.
+RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOptions& options);
+
+// The realtime sections of summary.json ("haptic", "sim", "consumer", "device") as a JSON object.
+std::string realtime_json(const RealtimeResult& r);
+// The same for a person.
+std::string realtime_report(const RealtimeResult& r);
+
+}  // namespace dentsph

@@ -1,0 +1,72 @@
+// Recording of a realtime session and its deterministic replay. The haptic loop records the
+// device pose and the rendered force at the haptic rate (into preallocated memory); the
+// simulation loop records the tool pose it stepped with, per step, and the procedure events it
+// applied. Replaying the steps into the same scene reproduces the recorded tool forces.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dentsph/pose.hpp"
+#include "dentsph/vec3.hpp"
+
+namespace dentsph {
+
+struct Scene;
+
+// One haptic tick.
+struct HapticSample {
+  double t = 0;                // s since the runtime started
+  Vec3 device_position;        // m, device frame
+  Quat device_orientation;
+  Vec3 device_velocity;        // m/s, filtered estimate
+  Vec3 force;                  // N, sent to the device (after limits and watchdog)
+  Vec3 target;                 // N, the renderer's force before gain and limits
+  Vec3 proxy_position;         // m, device frame (virtual coupling; the device's in direct mode)
+  double gain = 0;             // watchdog gain in [0, 1]
+  std::uint32_t status = 0;    // haptic_protocol::ForceStatus bits
+  std::uint32_t pose_sequence = 0;
+};
+
+// One simulation step.
+struct StepSample {
+  std::uint64_t step = 0;      // State::steps before the step
+  double wall_t = 0;           // s since the runtime started
+  Pose tool_pose;              // scene frame, the pose the step moved the tool to
+  Vec3 tool_force;             // N, simulated (unscaled), after the step
+};
+
+struct EventSample {
+  std::uint64_t step = 0;      // applied before this step
+  std::uint32_t index = 0;     // into Scene::events
+};
+
+struct Recording {
+  std::string mode;            // "direct" | "coupling"
+  double haptic_rate_hz = 0;
+  double force_scale = 1;
+  std::uint64_t haptic_dropped = 0;  // ticks not recorded (capacity full)
+  std::vector<HapticSample> haptic;
+  std::vector<StepSample> steps;
+  std::vector<EventSample> events;
+};
+
+// Writes haptic.csv, steps.csv and events.csv into `dir` (created), numbers with 17 digits so
+// that they read back exactly. Throws std::runtime_error naming the file.
+void save_recording(const std::filesystem::path& dir, const Recording& r);
+// Reads them back. Throws std::runtime_error naming the file, line and field.
+Recording load_recording(const std::filesystem::path& dir);
+
+// Steps `scene` from its initial state on the recorded tool poses, applying the recorded events
+// before their steps; returns the simulated tool force after each step. Deterministic: the same
+// recording gives the same forces bit for bit (any thread count).
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1);
+
+// Energy delivered to the hand, E(t_k) = sum of F . v dt over the recorded ticks (J), with v from
+// the recorded device positions (central differences). A passive rendering keeps it bounded by
+// the energy the hand put in.
+std::vector<double> energy_to_hand(const std::vector<HapticSample>& samples);
+
+}  // namespace dentsph

@@ -1,0 +1,37 @@
+// The force for the hand, per mode. Direct (the paper's): the tool is where the device is and the
+// hand feels the simulated tool force. Virtual coupling: the tool is the proxy the simulation
+// moves (sim_loop.cpp); the hand feels the spring and damper between the proxy and the device,
+// computed here at the haptic rate with the device's newest position. What comes from the
+// simulation (force, proxy) is interpolated so that it never jumps, however slow the simulation.
+// The result still passes the watchdog and the limiter.
+#pragma once
+
+#include <cstdint>
+
+#include "dentsph/haptics.hpp"
+#include "haptics/force_interpolator.hpp"
+#include "haptics/messages.hpp"
+
+namespace dentsph::haptics {
+
+class ForceRenderer {
+ public:
+  ForceRenderer(ForceMode mode, const CouplingParams& coupling) : mode_(mode), coupling_(coupling) {}
+  // A new simulation output (finite) at now_ns.
+  void add(const SimOutput& o, std::int64_t now_ns);
+  // The force on the hand at now_ns for the device at x moving at v (device frame).
+  Vec3 render(const Vec3& x, const Vec3& v, std::int64_t now_ns) const;
+  // The proxy (coupling) or the device (direct) position now.
+  Vec3 tool_position(const Vec3& x, std::int64_t now_ns) const {
+    return mode_ == ForceMode::coupling && started_ ? proxy_x_.at(now_ns) : x;
+  }
+  ForceMode mode() const { return mode_; }
+
+ private:
+  ForceMode mode_;
+  CouplingParams coupling_;
+  ForceInterpolator force_, proxy_x_, proxy_v_;
+  bool started_ = false;
+};
+
+}  // namespace dentsph::haptics

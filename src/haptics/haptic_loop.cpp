@@ -1,0 +1,164 @@
+#include "haptics/haptic_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "dentsph/haptics/protocol.hpp"
+#include "haptics/clock.hpp"
+
+namespace dentsph::haptics {
+
+namespace proto = haptic_protocol;
+
+namespace {
+constexpr double kVelocityCutoffHz = 100;  // first-order filter of the finite-difference velocity
+}
+
+HapticLoop::HapticLoop(Device& device, const RealtimeOptions& o, RuntimeShared& shared)
+    : device_(device),
+      opt_(o),
+      shared_(shared),
+      renderer_(o.mode, o.coupling),
+      watchdog_(o.watchdog),
+      limiter_(o.profile),
+      record_(std::size_t(std::max(0.0, o.record_capacity_s) * o.haptic_rate_hz)) {
+  rep_.target_rate_hz = o.haptic_rate_hz;
+}
+
+void HapticLoop::run(std::int64_t t0_ns) {
+  t0_ns_ = t0_ns;
+  device_.start(t0_ns);
+  const auto period_ns = std::int64_t(std::llround(1e9 / opt_.haptic_rate_hz));
+  std::int64_t next = t0_ns;
+  std::int64_t last = 0;
+  while (!shared_.stop.load(std::memory_order_relaxed)) {
+    sleep_until_ns(next);
+    const std::int64_t now = now_ns();
+    double dt = double(period_ns) * 1e-9;
+    if (rep_.timing.ticks > 0) {
+      periods_.add(double(now - last) * 1e-3);
+      dt = double(now - last) * 1e-9;
+    } else {
+      first_tick_ns_ = now;
+    }
+    if (now - next > period_ns / 2) ++rep_.timing.deadline_misses;
+    last = now;
+    tick(now, dt);
+    ++rep_.timing.ticks;
+    last_tick_ns_ = now;
+    next += period_ns;
+    if (now - next > period_ns) next = now + period_ns;  // far behind: skip, do not burst
+    if (device_.finished(now)) shared_.device_finished.store(true, std::memory_order_release);
+  }
+}
+
+void HapticLoop::tick(std::int64_t now, double dt) {
+  // ---- device pose and velocity ----------------------------------------------------------------
+  if (device_.read(now, sample_)) {
+    const Vec3 x = sample_.pose.position;
+    const double ddt = sample_.device_time_s - prev_device_time_;
+    if (have_prev_ && ddt > 1e-6 && ddt < 0.1) {
+      const double a = 1 - std::exp(-2 * std::numbers::pi * kVelocityCutoffHz * ddt);
+      velocity_ += ((x - prev_position_) / ddt - velocity_) * a;
+    }
+    prev_position_ = x;
+    prev_device_time_ = sample_.device_time_s;
+    have_prev_ = true;
+  }
+  const double pose_age = sample_.valid ? double(now - sample_.stamp_ns) * 1e-9 : -1;
+  if (pose_age > opt_.watchdog.pose_timeout_s) velocity_ = {};  // a quiet device is not moving
+  const Vec3 x = sample_.pose.position;
+
+  // ---- newest simulation output ------------------------------------------------------------------
+  if (shared_.output.update()) {
+    const SimOutput& o = shared_.output.front();
+    if (o.valid && (!have_sim_ || o.step != last_step_)) {
+      SimOutput clean = o;
+      if (!is_finite(o.force_N) || !is_finite(o.proxy_position) || !is_finite(o.proxy_velocity)) {
+        clean.force_N = clean.proxy_velocity = {};
+        clean.proxy_position = sample_.pose.position;  // no coupling force
+        ++rep_.non_finite_rejected;
+      }
+      renderer_.add(clean, now);
+      have_sim_ = true;
+      last_step_ = o.step;
+      sim_published_ns_ = o.published_ns;
+      sim_command_stamp_ns_ = o.command_stamp_ns;
+    }
+  }
+  const double sim_age = have_sim_ ? double(now - sim_published_ns_) * 1e-9 : -1;
+
+  // ---- force: renderer, watchdog, limiter -------------------------------------------------------
+  const Vec3 target = renderer_.render(x, velocity_, now);
+  const double gain = watchdog_.update(sim_age, pose_age, dt);
+  const Vec3 before = limiter_.last();
+  const ForceLimiter::Result lim = limiter_.apply(target * gain, dt);
+  std::uint32_t status = 0;
+  if (watchdog_.sim_stale()) status |= proto::kSimStale, ++rep_.sim_stale_ticks;
+  if (watchdog_.pose_stale()) status |= proto::kPoseStale, ++rep_.pose_stale_ticks;
+  if (lim.magnitude_limited) ++rep_.magnitude_limited_ticks;
+  if (lim.rate_limited) ++rep_.rate_limited_ticks;
+  if (lim.magnitude_limited || lim.rate_limited) status |= proto::kForceLimited;
+  if (lim.non_finite) status |= proto::kNonFinite, ++rep_.non_finite_rejected;
+  if (gain == 0) ++rep_.zero_gain_ticks;
+  std::uint32_t age_us = 0;
+  if (have_sim_) {
+    const double age = double(now - sim_command_stamp_ns_) * 1e-3;
+    force_ages_.add(age);
+    age_us = std::uint32_t(std::min(age, 4e9));
+  }
+  device_.write(now, ForceCommand{lim.force, status, age_us});
+  rep_.max_force_N = std::max(rep_.max_force_N, norm(lim.force));
+  rep_.max_force_step_N = std::max(rep_.max_force_step_N, norm(lim.force - before));
+
+  // ---- tool command for the simulation ----------------------------------------------------------
+  const Vec3 tool = renderer_.tool_position(x, now);
+  if (sample_.valid) {
+    ToolCommand& c = shared_.command.back();
+    c.pose = sample_.pose;
+    c.velocity = velocity_;
+    c.stamp_ns = now;
+    c.sequence = sample_.sequence;
+    c.valid = true;
+    shared_.command.publish();
+  }
+
+  // ---- record ----------------------------------------------------------------------------------
+  if (recorded_ < record_.size()) {
+    HapticSample& r = record_[recorded_++];
+    r.t = double(now - t0_ns_) * 1e-9;
+    r.device_position = x;
+    r.device_orientation = sample_.pose.orientation;
+    r.device_velocity = velocity_;
+    r.force = lim.force;
+    r.target = target;
+    r.proxy_position = tool;
+    r.gain = gain;
+    r.status = status;
+    r.pose_sequence = sample_.sequence;
+  } else {
+    ++dropped_;
+  }
+}
+
+HapticReport HapticLoop::report() const {
+  HapticReport r = rep_;
+  r.timing.period_p50_us = periods_.quantile(0.5);
+  r.timing.period_p99_us = periods_.quantile(0.99);
+  r.timing.period_max_us = periods_.max();
+  const double span = double(last_tick_ns_ - first_tick_ns_) * 1e-9;
+  r.timing.rate_hz = span > 0 ? double(r.timing.ticks - 1) / span : 0;
+  r.force_age_p50_us = force_ages_.quantile(0.5);
+  r.force_age_p99_us = force_ages_.quantile(0.99);
+  r.force_age_max_us = force_ages_.max();
+  r.watchdog_trips = watchdog_.trips();
+  return r;
+}
+
+std::vector<HapticSample> HapticLoop::take_recording() {
+  record_.resize(recorded_);
+  return std::move(record_);
+}
+
+}  // namespace dentsph::haptics

@@ -1,0 +1,54 @@
+// The haptic loop: at a fixed rate, read the device, render the force (renderer, watchdog,
+// limiter), write it, hand the tool command to the simulation, record. Everything it uses is
+// allocated before it starts; it takes no lock and writes no file or log.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dentsph/haptics.hpp"
+#include "haptics/force_limiter.hpp"
+#include "haptics/force_renderer.hpp"
+#include "haptics/shared.hpp"
+#include "haptics/timing_stats.hpp"
+#include "haptics/watchdog.hpp"
+
+namespace dentsph::haptics {
+
+class HapticLoop {
+ public:
+  HapticLoop(Device& device, const RealtimeOptions& options, RuntimeShared& shared);
+  // Runs on the calling thread from t0_ns until shared.stop is set.
+  void run(std::int64_t t0_ns);
+  HapticReport report() const;
+  // The recorded ticks (moved out) and how many did not fit.
+  std::vector<HapticSample> take_recording();
+  std::uint64_t recording_dropped() const { return dropped_; }
+
+ private:
+  void tick(std::int64_t now_ns, double dt);
+
+  Device& device_;
+  RealtimeOptions opt_;
+  RuntimeShared& shared_;
+  ForceRenderer renderer_;
+  Watchdog watchdog_;
+  ForceLimiter limiter_;
+  DurationHistogram periods_, force_ages_;
+  std::vector<HapticSample> record_;
+  std::size_t recorded_ = 0;
+  std::uint64_t dropped_ = 0;
+  // device state
+  DeviceSample sample_;
+  Vec3 velocity_, prev_position_;
+  double prev_device_time_ = 0;
+  bool have_prev_ = false;
+  // simulation output
+  bool have_sim_ = false;
+  std::uint64_t last_step_ = 0;
+  std::int64_t sim_published_ns_ = 0, sim_command_stamp_ns_ = 0;
+  HapticReport rep_;
+  std::int64_t first_tick_ns_ = 0, last_tick_ns_ = 0, t0_ns_ = 0;
+};
+
+}  // namespace dentsph::haptics

@@ -1,0 +1,31 @@
+// What the loops hand each other through triple buffers (plain data, copied whole).
+#pragma once
+
+#include <cstdint>
+
+#include "dentsph/pose.hpp"
+#include "dentsph/vec3.hpp"
+
+namespace dentsph::haptics {
+
+// Haptic -> simulation: the device, in the device frame.
+struct ToolCommand {
+  Pose pose;                  // the device's pose
+  Vec3 velocity;              // m/s, filtered estimate
+  std::int64_t stamp_ns = 0;  // runtime clock when the haptic loop published it
+  std::uint32_t sequence = 0; // device pose sequence it came from
+  bool valid = false;
+};
+
+// Simulation -> haptic: the newest tool force.
+struct SimOutput {
+  Vec3 force_N;                    // device N: force_scale * simulated tool force
+  Vec3 proxy_position, proxy_velocity;  // virtual coupling: the proxy (device frame)
+  std::uint64_t step = 0;          // State::steps after the step
+  double sim_time = 0;             // s
+  std::int64_t command_stamp_ns = 0;  // stamp of the ToolCommand the step used
+  std::int64_t published_ns = 0;
+  bool valid = false;
+};
+
+}  // namespace dentsph::haptics

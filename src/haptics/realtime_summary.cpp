@@ -1,0 +1,68 @@
+// The realtime run's sections of summary.json and its report for a person.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "dentsph/haptics.hpp"
+
+namespace dentsph {
+
+std::string realtime_json(const RealtimeResult& r) {
+  const HapticReport& h = r.haptic;
+  nlohmann::json j;
+  j["haptic"] = {{"target_rate_hz", h.target_rate_hz},
+                 {"rate_hz", h.timing.rate_hz},
+                 {"realtime_priority", h.realtime_priority},
+                 {"ticks", h.timing.ticks},
+                 {"period_p50_us", h.timing.period_p50_us},
+                 {"period_p99_us", h.timing.period_p99_us},
+                 {"period_max_us", h.timing.period_max_us},
+                 {"deadline_misses", h.timing.deadline_misses},
+                 {"force_age_p50_us", h.force_age_p50_us},
+                 {"force_age_p99_us", h.force_age_p99_us},
+                 {"force_age_max_us", h.force_age_max_us},
+                 {"max_force_N", h.max_force_N},
+                 {"max_force_step_N", h.max_force_step_N},
+                 {"mode", r.recording.mode},
+                 {"force_scale", r.recording.force_scale},
+                 {"limits", {{"magnitude_limited_ticks", h.magnitude_limited_ticks},
+                             {"rate_limited_ticks", h.rate_limited_ticks},
+                             {"non_finite_rejected", h.non_finite_rejected}}},
+                 {"watchdog", {{"trips", h.watchdog_trips},
+                               {"sim_stale_ticks", h.sim_stale_ticks},
+                               {"pose_stale_ticks", h.pose_stale_ticks},
+                               {"zero_gain_ticks", h.zero_gain_ticks}}},
+                 {"recorded_ticks", r.recording.haptic.size()},
+                 {"recording_dropped_ticks", r.recording.haptic_dropped}};
+  j["sim"] = {{"steps", r.sim.steps},
+              {"steps_per_second", r.sim.steps_per_second},
+              {"realtime_factor", r.sim.realtime_factor},
+              {"step_p50_us", r.sim.step_p50_us},
+              {"step_p99_us", r.sim.step_p99_us},
+              {"step_max_us", r.sim.step_max_us},
+              {"stalls_injected", r.sim.stalls_injected}};
+  j["consumer"] = {{"frames", r.consumer.frames},
+                   {"rate_hz", r.consumer.rate_hz},
+                   {"snapshot_age_p99_us", r.consumer.snapshot_age_p99_us}};
+  nlohmann::json dev = nlohmann::json::parse(r.device_json.empty() ? "{}" : r.device_json);
+  dev["name"] = r.device_name;
+  j["device"] = dev;
+  return j.dump();
+}
+
+std::string realtime_report(const RealtimeResult& r) {
+  const HapticReport& h = r.haptic;
+  return fmt::format(
+      "haptic loop ({} mode, {} device): {:.1f} Hz of {:.0f} Hz, period p50 {:.0f} us, p99 {:.0f} us, max {:.0f} us, "
+      "{} deadline misses in {} ticks\n"
+      "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
+      "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
+      "simulation: {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us\n"
+      "consumer: {} snapshots at {:.1f} Hz\n",
+      r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
+      h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
+      h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
+      h.watchdog_trips, h.zero_gain_ticks, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
+      r.sim.step_p50_us, r.sim.step_p99_us, r.consumer.frames, r.consumer.rate_hz);
+}
+
+}  // namespace dentsph

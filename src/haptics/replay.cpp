@@ -1,0 +1,35 @@
+// Deterministic replay: the recorded tool pose of every step, keyed by step, not wall time.
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "dentsph/haptics/recording.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/step.hpp"
+
+namespace dentsph {
+
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads) {
+  State state = make_state(scene);
+  std::vector<Vec3> forces;
+  forces.reserve(r.steps.size());
+  std::size_t next_event = 0;
+  for (const StepSample& s : r.steps) {
+    if (s.step != state.steps)
+      throw std::runtime_error(fmt::format("recording: step {} follows step {}: the steps must be consecutive from 0",
+                                           s.step, state.steps));
+    for (; next_event < r.events.size() && r.events[next_event].step == s.step; ++next_event) {
+      const std::uint32_t i = r.events[next_event].index;
+      if (i >= scene.events.size())
+        throw std::runtime_error(fmt::format("recording: event {} does not exist in scene '{}' ({} events): "
+                                             "replay into the scene that was recorded", i, scene.name, scene.events.size()));
+      apply_event(scene, state, scene.events[i]);
+    }
+    state.tool_pose = s.tool_pose;
+    step(scene.model, state, StepOptions{threads, nullptr});
+    forces.push_back(state.tool_wrench.force);
+  }
+  return forces;
+}
+
+}  // namespace dentsph

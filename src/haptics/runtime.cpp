@@ -1,0 +1,143 @@
+// The runtime: checks the options, starts the haptic and consumer threads, runs the simulation loop
+// on the calling thread, and stops them
+// when the device finishes, the duration passes, the caller asks or the simulation diverges,
+// and gathers the reports, the recording and the shared summary.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <fmt/format.h>
+
+#include "dentsph/haptics.hpp"
+#include "haptics/clock.hpp"
+#include "haptics/consumer_loop.hpp"
+#include "haptics/haptic_loop.hpp"
+#include "haptics/sim_loop.hpp"
+#include "io/preview.hpp"
+#include "io/summary.hpp"
+
+namespace dentsph {
+
+const char* force_mode_name(ForceMode m) { return m == ForceMode::direct ? "direct" : "coupling"; }
+
+ForceMode force_mode_from_name(const std::string& name) {
+  if (name == "direct") return ForceMode::direct;
+  if (name == "coupling") return ForceMode::coupling;
+  throw std::invalid_argument("force mode '" + name + "': use direct or coupling");
+}
+
+namespace {
+
+void check_options(const RealtimeOptions& o, double force_scale) {
+  auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (!(o.haptic_rate_hz >= 500 && o.haptic_rate_hz <= 4000))
+    bad(fmt::format("haptic rate {} Hz: use 500 to 4000 Hz", o.haptic_rate_hz));
+  if (!(o.snapshot_rate_hz == 0 || (o.snapshot_rate_hz >= 30 && o.snapshot_rate_hz <= 60)))
+    bad(fmt::format("snapshot rate {} Hz: use 30 to 60 Hz (0: no consumer)", o.snapshot_rate_hz));
+  if (!(force_scale > 0) || !std::isfinite(force_scale))
+    bad(fmt::format("force scale {}: must be positive and finite (device N per simulated N)", force_scale));
+  if (!(o.workspace.scale > 0) || !std::isfinite(o.workspace.scale) || !is_finite(o.workspace.origin))
+    bad("workspace: the scale must be positive and finite, the origin finite");
+  if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
+    bad("duration and simulation rate limit must be non-negative, threads at least 1");
+  const WatchdogParams& w = o.watchdog;
+  if (!(w.sim_timeout_s > 0 && w.pose_timeout_s > 0 && w.ramp_down_s >= 0 && w.ramp_up_s >= 0))
+    bad("watchdog: timeouts must be positive, ramps non-negative");
+}
+
+}  // namespace
+
+RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOptions& opt) {
+  const double force_scale = opt.force_scale.value_or(double(scene.force_scale));
+  check_options(opt, force_scale);
+  State state = make_state(scene);
+  RealtimeResult res;
+  RunSummary& sum = res.run;
+  sum.scene = scene.name;
+  sum.threads = opt.threads;
+  sum.dt = scene.model.dt;
+  const StabilityLimits limits = check_time_step(scene, state, opt.allow_unstable);
+  sum.acoustic_violated = sum.dt > limits.acoustic;
+  sum.viscous_violated = sum.dt > limits.viscous;
+  sum.forced = opt.allow_unstable && (sum.acoustic_violated || sum.viscous_violated);
+
+  haptics::Snapshot empty;
+  empty.positions.resize(std::size_t(state.size()) * 2 + 1024);  // room for dispensed increments
+  haptics::RuntimeShared shared(empty);
+  haptics::HapticLoop haptic(device, opt, shared);
+  haptics::SimLoop sim(scene, state, opt, force_scale, shared);
+  haptics::ConsumerLoop consumer(opt, shared);
+
+  const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
+  std::thread ht([&] { haptic.run(t0); });
+  if (opt.realtime_priority) {
+    // Best effort: the haptic thread first in line for a core (SCHED_FIFO; needs root or
+    // CAP_SYS_NICE). It sleeps most of each period, so it takes little from the others.
+    sched_param sp{};
+    sp.sched_priority = 20;
+    res.haptic.realtime_priority = pthread_setschedparam(ht.native_handle(), SCHED_FIFO, &sp) == 0;
+  }
+  std::thread ct([&] { consumer.run(t0); });
+  // The simulation runs on the calling thread: the State stays with its owner, and OpenMP's
+  // parallel regions always start from the same thread.
+  sim.run(t0, [&](std::int64_t now) {
+    return (opt.duration_s > 0 && double(now - t0) * 1e-9 >= opt.duration_s) ||
+           shared.device_finished.load(std::memory_order_acquire) ||
+           (opt.stop && opt.stop->load(std::memory_order_relaxed));
+  });
+  if (!shared.stop.load(std::memory_order_relaxed)) {
+    // Diverged: let the watchdog bring the force down before stopping.
+    haptics::sleep_until_ns(
+        haptics::now_ns() + std::int64_t((opt.watchdog.sim_timeout_s + opt.watchdog.ramp_down_s + 0.01) * 1e9), 0);
+    shared.stop.store(true, std::memory_order_relaxed);
+  }
+  ht.join();
+  ct.join();
+  const double wall = double(haptics::now_ns() - t0) * 1e-9;
+
+  const bool priority = res.haptic.realtime_priority;
+  res.haptic = haptic.report();
+  res.haptic.realtime_priority = priority;
+  res.sim = sim.report();
+  res.consumer = consumer.report();
+  res.device_name = device.name();
+  res.device_json = device.report_json();
+  res.recording.mode = force_mode_name(opt.mode);
+  res.recording.haptic_rate_hz = opt.haptic_rate_hz;
+  res.recording.force_scale = force_scale;
+  res.recording.haptic_dropped = haptic.recording_dropped();
+  res.recording.haptic = haptic.take_recording();
+  res.recording.steps = std::move(sim.steps);
+  res.recording.events = std::move(sim.events);
+
+  sum.status = sim.summary.status;
+  sum.message = sim.summary.message;
+  sum.limits = sim.summary.limits;
+  sum.force_violation_steps = sim.summary.force_violation_steps;
+  sum.first_force_violation_t = sim.summary.first_force_violation_t;
+  sum.peak_tool_force_N = sim.summary.peak_tool_force_N;
+  sum.events_applied = sim.summary.events_applied;
+  sum.steps = state.steps;
+  sum.sim_time_s = state.time;
+  sum.wall_time_s = wall;
+  sum.steps_per_second = res.sim.steps_per_second;
+  sum.material = state.count(Role::material);
+  sum.boundary = state.count(Role::boundary);
+  sum.tool = state.count(Role::tool);
+  sum.bonds = state.bonds.counters;
+  sum.bonds_current = state.bonded_pairs();
+  sum.realtime_json = realtime_json(res);
+  if (!opt.out_dir.empty()) {
+    std::filesystem::create_directories(opt.out_dir);
+    io::write_summary(opt.out_dir / "summary.json", sum);
+    save_recording(opt.out_dir / "recording", res.recording);
+    io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+  }
+  return res;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,146 @@
+#include "haptics/sim_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "dentsph/step.hpp"
+#include "haptics/clock.hpp"
+#include "haptics/virtual_coupling.hpp"
+
+namespace dentsph::haptics {
+
+namespace {
+constexpr real kExplosionSpeedFactor = 10;  // as run_offline: material at 10 c has exploded
+}
+
+SimLoop::SimLoop(const Scene& scene, State& state, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
+    : scene_(scene), state_(state), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
+  steps.reserve(1 << 16);
+  summary.limits = stability_limits(scene.model, state);
+  summary.limits.force = std::numeric_limits<real>::infinity();
+}
+
+bool SimLoop::diverged() {
+  const StepDiagnostics& d = state_.diagnostics;
+  if (d.non_finite == 0 && !(d.max_speed > kExplosionSpeedFactor * summary.limits.sound_speed)) return false;
+  summary.status = "diverged";
+  summary.message = fmt::format("at t = {:.6g} s (step {}): {}; lower simulation.dt or the stiffness", state_.time,
+                                state_.steps,
+                                d.non_finite ? fmt::format("{} material particles became non-finite", d.non_finite)
+                                             : fmt::format("material reached {:.3g} m/s", d.max_speed));
+  return true;
+}
+
+void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop) {
+  t0_ns_ = t0_ns;
+  const real dt = scene_.model.dt;
+  const std::int64_t min_step_ns = opt_.sim_rate_limit_hz > 0 ? std::int64_t(1e9 / opt_.sim_rate_limit_hz) : 0;
+  const std::int64_t snapshot_ns = opt_.snapshot_rate_hz > 0 ? std::int64_t(1e9 / opt_.snapshot_rate_hz) : 0;
+  std::int64_t next_snapshot = t0_ns, last_step_start = t0_ns - min_step_ns;
+  bool stalled = false;
+  ToolCommand cmd;
+  std::size_t next_event = 0;
+  VirtualCoupling proxy(opt_.coupling);
+  bool proxy_started = false;
+  while (!shared_.stop.load(std::memory_order_relaxed)) {
+    std::int64_t now = now_ns();
+    if (should_stop(now)) {
+      shared_.stop.store(true, std::memory_order_relaxed);
+      break;
+    }
+    // ---- pacing ---------------------------------------------------------------------------------
+    if (opt_.faults.sim_stall_at_s >= 0 && !stalled && double(now - t0_ns) * 1e-9 >= opt_.faults.sim_stall_at_s) {
+      stalled = true;
+      ++rep_.stalls_injected;
+      sleep_until_ns(now + std::int64_t(opt_.faults.sim_stall_s * 1e9), 0);
+    }
+    std::int64_t wake = 0;
+    if (opt_.pace_realtime) wake = t0_ns + std::int64_t(double(state_.time) * 1e9);
+    if (min_step_ns > 0) wake = std::max(wake, last_step_start + min_step_ns);
+    if (wake > now) {
+      // Sleep in slices so that a stop is seen quickly.
+      sleep_until_ns(std::min(wake, now + 5'000'000), 0);
+      continue;
+    }
+    last_step_start = now;
+
+    // ---- the newest tool command, the events due, one step ---------------------------------------
+    if (shared_.command.update()) cmd = shared_.command.front();
+    while (next_event < scene_.events.size() && scene_.events[next_event].t <= state_.time + 0.5 * dt) {
+      events.push_back({state_.steps, std::uint32_t(next_event)});
+      apply_event(scene_, state_, scene_.events[next_event++]);
+      ++summary.events_applied;
+    }
+    if (cmd.valid) {
+      Vec3 tool = cmd.pose.position;
+      if (opt_.mode == ForceMode::coupling) {
+        // The proxy: pulled by the coupling to the device, pushed by the tool force of the last
+        // step, over this step's dt.
+        if (!proxy_started) proxy.reset(tool), proxy_started = true;
+        proxy.step(cmd.pose.position, cmd.velocity, state_.tool_wrench.force * force_scale_, dt);
+        tool = proxy.position();
+      }
+      state_.tool_pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
+    }
+    StepSample sample;
+    sample.step = state_.steps;
+    sample.wall_t = double(now - t0_ns) * 1e-9;
+    sample.tool_pose = state_.tool_pose;
+    const std::int64_t s0 = now_ns();
+    step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
+    now = now_ns();
+    step_times_.add(double(now - s0) * 1e-3);
+    sample.tool_force = state_.tool_wrench.force;
+    steps.push_back(sample);
+    summary.peak_tool_force_N = std::max(summary.peak_tool_force_N, norm(state_.tool_wrench.force));
+    const real force_limit = force_time_step_limit(scene_.model, state_.diagnostics);
+    summary.limits.force = std::min(summary.limits.force, force_limit);
+    if (dt > force_limit && summary.force_violation_steps++ == 0) summary.first_force_violation_t = state_.time - dt;
+    if (diverged()) break;  // nothing more is published: the watchdog ramps the force to zero
+
+    // ---- publish ----------------------------------------------------------------------------------
+    SimOutput& out = shared_.output.back();
+    out.force_N = state_.tool_wrench.force * force_scale_;
+    out.proxy_position = proxy_started ? proxy.position() : cmd.pose.position;
+    out.proxy_velocity = proxy_started ? proxy.velocity() : Vec3{};
+    out.step = state_.steps;
+    out.sim_time = state_.time;
+    out.command_stamp_ns = cmd.valid ? cmd.stamp_ns : now;
+    out.published_ns = now;
+    out.valid = true;
+    shared_.output.publish();
+    if (snapshot_ns > 0 && now >= next_snapshot) {
+      publish_snapshot(now);
+      next_snapshot = std::max(next_snapshot + snapshot_ns, now);
+    }
+  }
+  end_ns_ = now_ns();
+}
+
+void SimLoop::publish_snapshot(std::int64_t now_ns) {
+  Snapshot& s = shared_.snapshots.back();
+  if (s.positions.size() < state_.size()) s.positions.resize(state_.size());  // dispensed material
+  std::copy(state_.pos.begin(), state_.pos.end(), s.positions.begin());
+  s.count = state_.size();
+  s.sim_time = state_.time;
+  s.step = state_.steps;
+  s.published_ns = now_ns;
+  shared_.snapshots.publish();
+}
+
+SimReport SimLoop::report() const {
+  SimReport r = rep_;
+  r.steps = steps.size();
+  const double wall = double(end_ns_ - t0_ns_) * 1e-9;
+  r.steps_per_second = wall > 0 ? double(r.steps) / wall : 0;
+  r.realtime_factor = wall > 0 ? double(r.steps) * double(scene_.model.dt) / wall : 0;
+  r.step_p50_us = step_times_.quantile(0.5);
+  r.step_p99_us = step_times_.quantile(0.99);
+  r.step_max_us = step_times_.max();
+  return r;
+}
+
+}  // namespace dentsph::haptics

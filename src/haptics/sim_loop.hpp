@@ -1,0 +1,43 @@
+// The simulation loop: owns the State. Takes the newest tool command, applies the procedure's
+// events at their simulated time, steps, publishes the tool force (scaled to device newtons) and,
+// at the snapshot rate, the particle positions. Paced to real time (never ahead of the wall
+// clock) or free-running; optionally capped at a step rate (a slow simulation).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "dentsph/haptics.hpp"
+#include "haptics/shared.hpp"
+#include "haptics/timing_stats.hpp"
+
+namespace dentsph::haptics {
+
+class SimLoop {
+ public:
+  SimLoop(const Scene& scene, State& state, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
+  // Runs on the calling thread from t0_ns until shared.stop is set or should_stop(now) says so
+  // (then it sets shared.stop), or the simulation diverges.
+  void run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop);
+  SimReport report() const;
+
+  std::vector<StepSample> steps;    // every step's tool pose and force
+  std::vector<EventSample> events;  // the procedure events applied
+  RunSummary summary;               // filled as in run_offline (peak force, limits, status)
+
+ private:
+  void publish_snapshot(std::int64_t now_ns);
+  bool diverged();
+
+  const Scene& scene_;
+  State& state_;
+  RealtimeOptions opt_;
+  double force_scale_;
+  RuntimeShared& shared_;
+  DurationHistogram step_times_;
+  SimReport rep_;
+  std::int64_t t0_ns_ = 0, end_ns_ = 0;
+};
+
+}  // namespace dentsph::haptics

@@ -1,0 +1,28 @@
+// Virtual coupling (Colgate et al. 1995): a proxy of mass m tied to the device by a spring k and
+// a damper b, pushed by the simulated tool force and slowed by a drag c. Integrated implicitly
+// (backward Euler on the linear terms), so it is stable at any stiffness and haptic rate; the
+// proxy is the simulated tool: the simulation loop steps it with its own dt, so the tool never
+// moves faster than the coupling pulls it, however slow the simulation; the haptic loop renders
+// the coupling force with the device's newest position (force_renderer.cpp).
+#pragma once
+
+#include "dentsph/haptics.hpp"
+
+namespace dentsph::haptics {
+
+class VirtualCoupling {
+ public:
+  explicit VirtualCoupling(const CouplingParams& p);
+  void reset(const Vec3& position) { x_ = position, v_ = {}; }
+  // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
+  // (device N). Returns the force on the hand.
+  Vec3 step(const Vec3& device_x, const Vec3& device_v, const Vec3& tool_force, double dt);
+  const Vec3& position() const { return x_; }
+  const Vec3& velocity() const { return v_; }
+
+ private:
+  CouplingParams p_;
+  Vec3 x_, v_;
+};
+
+}  // namespace dentsph::haptics

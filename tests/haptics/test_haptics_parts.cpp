@@ -1,0 +1,335 @@
+// The haptic runtime's parts on their own: the triple buffer, the wire format, the force limiter,
+// the watchdog, the interpolator, the virtual coupling, the timing histogram, the recording and
+// the passivity measure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "dentsph/haptics.hpp"
+#include "dentsph/haptics/protocol.hpp"
+#include "haptics/exchange.hpp"
+#include "haptics/force_interpolator.hpp"
+#include "haptics/force_limiter.hpp"
+#include "haptics/timing_stats.hpp"
+#include "haptics/virtual_coupling.hpp"
+#include "haptics/watchdog.hpp"
+
+namespace dentsph {
+namespace {
+
+namespace proto = haptic_protocol;
+using haptics::TripleBuffer;
+
+TEST(TripleBuffer, ReaderSeesTheNewestValueOnce) {
+  TripleBuffer<int> b;
+  EXPECT_FALSE(b.update());
+  b.back() = 1;
+  b.publish();
+  b.back() = 2;
+  b.publish();
+  EXPECT_TRUE(b.update());
+  EXPECT_EQ(b.front(), 2);
+  EXPECT_FALSE(b.update());
+  EXPECT_EQ(b.front(), 2);
+  b.back() = 3;
+  b.publish();
+  EXPECT_TRUE(b.update());
+  EXPECT_EQ(b.front(), 3);
+}
+
+// Two threads: the reader never sees a torn value, and values only move forward.
+TEST(TripleBuffer, ConcurrentValuesAreWholeAndInOrder) {
+  struct Payload {
+    std::uint64_t k = 0;
+    double a[8] = {};
+  };
+  TripleBuffer<Payload> b;
+  constexpr std::uint64_t n = 200000;
+  std::thread writer([&] {
+    for (std::uint64_t k = 1; k <= n; ++k) {
+      Payload& p = b.back();
+      p.k = k;
+      for (int i = 0; i < 8; ++i) p.a[i] = double(k) * (i + 1);
+      b.publish();
+    }
+  });
+  std::uint64_t last = 0, torn = 0, backwards = 0, taken = 0;
+  while (last < n) {
+    if (!b.update()) continue;
+    const Payload& p = b.front();
+    ++taken;
+    for (int i = 0; i < 8; ++i) torn += p.a[i] != double(p.k) * (i + 1);
+    backwards += p.k <= last;
+    last = p.k;
+  }
+  writer.join();
+  EXPECT_EQ(torn, 0u);
+  EXPECT_EQ(backwards, 0u);
+  EXPECT_GT(taken, 0u);
+}
+
+TEST(Protocol, PoseAndForceRoundTripExactly) {
+  std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
+  proto::PosePacket p;
+  p.header.sequence = 0xfffffffe;
+  p.header.timestamp_ns = 123456789012345ull;
+  p.position[0] = 0.1, p.position[1] = -2e-7, p.position[2] = 3.25;
+  p.orientation[0] = 0.5, p.orientation[1] = 0.5, p.orientation[2] = -0.5, p.orientation[3] = 0.5;
+  p.buttons = 5;
+  ASSERT_EQ(proto::encode(p, buf), proto::kPoseBytes);
+  EXPECT_EQ(buf[0], 'D');
+  EXPECT_EQ(buf[4], proto::kVersion);
+  EXPECT_EQ(buf[5], 1);
+  EXPECT_EQ(buf[8], 0xfe);  // little-endian sequence
+  EXPECT_EQ(buf[11], 0xff);
+  proto::PosePacket q;
+  ASSERT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kPoseBytes), q), proto::DecodeError::none);
+  EXPECT_EQ(q.header.sequence, p.header.sequence);
+  EXPECT_EQ(q.header.timestamp_ns, p.header.timestamp_ns);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(q.position[i], p.position[i]);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(q.orientation[i], p.orientation[i]);
+  EXPECT_EQ(q.buttons, 5u);
+
+  proto::ForcePacket f;
+  f.header.sequence = 7;
+  f.force[0] = -1.5, f.force[1] = 2.0, f.force[2] = 8.999;
+  f.pose_sequence = 99, f.status = proto::kSimStale, f.pose_timestamp_ns = 42, f.force_age_us = 1234;
+  ASSERT_EQ(proto::encode(f, buf), proto::kForceBytes);
+  proto::ForcePacket g;
+  ASSERT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kForceBytes), g), proto::DecodeError::none);
+  EXPECT_EQ(g.force[2], 8.999);
+  EXPECT_EQ(g.pose_sequence, 99u);
+  EXPECT_EQ(g.status, std::uint32_t(proto::kSimStale));
+  EXPECT_EQ(g.pose_timestamp_ns, 42u);
+  EXPECT_EQ(g.force_age_us, 1234u);
+}
+
+TEST(Protocol, RefusesEveryKindOfBadDatagram) {
+  std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
+  proto::PosePacket p;
+  const std::size_t n = proto::encode(p, buf);
+  proto::PosePacket q;
+  auto decode = [&](std::size_t len) { return proto::decode(std::span<const std::uint8_t>(buf.data(), len), q); };
+  EXPECT_EQ(decode(10), proto::DecodeError::too_short);
+  EXPECT_EQ(decode(n - 1), proto::DecodeError::bad_length);
+  auto tampered = [&](std::size_t at, std::uint8_t v) {
+    const std::uint8_t old = buf[at];
+    buf[at] = v;
+    const proto::DecodeError e = decode(n);
+    buf[at] = old;
+    return e;
+  };
+  EXPECT_EQ(tampered(0, 'X'), proto::DecodeError::bad_magic);
+  EXPECT_EQ(tampered(4, 9), proto::DecodeError::bad_version);
+  EXPECT_EQ(tampered(5, 77), proto::DecodeError::bad_type);
+  EXPECT_EQ(tampered(5, std::uint8_t(proto::Type::heartbeat)), proto::DecodeError::bad_length);
+  p.position[1] = std::numeric_limits<double>::quiet_NaN();
+  proto::encode(p, buf);
+  EXPECT_EQ(decode(n), proto::DecodeError::non_finite);
+  p.position[1] = 0;
+  p.orientation[0] = 0;
+  proto::encode(p, buf);
+  EXPECT_EQ(decode(n), proto::DecodeError::non_finite);  // no rotation in a zero quaternion
+}
+
+TEST(Protocol, SequencesCompareAcrossTheWrap) {
+  EXPECT_TRUE(proto::sequence_newer(1, 0));
+  EXPECT_TRUE(proto::sequence_newer(0, 0xffffffff));
+  EXPECT_FALSE(proto::sequence_newer(0xffffffff, 0));
+  EXPECT_FALSE(proto::sequence_newer(5, 5));
+}
+
+TEST(ForceLimiter, NeverSendsNonFiniteOrTooLargeOrTooSudden) {
+  const DeviceProfile falcon = device_profile("falcon");
+  haptics::ForceLimiter lim(falcon);
+  const double dt = 1e-3, step = falcon.max_force_rate_N_per_s * dt;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  Vec3 prev;
+  const Vec3 inputs[] = {{0, 0, 100}, {nan, 0, 0}, {0, inf, 0}, {-50, 0, 0}, {3, 4, 0}, {3, 4, 0}, {0, 0, 0}};
+  for (int rep = 0; rep < 20; ++rep)
+    for (const Vec3& in : inputs) {
+      const auto r = lim.apply(in, dt);
+      ASSERT_TRUE(is_finite(r.force));
+      EXPECT_LE(norm(r.force), falcon.max_force_N + 1e-12);
+      EXPECT_LE(norm(r.force - prev), step + 1e-12);
+      prev = r.force;
+    }
+  // A steady 5 N is reached and held exactly.
+  for (int k = 0; k < 20; ++k) lim.apply({3, 4, 0}, dt);
+  EXPECT_EQ(lim.apply({3, 4, 0}, dt).force, (Vec3{3, 4, 0}));
+  EXPECT_TRUE(lim.apply({nan, 0, 0}, dt).non_finite);
+  EXPECT_THROW(haptics::ForceLimiter(DeviceProfile{"bad", -1, 10}), std::invalid_argument);
+  EXPECT_THROW(device_profile("phantom"), std::invalid_argument);
+  EXPECT_EQ(device_profile("omega").max_force_N, 12.0);
+}
+
+TEST(Watchdog, RampsDownOnAFaultAndUpAfterRecovery) {
+  WatchdogParams p;  // timeouts 25 / 20 ms, ramps 10 / 100 ms
+  haptics::Watchdog w(p);
+  const double dt = 1e-3;
+  double g = 0;
+  for (int k = 0; k < 150; ++k) g = w.update(0.001, 0.001, dt);
+  EXPECT_DOUBLE_EQ(g, 1.0);
+  EXPECT_EQ(w.trips(), 0u);
+  // The simulation goes quiet: ages beyond the timeout.
+  double prev = g;
+  int ticks_to_zero = 0;
+  for (int k = 0; k < 30; ++k) {
+    g = w.update(0.03 + k * dt, 0.001, dt);
+    EXPECT_LE(prev - g, dt / p.ramp_down_s + 1e-12);  // a ramp, not a step
+    if (g > 0) ++ticks_to_zero;
+    prev = g;
+  }
+  EXPECT_EQ(g, 0.0);
+  EXPECT_LE(ticks_to_zero, 10);
+  EXPECT_TRUE(w.sim_stale());
+  EXPECT_EQ(w.trips(), 1u);
+  for (int k = 0; k < 50; ++k) g = w.update(0.001, 0.001, dt);
+  EXPECT_NEAR(g, 0.5, 1e-9);
+  // The pose goes stale (or never came: a negative age).
+  EXPECT_LT(w.update(0.001, -1, dt), 0.5);
+  EXPECT_TRUE(w.pose_stale());
+  EXPECT_EQ(w.trips(), 2u);
+}
+
+TEST(ForceInterpolator, ContinuousBetweenSlowSamples) {
+  haptics::ForceInterpolator f;
+  const std::int64_t ms = 1'000'000;
+  // Samples every 10 ms alternating 0 and 1 N; read every 1 ms.
+  double max_step = 0;
+  Vec3 prev;
+  for (std::int64_t t = 0; t < 500 * ms; t += ms) {
+    if (t % (10 * ms) == 0) f.add({0, 0, double((t / (10 * ms)) % 2)}, t);
+    const Vec3 v = f.at(t);
+    if (t > 50 * ms) max_step = std::max(max_step, norm(v - prev));
+    prev = v;
+  }
+  EXPECT_NEAR(f.interval_s(), 0.01, 1e-6);
+  EXPECT_LE(max_step, 0.1 + 1e-9);  // 1 N spread over the 10 ticks of a sample interval
+}
+
+TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
+  for (const double k : {100.0, 1e4, 1e7}) {
+    CouplingParams p;
+    p.stiffness_N_per_m = k;
+    haptics::VirtualCoupling c(p);
+    c.reset({0, 0, 0});
+    Vec3 f;
+    // The device 1 cm down, the tool pushed up by a constant 1 N: the proxy settles where the
+    // spring balances it, 1 N / k above the device, without oscillating out of bounds.
+    for (int i = 0; i < 20000; ++i) {
+      f = c.step({0, 0, -0.01}, {}, {0, 0, 1}, 1e-3);
+      ASSERT_TRUE(is_finite(f));
+      ASSERT_LE(std::abs(c.position().z), 0.02);
+    }
+    EXPECT_NEAR(f.z, 1.0, 1e-6) << k;  // the hand feels the tool force
+    EXPECT_NEAR(c.position().z, -0.01 + 1 / k, 1e-9) << k;
+  }
+  EXPECT_THROW(haptics::VirtualCoupling(CouplingParams{-1, 1, 1, 1}), std::invalid_argument);
+}
+
+TEST(DurationHistogram, Quantiles) {
+  haptics::DurationHistogram h;
+  for (int i = 1; i <= 1000; ++i) h.add(i);
+  EXPECT_EQ(h.count(), 1000u);
+  EXPECT_NEAR(h.quantile(0.5), 500, 1);
+  EXPECT_NEAR(h.quantile(0.99), 990, 1);
+  EXPECT_EQ(h.max(), 1000);
+  h.add(1e9);  // beyond the bins: counted, exact maximum
+  EXPECT_EQ(h.max(), 1e9);
+  EXPECT_EQ(h.quantile(1.0), 1e9);
+}
+
+TEST(Passivity, EnergyToHandOfASpringAndOfAnActiveForce) {
+  // The hand moves sinusoidally against a spring to a fixed point: the energy it gets back never
+  // exceeds what it put in (E <= 0 up to rounding). A force along the velocity is active.
+  std::vector<HapticSample> spring, active;
+  for (int i = 0; i <= 2000; ++i) {
+    HapticSample s;
+    s.t = i * 1e-3;
+    const double x = 0.01 * std::sin(2 * M_PI * s.t), v = 0.01 * 2 * M_PI * std::cos(2 * M_PI * s.t);
+    s.device_position = {0, 0, x};
+    s.force = {0, 0, -500 * x};
+    spring.push_back(s);
+    s.force = {0, 0, 50 * v};
+    active.push_back(s);
+  }
+  const auto e = energy_to_hand(spring);
+  for (double v : e) EXPECT_LE(v, 1e-4);
+  EXPECT_GT(energy_to_hand(active).back(), 0.1);
+}
+
+TEST(Recording, SavesAndLoadsExactly) {
+  Recording r;
+  r.mode = "coupling";
+  for (int i = 0; i < 5; ++i) {
+    HapticSample h;
+    h.t = i / 3.0;
+    h.device_position = {1.0 / 7, -i * 1e-9, 3};
+    h.force = {0.1 * i, 1e-300, -2};
+    h.gain = 0.3;
+    h.status = 5;
+    h.pose_sequence = 4000000000u;
+    r.haptic.push_back(h);
+    StepSample s;
+    s.step = std::uint64_t(i);
+    s.tool_pose.position = {M_PI, 0, i / 11.0};
+    s.tool_pose.orientation = Quat::from_axis_angle({1, 2, 3}, 0.3);
+    s.tool_force = {1e-5 / 3, 0, 0};
+    r.steps.push_back(s);
+  }
+  r.events.push_back({3, 1});
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_recording_test";
+  save_recording(dir, r);
+  const Recording q = load_recording(dir);
+  ASSERT_EQ(q.haptic.size(), 5u);
+  ASSERT_EQ(q.steps.size(), 5u);
+  ASSERT_EQ(q.events.size(), 1u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(q.haptic[i].t, r.haptic[i].t);
+    EXPECT_EQ(q.haptic[i].device_position, r.haptic[i].device_position);
+    EXPECT_EQ(q.haptic[i].force, r.haptic[i].force);
+    EXPECT_EQ(q.haptic[i].pose_sequence, r.haptic[i].pose_sequence);
+    EXPECT_EQ(q.steps[i].tool_pose.position, r.steps[i].tool_pose.position);
+    EXPECT_EQ(q.steps[i].tool_pose.orientation.x, r.steps[i].tool_pose.orientation.x);
+    EXPECT_EQ(q.steps[i].tool_force, r.steps[i].tool_force);
+  }
+  EXPECT_EQ(q.events[0].step, 3u);
+  // A broken file is named with its line.
+  { std::ofstream(dir / "steps.csv") << "step,wall_t,x,y,z,qw,qx,qy,qz,fx,fy,fz\n1,2,3\n"; }
+  try {
+    load_recording(dir);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("steps.csv: line 2"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+TEST(SceneFile, HapticsForceScaleIsReadAndChecked) {
+  const std::string base = R"({"name": "s", "simulation": {"dt": 1e-4, "h": 0.02},
+    "adhesion": {"A": 0.012, "B": 0.03},
+    "materials": {"paste": {"viscosity": 0.5, "stiffness": 60, "rest_density": 1000, "adhesion": 0}},
+    "roles": {"material": "paste"},
+    "blocks": [{"role": "material", "shape": "box", "min": [0, 0, 0], "max": [0.02, 0.02, 0.02], "spacing": 0.01}])";
+  EXPECT_EQ(parse_scene(base + "}", "a.json").force_scale, 1.0);
+  EXPECT_EQ(parse_scene(base + R"(, "haptics": {"force_scale": 20}})", "a.json").force_scale, 20.0);
+  try {
+    parse_scene(base + R"(, "haptics": {"force_scale": -2}})", "a.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("force_scale"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dentsph

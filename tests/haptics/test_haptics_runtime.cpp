@@ -1,0 +1,328 @@
+// The runtime end to end: three threads, a scripted device, the UDP bridge with the reference
+// client as a separate process, faults, passivity, continuity, recording and replay. Every
+// assertion is a safety or consistency property: timing is measured and reported, never
+// asserted (the machine is shared).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "client_process.hpp"
+#include "dentsph/haptics.hpp"
+#include "dentsph/haptics/protocol.hpp"
+#include "press_scene.hpp"
+
+namespace dentsph {
+namespace {
+
+namespace proto = haptic_protocol;
+using testing::ClientProcess;
+using testing::press_scene;
+
+// The test scene's tool forces are about 0.02-0.2 N: scaled by 20 they are what a Falcon renders.
+RealtimeOptions options(ForceMode mode) {
+  RealtimeOptions o;
+  o.mode = mode;
+  o.force_scale = 20;
+  o.profile = device_profile("falcon");
+  o.threads = 1;
+  o.record_capacity_s = 10;
+  o.workspace.origin = {0, 0, 0.09};  // the device's origin: the tool's first keyframe
+  return o;
+}
+
+nlohmann::json realtime_sections(const RealtimeResult& r) { return nlohmann::json::parse(r.run.realtime_json); }
+
+void print_timing(const RealtimeResult& r) { std::printf("%s", realtime_report(r).c_str()); }
+
+// Every force the runtime sent is finite, within the profile, and changes by at most the rate
+// limit per tick.
+void expect_safe(const RealtimeResult& r, const DeviceProfile& p) {
+  ASSERT_GT(r.recording.haptic.size(), 10u);
+  Vec3 prev;
+  double prev_t = r.recording.haptic.front().t;
+  for (const HapticSample& s : r.recording.haptic) {
+    ASSERT_TRUE(is_finite(s.force));
+    ASSERT_LE(norm(s.force), p.max_force_N + 1e-12);
+    ASSERT_LE(norm(s.force - prev), p.max_force_rate_N_per_s * std::min(0.1, std::max(s.t - prev_t, 0.0)) + 1e-9);
+    prev = s.force;
+    prev_t = s.t;
+  }
+}
+
+// The press scene under the runtime with a UDP device, the reference client (given arguments)
+// playing it from a separate process; the runtime's result and the client's report.
+std::pair<RealtimeResult, nlohmann::json> run_with_client(const RealtimeOptions& o, std::vector<std::string> args,
+                                                          const std::string& tag) {
+  const Scene scene = press_scene();
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  ClientProcess client(port, std::move(args), tag);
+  if (!client.started()) return {};
+  RealtimeResult r = run_realtime(scene, *device, o);
+  nlohmann::json c = client.wait();
+  print_timing(r);
+  std::printf("client: %s\n", c.dump().c_str());
+  return {std::move(r), std::move(c)};
+}
+
+TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 3.4;
+  const auto [r, c] = run_with_client(o, {"--rate", "1000", "--duration", "3", "--motion", "press", "--depth", "0.04",
+                                          "--period", "1.5", "--limit", "9"}, "plain");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json s = realtime_sections(r);
+  const nlohmann::json& d = s["device"];
+  // What the client saw: every force finite, within 9 N, answering a pose it sent (echoing that
+  // pose's timestamp), never going back to an older pose.
+  EXPECT_GT(c["forces_received"].get<std::uint64_t>(), 1000u);
+  EXPECT_EQ(c["non_finite_forces"], 0);
+  EXPECT_EQ(c["forces_over_limit"], 0);
+  EXPECT_EQ(c["malformed_received"], 0);
+  EXPECT_EQ(c["acks_ahead"], 0);
+  EXPECT_EQ(c["acks_backwards"], 0);
+  EXPECT_EQ(c["echo_mismatches"], 0);
+  EXPECT_LE(c["ack_lag_p50"].get<double>(), 2.0);  // the force answers the newest pose (or the one before)
+  EXPECT_GT(c["max_force_N"].get<double>(), 0.2);  // the tool pressed into the paste
+  // The summary agrees with the client.
+  EXPECT_EQ(d["name"], "udp");
+  EXPECT_EQ(d["sessions"], 1);
+  EXPECT_EQ(d["byes"], 1);
+  EXPECT_EQ(d["poses"], c["poses_sent"]);
+  EXPECT_EQ(d["malformed"], 0);
+  EXPECT_EQ(d["forces_sent"], c["forces_received"]);
+  EXPECT_EQ(d["max_force_sent_N"].get<double>(), c["max_force_N"].get<double>());
+  EXPECT_GE(s["haptic"]["max_force_N"].get<double>(), c["max_force_N"].get<double>());
+  EXPECT_LE(s["haptic"]["max_force_N"].get<double>(), 9.0);
+  const nlohmann::json& h = s["haptic"];
+  EXPECT_GT(h["rate_hz"].get<double>(), 0);
+  EXPECT_LE(h["period_p50_us"].get<double>(), h["period_p99_us"].get<double>());
+  EXPECT_LE(h["period_p99_us"].get<double>(), h["period_max_us"].get<double>());
+  EXPECT_GT(h["force_age_p99_us"].get<double>(), 0);
+  EXPECT_GT(s["sim"]["steps_per_second"].get<double>(), 0);
+  EXPECT_TRUE(h.contains("deadline_misses"));
+  expect_safe(r, o.profile);
+}
+
+TEST(HapticRuntime, VirtualCouplingIsPassiveWhilePressing) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::coupling);
+  auto device = make_scripted_device(scene, o.workspace);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  print_timing(r);
+  expect_safe(r, o.profile);
+  const std::vector<double> e = energy_to_hand(r.recording.haptic);
+  double in = 0, peak = 0;
+  for (double v : e) in = std::min(in, v), peak = std::max(peak, v);
+  std::printf("energy: the hand put in %.4g J; the most it got back beyond that: %.4g J\n", -in, peak);
+  EXPECT_GT(r.haptic.max_force_N, 0.5);  // it did press
+  // Passive: the device never delivers net energy to the hand (E(t) <= 0), within 1% of the
+  // work the hand did.
+  EXPECT_LE(peak, 0.01 * -in + 1e-6);
+}
+
+TEST(HapticRuntime, ForceStaysContinuousWithTheSimulationAtATenthOfTheHapticRate) {
+  // A slower press (3 cm down and up over 1.2 s), the simulation capped at 100 steps/s.
+  const Scene scene = press_scene(R"([{"t": 0.0, "position": [0, 0, 0.09]}, {"t": 0.6, "position": [0, 0, 0.06]},
+                                      {"t": 1.2, "position": [0, 0, 0.09]}])");
+  for (const ForceMode mode : {ForceMode::coupling, ForceMode::direct}) {
+    RealtimeOptions o = options(mode);
+    o.sim_rate_limit_hz = 100;
+    o.watchdog.sim_timeout_s = 0.05;
+    auto device = make_scripted_device(scene, o.workspace);
+    const RealtimeResult r = run_realtime(scene, *device, o);
+    print_timing(r);
+    expect_safe(r, o.profile);
+    EXPECT_LE(r.sim.steps_per_second, 105);
+    // The simulation's force jumps between its steps; what the hand feels must not.
+    double sim_jump = 0;
+    for (std::size_t k = 1; k < r.recording.steps.size(); ++k)
+      sim_jump = std::max(sim_jump, 20 * norm(r.recording.steps[k].tool_force - r.recording.steps[k - 1].tool_force));
+    // Without interpolation the coupling force would jump by k times the proxy's move per step.
+    double proxy_jump = 0;
+    for (std::size_t k = 1; k < r.recording.steps.size(); ++k)
+      proxy_jump = std::max(proxy_jump, o.coupling.stiffness_N_per_m *
+                                            norm(r.recording.steps[k].tool_pose.position -
+                                                 r.recording.steps[k - 1].tool_pose.position) / o.workspace.scale);
+    double rendered_step = 0;
+    const auto& h = r.recording.haptic;
+    for (std::size_t k = 1; k < h.size(); ++k)
+      if (h[k].gain == 1 && h[k - 1].gain == 1) rendered_step = std::max(rendered_step, norm(h[k].force - h[k - 1].force));
+    std::printf("%s: largest jump of the simulated force %.4g N (of k times the proxy's move %.4g N), largest step "
+                "of the rendered force %.4g N\n", force_mode_name(mode), sim_jump, proxy_jump, rendered_step);
+    EXPECT_GT(r.haptic.max_force_N, 0.2);
+    if (mode == ForceMode::coupling) {
+      // The stated bound: no step above 0.25 N per 1 ms tick under virtual coupling (the hand's
+      // own motion against the spring is part of it), far below the jumps of a held proxy.
+      EXPECT_LE(rendered_step, 0.25);
+      EXPECT_LT(rendered_step, proxy_jump);
+    } else {
+      // Direct: the simulation's jumps are spread over at least five ticks.
+      EXPECT_LE(rendered_step, 0.2 * sim_jump);
+    }
+  }
+}
+
+// The tool pressed in and held; the simulation stalls for 50 ms in the middle of the hold.
+TEST(HapticRuntime, SimulationStallRampsTheForceDownAndItRecovers) {
+  const Scene scene = press_scene(R"([{"t": 0.0, "position": [0, 0, 0.09]}, {"t": 0.3, "position": [0, 0, 0.05]},
+                                      {"t": 1.3, "position": [0, 0, 0.05]}])");
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.faults.sim_stall_at_s = 0.7;
+  o.faults.sim_stall_s = 0.05;
+  auto device = make_scripted_device(scene, o.workspace, 1.3);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  print_timing(r);
+  expect_safe(r, o.profile);
+  EXPECT_EQ(r.sim.stalls_injected, 1u);
+  EXPECT_GE(r.haptic.watchdog_trips, 1u);
+  const auto& h = r.recording.haptic;
+  auto force_at = [&](double t) {
+    for (const HapticSample& s : h)
+      if (s.t >= t) return s;
+    return h.back();
+  };
+  const double before = norm(force_at(0.68).force);
+  EXPECT_GT(before, 0.2);
+  // During the stall: once the simulation output is stale (25 ms) and the ramp (10 ms) is over,
+  // the force is exactly zero. (On a loaded machine the stall may begin a step after 0.7 s.)
+  std::size_t run = 0, zero_ticks = 0;
+  for (const HapticSample& s : h) {
+    run = (s.status & proto::kSimStale) ? run + 1 : 0;
+    if (run > std::size_t(o.watchdog.ramp_down_s * o.haptic_rate_hz) + 2 && s.t > 0.5) {
+      EXPECT_EQ(norm(s.force), 0.0) << s.t;
+      ++zero_ticks;
+    }
+  }
+  EXPECT_GT(zero_ticks, 0u);
+  // Recovered: the ramp up takes 100 ms.
+  const HapticSample later = force_at(1.0);
+  std::printf("force before the stall %.3f N, after %.3f N\n", before, norm(later.force));
+  EXPECT_EQ(later.gain, 1.0);
+  EXPECT_EQ(later.status & (proto::kSimStale | proto::kPoseStale), 0u);
+  // Rendered as computed again (its size is the paste's business: it relaxes during the hold).
+  EXPECT_GT(norm(later.force), 0.0);
+  EXPECT_LT(norm(later.force - later.target), 1e-9);
+}
+
+TEST(HapticRuntime, UdpFaultsAreCountedAndStalePosesRenderZero) {
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 2.4;
+  const auto [r, c] = run_with_client(o, {"--rate", "1000", "--duration", "2", "--motion", "circle", "--depth", "0.04",
+                                          "--drop", "0.03", "--duplicate", "0.03", "--reorder", "0.03", "--truncate",
+                                          "0.03", "--garbage", "0.03", "--pause-at", "1.0", "--pause-for", "0.3",
+                                          "--seed", "7"}, "faults");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json d = realtime_sections(r)["device"];
+  std::printf("runtime saw: %s\n", d.dump().c_str());
+  EXPECT_GT(c["dropped"].get<int>(), 0);
+  EXPECT_EQ(d["duplicates"], c["duplicated"]);
+  EXPECT_EQ(d["reordered"], c["reordered"]);
+  EXPECT_EQ(d["lost"].get<int>(), c["dropped"].get<int>() + c["truncated"].get<int>());
+  EXPECT_EQ(d["malformed"].get<int>(), c["truncated"].get<int>() + c["garbage"].get<int>());
+  EXPECT_EQ(d["sessions"], 1);  // the pause (0.3 s) is shorter than the session timeout
+  EXPECT_EQ(c["non_finite_forces"], 0);
+  EXPECT_EQ(c["forces_over_limit"], 0);
+  EXPECT_EQ(c["acks_ahead"], 0);
+  expect_safe(r, o.profile);
+  // While the pose is stale the force is zero once the ramp is over, and it comes back after.
+  const auto& h = r.recording.haptic;
+  std::size_t run = 0, zero_ticks = 0;
+  double after_pause = 0;
+  for (const HapticSample& s : h) {
+    run = (s.status & proto::kPoseStale) ? run + 1 : 0;
+    if (run > std::size_t(o.watchdog.ramp_down_s * o.haptic_rate_hz) + 2 && s.t > 0.5) {
+      EXPECT_EQ(norm(s.force), 0.0) << s.t;
+      ++zero_ticks;
+    }
+    if (s.t > 1.6 && s.t < 1.9) after_pause = std::max(after_pause, norm(s.force));
+  }
+  EXPECT_GT(zero_ticks, 200u);  // most of the 0.3 s pause
+  EXPECT_GT(after_pause, 0.1);
+}
+
+TEST(HapticRuntime, ClientsMayLeaveAndAnotherConnects) {
+  const Scene scene = press_scene();
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  ClientProcess first(port, {"--duration", "0.8", "--motion", "hold", "--no-bye"}, "first");
+  std::optional<ClientProcess> second;
+  std::thread later([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2000));  // after the first one's session timed out
+    second.emplace(port, std::vector<std::string>{"--duration", "0.5", "--motion", "still"}, "second");
+  });
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 3.0;
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  later.join();
+  EXPECT_FALSE(first.wait().is_null());
+  ASSERT_TRUE(second.has_value());
+  EXPECT_FALSE(second->wait().is_null());
+  const nlohmann::json d = realtime_sections(r)["device"];
+  std::printf("runtime saw: %s\n", d.dump().c_str());
+  EXPECT_EQ(d["sessions"], 2);
+  EXPECT_EQ(d["timeouts"], 1);
+  EXPECT_EQ(d["byes"], 1);
+  EXPECT_GT(r.recording.haptic.back().t, 2.9);  // kept running throughout
+  expect_safe(r, o.profile);
+  for (const HapticSample& s : r.recording.haptic)
+    if (s.t > 0.9 && s.t < 1.9) {
+      EXPECT_EQ(norm(s.force), 0.0) << s.t;  // nobody there
+    }
+}
+
+TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::direct);
+  auto device = make_scripted_device(scene, o.workspace);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  ASSERT_GT(r.recording.steps.size(), 100u);
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_replay_test";
+  save_recording(dir, r.recording);
+  const Recording loaded = load_recording(dir);
+  const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
+  const std::vector<Vec3> b = replay_steps(scene, loaded, 1);
+  ASSERT_EQ(a.size(), r.recording.steps.size());
+  ASSERT_EQ(b.size(), a.size());
+  double peak = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    // The stated bound: exact. Two replays agree bit for bit, and with the recording.
+    ASSERT_EQ(a[k], b[k]) << k;
+    ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
+    peak = std::max(peak, norm(a[k]));
+  }
+  EXPECT_GT(peak, 0.005);
+  // The replay device plays the recorded device poses in real time.
+  auto replay = make_replay_device(dir);
+  const RealtimeResult q = run_realtime(scene, *replay, o);
+  expect_safe(q, o.profile);
+  double worst = 0;
+  std::size_t j = 0;
+  for (const HapticSample& s : q.recording.haptic) {
+    while (j + 1 < r.recording.haptic.size() && r.recording.haptic[j + 1].t <= s.t) ++j;
+    worst = std::max(worst, norm(s.device_position - r.recording.haptic[j].device_position));
+  }
+  EXPECT_LT(worst, 1e-3);  // within a tick's motion
+  std::filesystem::remove_all(dir);
+}
+
+TEST(HapticRuntime, RefusesImpossibleOptions) {
+  const Scene scene = press_scene();
+  auto device = make_scripted_device(scene, {});
+  RealtimeOptions o;
+  o.haptic_rate_hz = 100;
+  EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
+  o.haptic_rate_hz = 1000;
+  o.snapshot_rate_hz = 200;
+  EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
+  o.snapshot_rate_hz = 30;
+  o.force_scale = std::nan("");
+  EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
+  EXPECT_THROW(make_udp_device({"not-an-address", 0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dentsph
