@@ -16,7 +16,13 @@ extern "C" void on_signal(int) { g_stop.store(true); }
 void RealtimeCommand::add_options(CLI::App& run) {
   auto* rt = run.add_flag("--realtime", realtime_,
                           "Run the haptic runtime: a haptic loop, the simulation and a consumer on their own threads");
-  auto need = [rt](CLI::Option* o) { o->needs(rt); };
+  add_device_options(run, rt);
+}
+
+void RealtimeCommand::add_device_options(CLI::App& run, CLI::Option* rt) {
+  auto need = [rt](CLI::Option* o) {
+    if (rt) o->needs(rt);
+  };
   need(run.add_option("--device", device_, "Haptic device: scripted (the scene's keyframes), replay (a recording), udp (the network bridge)")
            ->check(CLI::IsMember({"scripted", "replay", "udp"}))
            ->capture_default_str());
@@ -43,11 +49,11 @@ void RealtimeCommand::add_options(CLI::App& run) {
   need(run.add_option("--snapshot-rate", snapshot_rate_, "Consumer loop rate (Hz, 30 to 60)")->check(CLI::Range(30.0, 60.0))->capture_default_str());
 }
 
-int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
-  if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
+RealtimeOptions RealtimeCommand::options(const Scene& scene, double duration_s, int threads, bool allow_unstable,
+                                         const std::filesystem::path& out_dir) const {
   RealtimeOptions o;
   o.haptic_rate_hz = haptic_rate_;
-  o.duration_s = double(offline.duration);
+  o.duration_s = duration_s;
   o.mode = force_mode_from_name(mode_);
   if (force_scale_ > 0) o.force_scale = force_scale_;
   o.profile = device_profile(profile_);
@@ -55,29 +61,36 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   o.pace_realtime = !free_run_;
   o.sim_rate_limit_hz = sim_rate_;
   o.snapshot_rate_hz = snapshot_rate_;
-  o.threads = offline.threads;
-  o.allow_unstable = offline.allow_unstable;
-  o.out_dir = offline.out_dir;
+  o.threads = threads;
+  o.allow_unstable = allow_unstable;
+  o.out_dir = out_dir;
   o.workspace.scale = workspace_scale_;
   o.workspace.origin = origin_.size() == 3 ? Vec3{origin_[0], origin_[1], origin_[2]}
                        : scene.tool.keyframes.empty() ? Vec3{}
                                                       : scene.tool.keyframes.front().pose.position;
+  return o;
+}
+
+std::unique_ptr<Device> RealtimeCommand::make_device(const Scene& scene, const RealtimeOptions& o, bool quiet) const {
+  if (device_ == "scripted") return make_scripted_device(scene, o.workspace, o.duration_s);
+  if (device_ == "replay") {
+    if (replay_dir_.empty()) throw std::invalid_argument("--device replay needs --replay FOLDER (OUT/recording of a realtime run)");
+    return make_replay_device(replay_dir_);
+  }
+  std::uint16_t port = 0;
+  std::unique_ptr<Device> device = make_udp_device(udp_, &port);
+  if (o.duration_s <= 0 && !quiet) fmt::print("no --duration: runs until Ctrl-C\n");
+  fmt::print("listening for a haptic client on udp {}:{} (dentsph-haptic-client --port {})\n", udp_.address, port, port);
+  return device;
+}
+
+int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
+  if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
+  RealtimeOptions o = options(scene, double(offline.duration), offline.threads, offline.allow_unstable, offline.out_dir);
   o.stop = &g_stop;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-
-  std::unique_ptr<Device> device;
-  if (device_ == "scripted") {
-    device = make_scripted_device(scene, o.workspace, o.duration_s);
-  } else if (device_ == "replay") {
-    if (replay_dir_.empty()) throw std::invalid_argument("--device replay needs --replay FOLDER (OUT/recording of a realtime run)");
-    device = make_replay_device(replay_dir_);
-  } else {
-    std::uint16_t port = 0;
-    device = make_udp_device(udp_, &port);
-    if (o.duration_s <= 0 && !quiet) fmt::print("no --duration: runs until Ctrl-C\n");
-    fmt::print("listening for a haptic client on udp {}:{} (dentsph-haptic-client --port {})\n", udp_.address, port, port);
-  }
+  const std::unique_ptr<Device> device = make_device(scene, o, quiet);
   std::fflush(stdout);
   const RealtimeResult r = run_realtime(scene, *device, o);
   fmt::print("\n{}", realtime_report(r));

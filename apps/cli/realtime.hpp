@@ -2,7 +2,9 @@
 // (docs/haptics.md).
 #pragma once
 
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,7 +18,16 @@ class RealtimeCommand {
  public:
   // Adds --realtime and its options to `run`.
   void add_options(CLI::App& run);
+  // Adds the device and rendering options alone (--device, --mode, --profile, --port, ...), each
+  // requiring `gate` when given (the viewer has no --realtime flag).
+  void add_device_options(CLI::App& app, CLI::Option* gate = nullptr);
   bool enabled() const { return realtime_; }
+  const std::string& device_name() const { return device_; }
+  // The runtime's options from the command line, for `scene` (duration in wall seconds).
+  RealtimeOptions options(const Scene& scene, double duration_s, int threads, bool allow_unstable,
+                          const std::filesystem::path& out_dir) const;
+  // The chosen device (a UDP bridge is bound and says where it listens).
+  std::unique_ptr<Device> make_device(const Scene& scene, const RealtimeOptions& options, bool quiet) const;
   // Runs `scene` under the runtime; `offline` carries --duration, --out, --threads and
   // --allow-unstable. Returns the exit code.
   int run(const Scene& scene, const RunOptions& offline, bool quiet);

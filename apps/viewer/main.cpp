@@ -4,6 +4,8 @@
 #include <thread>
 
 #include <fstream>
+#include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -13,6 +15,8 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "colour_map.hpp"
+#include "dentsph/haptics.hpp"
+#include "realtime.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
@@ -20,7 +24,8 @@
 namespace {
 
 // What a run of the viewer did, for scripts and tests.
-void write_summary(const std::string& file, const dentsph::viewer::ViewerResult& r) {
+void write_summary(const std::string& file, const dentsph::viewer::ViewerResult& r,
+                   const std::optional<dentsph::RealtimeResult>& realtime) {
   using nlohmann::json;
   std::uint32_t material = 0;
   for (dentsph::Role role : r.last.role) material += role == dentsph::Role::material;
@@ -34,6 +39,8 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};
   if (r.last.assessment) j["assessment"] = json::parse(dentsph::assessment_json(*r.last.assessment));
+  if (realtime) j["realtime"] = json::parse(dentsph::realtime_json(*realtime));
+  if (!r.last.message.empty()) j["message"] = r.last.message;
   std::ofstream out(file);
   out << j.dump(2) << "\n";
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary (--summary)", file));
@@ -69,6 +76,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   std::string summary_file;
   app.add_option("--summary", summary_file, "Write the frame and simulation rates and the final assessment as JSON");
+  cli::RealtimeCommand device;
+  device.add_device_options(app);
   bool no_vsync = false;
   app.add_flag("--no-vsync", no_vsync, "Do not wait for the display's refresh");
   app.add_option("--max-fps", vo.max_fps, "Frames per second at most; 0: as fast as possible (to measure)")
@@ -86,7 +95,15 @@ int main(int argc, char** argv) {
                : !mesh_file.empty() ? dental_scene_from_mesh(mesh_file)
                                     : default_dental_scene();
     check_time_step(sc, make_state(sc), false);
+    const bool with_device = app.count("--device") > 0;
+    RealtimeOptions ro;
+    std::unique_ptr<Device> dev;
+    if (with_device) {
+      ro = device.options(sc, 0, so.threads, false, {});
+      dev = device.make_device(sc, ro, false);
+    }
     viewer::SimSession session(std::move(sc), so);
+    if (dev) session.use_device(std::move(dev), ro);
     std::signal(SIGINT, [](int) { viewer::request_close(); });
     std::signal(SIGTERM, [](int) { viewer::request_close(); });
     const viewer::ViewerResult r = viewer::run_viewer(session, vo);
@@ -94,7 +111,8 @@ int main(int argc, char** argv) {
                "{:.0f} steps/s\n",
                r.frames, r.fps_median, r.frame_p50_ms, r.frame_p99_ms, r.sim_steps, r.sim_steps_per_second);
     if (!screenshot.empty() && !r.closed_by_user && !r.timed_out) fmt::print("wrote {}\n", screenshot);
-    if (!summary_file.empty()) write_summary(summary_file, r);
+    if (session.realtime_result()) fmt::print("\n{}", realtime_report(*session.realtime_result()));
+    if (!summary_file.empty()) write_summary(summary_file, r, session.realtime_result());
     if (r.closed_by_user) fmt::print("viewer: closed before the end; the simulation stopped cleanly\n");
     if (r.timed_out) {
       fmt::print(stderr, "error: gave up after {:.0f} s (--timeout) before the frames and the script were done\n",

@@ -151,6 +151,20 @@ void loops_panel(const Snapshot& s, const FrameStats& st) {
   ImGui::Text("render      %.1f fps", st.fps);
   ImGui::Text("            frame p50 %.1f ms, p99 %.1f ms", st.frame_p50_ms, st.frame_p99_ms);
   ImGui::Text("simulation  %.0f steps/s  (%.3g x real time)", s.steps_per_second, s.steps_per_second * double(s.dt));
+  if (s.haptic) {
+    const Snapshot::Haptic& h = *s.haptic;
+    ImGui::Separator();
+    ImGui::Text("haptic      %.0f Hz  (%s)", h.rate_hz, h.device.c_str());
+    ImGui::Text("            period %.0f us, max %.0f us (0.5 s)", h.period_last_us, h.period_max_recent_us);
+    ImGui::Text("            %llu deadline misses", static_cast<unsigned long long>(h.deadline_misses));
+    ImGui::Text("device      |F| = %.3g N, gain %.2f", double(norm(h.force_N)), h.gain);
+    if (h.pose_age_ms < 0)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "no pose from the device yet: zero force");
+    else if (h.status & 2u)
+      ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "device quiet for %.0f ms: force ramped to zero", h.pose_age_ms);
+    if (h.status & 1u)
+      ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "simulation output %.0f ms old: force ramped down", h.sim_age_ms);
+  }
   ImGui::End();
 }
 

@@ -48,45 +48,52 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
   if (opt_.dispense_volume <= 0)
     opt_.dispense_volume = scene_.tooth ? scene_.tooth->cavity_volume() / 6 : 200 * s * s * s;
   paused_ = opt_.start_paused;
-  reset_state();
-  publish(true, 0);
+  reset_state(state_);
+  publish(state_, true, 0);
 }
 
 SimSession::~SimSession() { stop(); }
 
-void SimSession::reset_state() {
-  state_ = make_state(scene_);
-  apply_paste();  // the paste as edited, not as the scene first gave it
+void SimSession::reset_state(State& st) {
+  st = make_state(scene_);
+  apply_paste(st);  // the paste as edited, not as the scene first gave it
   tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
-  state_.tool_pose = state_.tool_pose_applied;
+  st.tool_pose = st.tool_pose_applied;
   forces_ = {};
   diverged_ = false;
   steps_.store(0, std::memory_order_release);
 }
 
-void SimSession::apply_paste() {
-  for (std::uint32_t i = 0; i < state_.size(); ++i)
-    if (state_.role[i] == Role::material) {
-      state_.Kp[i] = paste_.Kp;
-      state_.Ka[i] = paste_.Ka;
-      state_.mu[i] = paste_.mu;
+void SimSession::apply_paste(State& st) {
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (st.role[i] == Role::material) {
+      st.Kp[i] = paste_.Kp;
+      st.Ka[i] = paste_.Ka;
+      st.mu[i] = paste_.mu;
     }
-  sound_speed_ = stability_limits(scene_.model, state_).sound_speed;
+  sound_speed_ = stability_limits(scene_.model, st).sound_speed;
 }
 
 std::vector<std::string> SimSession::tools() const { return {"ball_burnisher", "flat_plugger", "condenser"}; }
 
+void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions options) {
+  if (running_.load()) throw std::logic_error("SimSession::use_device after start()");
+  device_ = std::move(device);
+  rt_options_ = std::move(options);
+}
+
 void SimSession::start() {
   if (running_.exchange(true)) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    if (device_) run_device();
+    else run();
+  });
 }
 
 void SimSession::stop() {
-  if (!running_.exchange(false)) {
-    if (thread_.joinable()) thread_.join();
-    return;
-  }
+  running_.store(false);
+  rt_stop_.store(true);
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
 }
@@ -124,14 +131,21 @@ Vec3 SimSession::tool_tip_goal() const {
   return pressed_ ? target_ - press_axis_ * (opt_.press_depth_spacings * s) : target_;
 }
 
-void SimSession::apply(const Command& c) {
+void SimSession::apply(const Command& c, State& st) {
   message_.clear();
   switch (c.kind) {
-    case Command::Kind::pause: paused_ = true; return;
-    case Command::Kind::resume: paused_ = false; return;
-    case Command::Kind::single_step: paused_ = true; single_ = true; return;
-    case Command::Kind::reset: reset_state(); return;
-    case Command::Kind::tool_target: target_ = c.target; return;
+    case Command::Kind::pause:
+    case Command::Kind::resume:
+    case Command::Kind::single_step:
+      if (device_) {
+        message_ = "the haptic runtime does not pause: the device's hand keeps moving (close the window to stop)";
+        return;
+      }
+      if (c.kind == Command::Kind::single_step) single_ = true;
+      paused_ = c.kind != Command::Kind::resume;
+      return;
+    case Command::Kind::reset: reset_state(st); return;
+    case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
     case Command::Kind::dispense: {
       const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
@@ -141,16 +155,16 @@ void SimSession::apply(const Command& c) {
       const Vec3 axis_origin = scene_.tooth ? scene_.tooth->frame().origin
                                             : 0.5 * (scene_.model.domain_min + scene_.model.domain_max);
       real top = 0;
-      for (std::uint32_t i = 0; i < state_.size(); ++i)
-        if (state_.role[i] == Role::material) top = std::max(top, dot(state_.pos[i] - axis_origin, up));
+      for (std::uint32_t i = 0; i < st.size(); ++i)
+        if (st.role[i] == Role::material) top = std::max(top, dot(st.pos[i] - axis_origin, up));
       const Vec3 centre = axis_origin + up * (top + r + 2 * s);
-      state_.add_particles(scene_.model, material_increment(centre, opt_.dispense_volume, s, paste_mass_, paste_));
+      st.add_particles(scene_.model, material_increment(centre, opt_.dispense_volume, s, paste_mass_, paste_));
       return;
     }
     case Command::Kind::switch_tool: {
       const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
       try {
-        switch_tool(state_, scene_.model, tool_by_name(c.tool, s), paste_mass_, tool_material_);
+        switch_tool(st, scene_.model, tool_by_name(c.tool, s), paste_mass_, tool_material_);
         tool_name_ = c.tool;
       } catch (const std::exception& e) {
         message_ = e.what();
@@ -161,6 +175,12 @@ void SimSession::apply(const Command& c) {
       const MaterialEdit& m = c.material;
       if (!(m.Kp > 0) || !(m.mu >= 0) || !(m.Ka >= 0)) {
         message_ = "material: Kp must be positive, mu and Ka non-negative";
+        return;
+      }
+      const AdhesionParams& now = scene_.model.adhesion;
+      if (device_ && (m.A != now.A || m.B != now.B || m.eps != now.eps || m.zeta != now.zeta)) {
+        message_ = "the adhesion kernel (A, B, eps, zeta) is fixed while a device drives the runtime; Kp, Ka and mu "
+                   "can change";
         return;
       }
       ModelParams p = scene_.params;
@@ -190,35 +210,35 @@ void SimSession::apply(const Command& c) {
       paste_.Kp = m.Kp;
       paste_.Ka = m.Ka;
       paste_.mu = m.mu;
-      apply_paste();
+      apply_paste(st);
       return;
     }
   }
 }
 
-void SimSession::publish(bool with_assessment, double steps_per_second) {
+void SimSession::publish(const State& st, bool with_assessment, double steps_per_second) {
   Snapshot s;
-  const std::uint32_t n = state_.size();
-  s.time = state_.time;
-  s.steps = state_.steps;
+  const std::uint32_t n = st.size();
+  s.time = st.time;
+  s.steps = st.steps;
   s.xyz.resize(3 * std::size_t(n));
-  s.role.assign(state_.role.begin(), state_.role.end());
+  s.role.assign(st.role.begin(), st.role.end());
   s.pressure.resize(n);
   s.density.resize(n);
   s.speed.resize(n);
   s.bonds.resize(n);
-  const bool have_fields = state_.rho.size() == n && state_.pressure.size() == n;
+  const bool have_fields = st.rho.size() == n && st.pressure.size() == n;
   for (std::uint32_t i = 0; i < n; ++i) {
-    s.xyz[3 * i] = float(state_.pos[i].x);
-    s.xyz[3 * i + 1] = float(state_.pos[i].y);
-    s.xyz[3 * i + 2] = float(state_.pos[i].z);
-    s.pressure[i] = have_fields ? float(state_.pressure[i]) : 0.f;
-    s.density[i] = have_fields ? float(state_.rho[i]) : 0.f;
-    s.speed[i] = float(norm(state_.vel[i]));
-    s.bonds[i] = float(state_.bonds.count(state_.id[i]));
+    s.xyz[3 * i] = float(st.pos[i].x);
+    s.xyz[3 * i + 1] = float(st.pos[i].y);
+    s.xyz[3 * i + 2] = float(st.pos[i].z);
+    s.pressure[i] = have_fields ? float(st.pressure[i]) : 0.f;
+    s.density[i] = have_fields ? float(st.rho[i]) : 0.f;
+    s.speed[i] = float(norm(st.vel[i]));
+    s.bonds[i] = float(st.bonds.count(st.id[i]));
   }
-  s.tool_pose = state_.tool_pose_applied;
-  s.tool_force_N = state_.tool_wrench.force * scene_.force_scale;
+  s.tool_pose = st.tool_pose_applied;
+  s.tool_force_N = st.tool_wrench.force * scene_.force_scale;
   if (with_assessment && assessor_) s.assessment = assessor_->assess(state_, scene_.model, forces_);
   s.limits = stability_limits(scene_.model, state_);
   s.dt = scene_.model.dt;
@@ -229,6 +249,31 @@ void SimSession::publish(bool with_assessment, double steps_per_second) {
   s.paused = paused_;
   s.diverged = diverged_;
   s.steps_per_second = steps_per_second;
+  if (device_) {
+    Snapshot::Haptic h;
+    constexpr auto r = std::memory_order_relaxed;
+    h.device = device_->name();
+    h.ticks = live_.ticks.load(r);
+    const auto now = std::chrono::steady_clock::now();
+    const double wall = std::chrono::duration<double>(now - live_t0_).count();
+    if (wall >= 0.25) {
+      h.rate_hz = double(h.ticks - live_ticks0_) / wall;
+      live_ticks0_ = h.ticks;
+      live_t0_ = now;
+      last_rate_hz_ = h.rate_hz;
+    } else {
+      h.rate_hz = last_rate_hz_;
+    }
+    h.deadline_misses = live_.deadline_misses.load(r);
+    h.period_last_us = live_.period_last_us.load(r);
+    h.period_max_recent_us = live_.period_max_recent_us.load(r);
+    h.force_N = {live_.force_x.load(r), live_.force_y.load(r), live_.force_z.load(r)};
+    h.pose_age_ms = live_.pose_age_ms.load(r);
+    h.sim_age_ms = live_.sim_age_ms.load(r);
+    h.gain = live_.gain.load(r);
+    h.status = live_.status.load(r);
+    s.haptic = h;
+  }
   std::lock_guard lock(mutex_);
   const std::uint64_t version = published_.version + 1;
   if (!with_assessment && published_.assessment) s.assessment = published_.assessment;  // keep the last one
@@ -236,31 +281,35 @@ void SimSession::publish(bool with_assessment, double steps_per_second) {
   published_.version = version;
 }
 
+std::deque<Command> SimSession::due(const State& st) {
+  std::unique_lock lock(mutex_);
+  std::deque<Command> now;
+  now.swap(queue_);
+  while (!scheduled_.empty() && scheduled_.begin()->first <= st.steps) {
+    now.push_back(scheduled_.begin()->second);
+    scheduled_.erase(scheduled_.begin());
+  }
+  return now;
+}
+
 void SimSession::run() {
-  auto last_publish = clock_type::now();
-  auto last_assess = last_publish;
-  auto rate_t0 = last_publish;
+  last_publish_ = clock_type::now();
+  last_assess_ = last_publish_;
+  auto rate_t0 = last_publish_;
   std::uint64_t rate_steps0 = state_.steps;
   double rate = 0;
   const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);
   const auto assess_every = std::chrono::duration<double>(1.0 / opt_.assess_hz);
   while (running_.load(std::memory_order_acquire)) {
-    bool changed = false;
     {
       std::unique_lock lock(mutex_);
       const bool idle = (paused_ || diverged_) && !single_ && queue_.empty() &&
                         (scheduled_.empty() || scheduled_.begin()->first > state_.steps || paused_);
       if (idle) wake_.wait_for(lock, std::chrono::milliseconds(20));
-      std::deque<Command> now;
-      now.swap(queue_);
-      while (!scheduled_.empty() && scheduled_.begin()->first <= state_.steps) {
-        now.push_back(scheduled_.begin()->second);
-        scheduled_.erase(scheduled_.begin());
-      }
-      lock.unlock();
-      for (const Command& c : now) apply(c);
-      changed = !now.empty();
     }
+    const std::deque<Command> now_due = due(state_);
+    for (const Command& c : now_due) apply(c, state_);
+    const bool changed = !now_due.empty();
     const bool stepping = (!paused_ || single_) && !diverged_;
     if (stepping) {
       single_ = false;
@@ -289,14 +338,65 @@ void SimSession::run() {
       rate_t0 = now;
       rate_steps0 = state_.steps;
     }
-    if (changed || now - last_publish >= publish_every || !stepping) {
-      const bool assess = changed || now - last_assess >= assess_every;
-      publish(assess, rate);
-      last_publish = now;
-      if (assess) last_assess = now;
+    if (changed || now - last_publish_ >= publish_every || !stepping) {
+      const bool assess = changed || now - last_assess_ >= assess_every;
+      publish(state_, assess, rate);
+      last_publish_ = now;
+      if (assess) last_assess_ = now;
     }
   }
-  publish(true, rate);
+  publish(state_, true, rate);
+}
+
+void SimSession::between_steps(State& st) {
+  const std::deque<Command> now_due = due(st);
+  for (const Command& c : now_due) apply(c, st);
+  // The runtime's step that follows adds its force; the assessment reads the forces so far.
+  forces_.add(st.tool_wrench.force * scene_.force_scale, scene_.model.dt);
+  steps_.store(st.steps, std::memory_order_release);
+  const auto now = clock_type::now();
+  const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);
+  const auto assess_every = std::chrono::duration<double>(1.0 / opt_.assess_hz);
+  if (!now_due.empty() || now - last_publish_ >= publish_every) {
+    const bool assess = !now_due.empty() || now - last_assess_ >= assess_every;
+    const double wall = std::chrono::duration<double>(now - rate_t0_).count();
+    if (wall >= 0.5) {
+      sim_rate_ = double(st.steps - rate_steps0_) / wall;
+      rate_t0_ = now;
+      rate_steps0_ = st.steps;
+    }
+    publish(st, assess, sim_rate_);
+    last_publish_ = now;
+    if (assess) last_assess_ = now;
+  }
+}
+
+void SimSession::run_device() {
+  RealtimeOptions o = rt_options_;
+  o.stop = &rt_stop_;
+  o.live = &live_;
+  o.between_steps = [this](const Scene&, State& st) { between_steps(st); };
+  live_t0_ = rate_t0_ = last_publish_ = last_assess_ = clock_type::now();
+  try {
+    realtime_result_ = run_realtime(scene_, *device_, o);
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
+    published_.message = fmt::format("the haptic runtime stopped: {}", e.what());
+    ++published_.version;
+  }
+  if (realtime_result_ && realtime_result_->run.status == "completed" && running_.load()) {
+    std::lock_guard lock(mutex_);
+    published_.message = fmt::format("the {} device's session ended after {:.1f} s; the last state stays on screen",
+                                     device_->name(), realtime_result_->run.wall_time_s);
+    ++published_.version;
+  }
+  if (realtime_result_ && realtime_result_->run.status != "completed") {
+    std::lock_guard lock(mutex_);
+    published_.message = fmt::format("the simulation diverged: {}", realtime_result_->run.message);
+    published_.diverged = true;
+    ++published_.version;
+  }
+  running_.store(false);
 }
 
 }  // namespace dentsph::viewer

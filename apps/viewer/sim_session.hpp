@@ -1,11 +1,14 @@
-// The simulation behind the viewer: a scene stepped on its own thread, driven by commands (tool
-// target, dispense, pause, single step, reset, switch tool, material edits) and publishing
-// snapshots for the render loop. The render loop never touches the State: it reads snapshots,
-// the simulation thread alone owns the State. Commands may be scheduled for an exact step, so a
-// scripted session runs the same simulation however fast the frames come.
+// The simulation behind the viewer, on a thread of its own: either its own loop, driven by the
+// mouse as a stand-in device (tool target, press), or the haptic runtime with a real device
+// (use_device: the runtime's simulation loop calls back between steps). Either way it takes
+// commands (dispense, switch tool, paste edits, reset; pause and single step in its own loop)
+// and publishes snapshots for the render loop, which never touches the State. Commands may be
+// scheduled for an exact step, so a scripted session runs the same simulation however fast the
+// frames come.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -18,6 +21,7 @@
 #include <vector>
 
 #include "dentsph/assess.hpp"
+#include "dentsph/haptics.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
 
@@ -59,6 +63,16 @@ struct Snapshot {
   bool paused = false;
   bool diverged = false;
   double steps_per_second = 0;  // wall-clock rate of the simulation loop
+  // With a device (the haptic runtime): the haptic loop's live figures.
+  struct Haptic {
+    std::string device;
+    double rate_hz = 0, period_last_us = 0, period_max_recent_us = 0;
+    std::uint64_t ticks = 0, deadline_misses = 0;
+    Vec3 force_N;                    // sent to the device
+    double pose_age_ms = -1, sim_age_ms = -1, gain = 0;
+    std::uint32_t status = 0;
+  };
+  std::optional<Haptic> haptic;
 };
 
 struct SessionOptions {
@@ -78,8 +92,13 @@ class SimSession {
   SimSession(const SimSession&) = delete;
   SimSession& operator=(const SimSession&) = delete;
 
+  // Runs the haptic runtime with `device` instead of the session's own loop (before start()).
+  // The device drives the tool; pause, single step and adhesion edits are refused then.
+  void use_device(std::unique_ptr<Device> device, RealtimeOptions options);
   void start();
   void stop();  // joins the thread; idempotent
+  // The runtime's result once stopped (use_device sessions).
+  const std::optional<RealtimeResult>& realtime_result() const { return realtime_result_; }
 
   // Applies `c` before the next step.
   void post(const Command& c);
@@ -98,10 +117,14 @@ class SimSession {
 
  private:
   void run();
-  void apply(const Command& c);
-  void publish(bool with_assessment, double steps_per_second);
-  void reset_state();
-  void apply_paste();  // paste_ onto every material particle
+  void run_device();
+  void between_steps(State& st);  // the runtime's hook (device mode)
+  // Takes the commands due at `st.steps` off the queues (under the lock).
+  std::deque<Command> due(const State& st);
+  void apply(const Command& c, State& st);
+  void publish(const State& st, bool with_assessment, double steps_per_second);
+  void reset_state(State& st);
+  void apply_paste(State& st);  // paste_ onto every material particle
   Vec3 tool_tip_goal() const;
 
   Scene scene_;
@@ -127,6 +150,17 @@ class SimSession {
   std::atomic<bool> running_{false};
   std::atomic<std::uint64_t> steps_{0};
   std::thread thread_;
+  // Device mode.
+  std::unique_ptr<Device> device_;
+  RealtimeOptions rt_options_;
+  HapticLive live_;
+  std::atomic<bool> rt_stop_{false};
+  std::optional<RealtimeResult> realtime_result_;
+  std::string run_error_;
+  std::uint64_t live_ticks0_ = 0;
+  std::chrono::steady_clock::time_point live_t0_, last_publish_, last_assess_, rate_t0_;
+  double last_rate_hz_ = 0, sim_rate_ = 0;
+  std::uint64_t rate_steps0_ = 0;
 };
 
 }  // namespace dentsph::viewer

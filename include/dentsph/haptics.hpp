@@ -56,6 +56,20 @@ struct FaultInjection {
   double sim_stall_s = 0;      // for this long
 };
 
+// Live figures of the haptic loop, kept current by it every tick with relaxed atomic stores (no
+// lock, no allocation) for a viewer to show while the runtime runs.
+struct HapticLive {
+  std::atomic<std::uint64_t> ticks{0};
+  std::atomic<std::uint64_t> deadline_misses{0};
+  std::atomic<double> period_last_us{0};
+  std::atomic<double> period_max_recent_us{0};  // largest period of the last half second
+  std::atomic<double> force_x{0}, force_y{0}, force_z{0};  // N, sent to the device
+  std::atomic<double> pose_age_ms{-1};  // -1: no pose received yet
+  std::atomic<double> sim_age_ms{-1};   // -1: no simulation output yet
+  std::atomic<double> gain{0};          // the watchdog's gain in [0, 1]
+  std::atomic<std::uint32_t> status{0}; // haptic_protocol::ForceStatus bits of the last tick
+};
+
 struct RealtimeOptions {
   double haptic_rate_hz = 1000;       // 500 .. 4000
   double duration_s = 0;              // wall seconds; 0: until the device finishes (or stop is set)
@@ -78,6 +92,12 @@ struct RealtimeOptions {
   // Called on the consumer thread with each snapshot's particle positions (scene frame) and sim
   // time; for rendering and tests.
   std::function<void(std::span<const Vec3> positions, double sim_time)> on_snapshot;
+  // When set, the haptic loop keeps it current (a viewer's live panel).
+  HapticLive* live = nullptr;
+  // Called on the simulation thread before every step, after the procedure's events, never on the
+  // haptic thread: a viewer applies its edits (dispense, switch tool, paste parameters) and takes
+  // its snapshots here. It may add or remove particles; it must not take long.
+  std::function<void(const Scene& scene, State& state)> between_steps;
 };
 
 // Rate and period jitter of a loop.

@@ -37,7 +37,8 @@ void HapticLoop::run(std::int64_t t0_ns) {
     const std::int64_t now = now_ns();
     double dt = double(period_ns) * 1e-9;
     if (rep_.timing.ticks > 0) {
-      periods_.add(double(now - last) * 1e-3);
+      last_period_us_ = double(now - last) * 1e-3;
+      periods_.add(last_period_us_);
       dt = double(now - last) * 1e-9;
     } else {
       first_tick_ns_ = now;
@@ -51,6 +52,29 @@ void HapticLoop::run(std::int64_t t0_ns) {
     if (now - next > period_ns) next = now + period_ns;  // far behind: skip, do not burst
     if (device_.finished(now)) shared_.device_finished.store(true, std::memory_order_release);
   }
+}
+
+void HapticLoop::publish_live(std::int64_t now, const Vec3& force, double pose_age, double sim_age, double gain,
+                              std::uint32_t status) {
+  HapticLive& l = *opt_.live;
+  constexpr auto r = std::memory_order_relaxed;
+  const double period = last_period_us_;
+  recent_max_us_ = std::max(recent_max_us_, period);
+  if (now - recent_start_ns_ >= 500'000'000) {
+    l.period_max_recent_us.store(recent_max_us_, r);
+    recent_max_us_ = 0;
+    recent_start_ns_ = now;
+  }
+  l.ticks.store(rep_.timing.ticks + 1, r);
+  l.deadline_misses.store(rep_.timing.deadline_misses, r);
+  l.period_last_us.store(period, r);
+  l.force_x.store(force.x, r);
+  l.force_y.store(force.y, r);
+  l.force_z.store(force.z, r);
+  l.pose_age_ms.store(pose_age < 0 ? -1 : pose_age * 1e3, r);
+  l.sim_age_ms.store(sim_age < 0 ? -1 : sim_age * 1e3, r);
+  l.gain.store(gain, r);
+  l.status.store(status, r);
 }
 
 void HapticLoop::tick(std::int64_t now, double dt) {
@@ -109,6 +133,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     age_us = std::uint32_t(std::min(age, 4e9));
   }
   device_.write(now, ForceCommand{lim.force, status, age_us});
+  if (opt_.live) publish_live(now, lim.force, pose_age, sim_age, gain, status);
   rep_.max_force_N = std::max(rep_.max_force_N, norm(lim.force));
   rep_.max_force_step_N = std::max(rep_.max_force_step_N, norm(lim.force - before));
 

@@ -27,6 +27,8 @@ class HapticLoop {
 
  private:
   void tick(std::int64_t now_ns, double dt);
+  void publish_live(std::int64_t now_ns, const Vec3& force, double pose_age_s, double sim_age_s, double gain,
+                    std::uint32_t status);
 
   Device& device_;
   RealtimeOptions opt_;
@@ -48,6 +50,8 @@ class HapticLoop {
   std::uint64_t last_step_ = 0;
   std::int64_t sim_published_ns_ = 0, sim_command_stamp_ns_ = 0;
   HapticReport rep_;
+  double last_period_us_ = 0, recent_max_us_ = 0;  // for HapticLive
+  std::int64_t recent_start_ns_ = 0;
   std::int64_t first_tick_ns_ = 0, last_tick_ns_ = 0, t0_ns_ = 0;
 };
 

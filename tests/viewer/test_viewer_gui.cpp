@@ -21,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kViewer = DENTSPH_VIEWER_BIN;
+const fs::path kClient = DENTSPH_HAPTIC_CLIENT;
 
 struct Result {
   int status = -1;
@@ -160,6 +161,49 @@ TEST(ViewerGui, ClosingMidRunStopsCleanly) {
   const Result r = run_viewer("", "timeout --preserve-status -s TERM 4");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("closed before the end"), std::string::npos) << r.out << r.err;
+}
+
+TEST(ViewerGui, RendersTheHapticRuntimeWithAScriptedDevice) {
+  REQUIRE_XVFB();
+  const fs::path sum = temp("scripted.json");
+  const Result r = run_viewer(fmt::format("--device scripted --frames 30 --summary '{}'", sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("haptic loop"), std::string::npos) << r.out;  // the runtime's report at the end
+  const auto j = nlohmann::json::parse(slurp(sum));
+  const auto& h = j["realtime"]["haptic"];
+  EXPECT_GT(h["ticks"].get<double>(), 100);
+  EXPECT_GT(h["rate_hz"].get<double>(), 0);
+  EXPECT_LE(h["max_force_N"].get<double>(), 9.0);  // the Falcon profile's limit
+  EXPECT_GT(j["realtime"]["sim"]["steps"].get<int>(), 0);
+  EXPECT_GT(j["sim"]["steps"].get<int>(), 0);  // the viewer's snapshots came from the runtime's simulation
+}
+
+TEST(ViewerGui, ALostDeviceConnectionDegradesToZeroForce) {
+  REQUIRE_XVFB();
+  // The reference client plays 1.5 s and leaves without a goodbye; the viewer keeps drawing for
+  // another few seconds, its bridge times the session out and renders zero force.
+  const int port = 40000 + int(::getpid() % 20000);
+  const fs::path sum = temp("udp.json"), client_report = temp("client.json"), out = temp("udp_out.txt");
+  const std::string cmd = fmt::format(
+      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' sh -c \"'{}' --width 640 --height 480 --threads 1 "
+      "--timeout 200 --max-fps 30 --frames 150 --device udp --port {} --summary '{}' & v=$!; sleep 1; "
+      "'{}' --port {} --duration 1.5 --no-bye --report '{}' >/dev/null; wait $v\" >'{}' 2>&1",
+      kViewer.string(), port, sum.string(), kClient.string(), port, client_report.string(), out.string());
+  const int raw = std::system(cmd.c_str());
+  ASSERT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 0) << slurp(out);
+  const auto j = nlohmann::json::parse(slurp(sum));
+  const auto& dev = j["realtime"]["device"];
+  EXPECT_GT(dev["poses"].get<double>(), 100) << dev.dump();
+  EXPECT_GE(dev["timeouts"].get<double>(), 1) << dev.dump();  // the silent client's session ended
+  const auto& h = j["realtime"]["haptic"];
+  EXPECT_GT(h["watchdog"]["pose_stale_ticks"].get<double>(), 0);
+  EXPECT_LE(h["max_force_N"].get<double>(), 9.0);
+  // What the client saw while it played: forces answering its poses, finite, within the limit.
+  const auto c = nlohmann::json::parse(slurp(client_report));
+  EXPECT_GT(c["forces_received"].get<double>(), 100);
+  EXPECT_EQ(c["non_finite_forces"].get<double>(), 0);
+  EXPECT_EQ(c["forces_over_limit"].get<double>(), 0);
+  EXPECT_EQ(c["echo_mismatches"].get<double>(), 0);
 }
 
 TEST(ViewerGui, NoDisplayIsAClearError) {

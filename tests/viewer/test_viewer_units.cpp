@@ -206,5 +206,29 @@ TEST(SimSession, EditsAreCheckedAndUnstableOnesRefused) {
   session.stop();
 }
 
+TEST(SimSession, UnderTheHapticRuntimeAppliesCommandsBetweenItsStepsAndShowsTheHapticLoop) {
+  Scene sc = small_scene();
+  RealtimeOptions ro;
+  ro.duration_s = 1.0;
+  ro.workspace.origin = sc.tool.keyframes.front().pose.position;
+  SimSession session(sc, SessionOptions{});
+  session.use_device(make_scripted_device(sc, ro.workspace, 1.0), ro);
+  session.post(Command{Command::Kind::dispense});
+  session.post(Command{Command::Kind::pause});  // refused: the runtime does not pause
+  session.start();
+  Snapshot s = wait_for(session, [](const Snapshot& x) {
+    return count(x, Role::material) > 48 && x.haptic && x.haptic->ticks > 50 && x.steps > 5;
+  });
+  ASSERT_TRUE(s.haptic);
+  EXPECT_EQ(s.haptic->device, "scripted");
+  EXPECT_NE(s.message.find("does not pause"), std::string::npos) << s.message;
+  EXPECT_LE(norm(s.haptic->force_N), 9.0);
+  s = wait_for(session, [](const Snapshot& x) { return x.message.find("session ended") != std::string::npos; });
+  session.stop();
+  ASSERT_TRUE(session.realtime_result());
+  EXPECT_GT(session.realtime_result()->haptic.timing.ticks, 500u);  // about 1 s at 1 kHz
+  EXPECT_EQ(session.realtime_result()->run.status, "completed");
+}
+
 }  // namespace
 }  // namespace dentsph::viewer
