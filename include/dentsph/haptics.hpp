@@ -97,6 +97,7 @@ struct HapticReport {
   double max_force_N = 0;                 // largest force sent to the device
   double max_force_step_N = 0;            // largest change between consecutive ticks
   std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
+  std::uint64_t non_finite_poses = 0;     // device poses refused (the previous pose is kept)
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
 };

@@ -309,6 +309,47 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   std::filesystem::remove_all(dir);
 }
 
+// A device that sends NaN, infinite and absurd poses, and a simulation that diverges: nothing
+// non-finite or above the limit reaches the device, and the run says it diverged.
+TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
+  class Evil final : public Device {
+   public:
+    std::string name() const override { return "evil"; }
+    bool read(std::int64_t now_ns, DeviceSample& s) override {
+      const double nan = std::nan(""), inf = HUGE_VAL;
+      const double z = (++k_ % 3 == 0) ? nan : (k_ % 3 == 1) ? -inf : -0.05 - 1e3 * (k_ % 7 == 0);
+      s.pose.position = {0, 0, z};
+      s.stamp_ns = now_ns;
+      s.device_time_s = double(k_) * 1e-3;
+      s.sequence = std::uint32_t(k_);
+      s.valid = true;
+      return true;
+    }
+    void write(std::int64_t, const ForceCommand& c) override {
+      finite_ &= is_finite(c.force_N);
+      max_ = std::max(max_, norm(c.force_N));
+    }
+    bool finite_ = true;
+    double max_ = 0;
+    std::uint64_t k_ = 0;
+  };
+  Scene scene = press_scene();
+  scene.model.dt = 0.02;  // far over the stability limits: the simulation explodes
+  for (ParticleInit& p : scene.particles) p.material.Kp *= 1e4;
+  Evil device;
+  RealtimeOptions o = options(ForceMode::direct);
+  o.allow_unstable = true;
+  o.pace_realtime = false;
+  o.duration_s = 1.0;
+  const RealtimeResult r = run_realtime(scene, device, o);
+  print_timing(r);
+  EXPECT_TRUE(device.finite_);
+  EXPECT_LE(device.max_, o.profile.max_force_N);
+  EXPECT_GT(r.haptic.non_finite_poses, 10u);
+  expect_safe(r, o.profile);
+  EXPECT_EQ(r.run.status, "diverged") << r.run.message;
+}
+
 TEST(HapticRuntime, RefusesImpossibleOptions) {
   const Scene scene = press_scene();
   auto device = make_scripted_device(scene, {});
