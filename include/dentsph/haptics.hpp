@@ -69,7 +69,8 @@ struct RealtimeOptions {
   double sim_rate_limit_hz = 0;       // > 0: at most this many steps per second
   double snapshot_rate_hz = 30;       // 30 .. 60; 0: no consumer loop
   int threads = 1;                    // threads of the simulation step
-  bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread (best effort)
+  bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread and nice -10 for the
+                                      // simulation (best effort)
   bool allow_unstable = false;
   double record_capacity_s = 120;     // haptic-rate recording preallocated for this long (176 B a tick)
   std::filesystem::path out_dir;      // summary.json and the recording (empty: nothing written)
