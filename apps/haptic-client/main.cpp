@@ -6,6 +6,8 @@
 // and garbage packets, a silence) to exercise the runtime; --report writes what it saw as JSON.
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <pthread.h>
+#include <sched.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -103,6 +105,11 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
   CLI11_PARSE(app, argc, argv);
+
+  // Like a device SDK's servo thread: real-time priority where allowed (root or CAP_SYS_NICE).
+  sched_param sp{};
+  sp.sched_priority = 20;
+  pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
 
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
   sockaddr_in to{};

@@ -83,7 +83,8 @@ struct RealtimeOptions {
   double sim_rate_limit_hz = 0;       // > 0: at most this many steps per second
   double snapshot_rate_hz = 30;       // 30 .. 60; 0: no consumer loop
   int threads = 1;                    // threads of the simulation step
-  bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread (best effort)
+  bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread and nice -10 for the
+                                      // simulation (best effort)
   bool allow_unstable = false;
   double record_capacity_s = 120;     // haptic-rate recording preallocated for this long (176 B a tick)
   std::filesystem::path out_dir;      // summary.json and the recording (empty: nothing written)
@@ -117,6 +118,7 @@ struct HapticReport {
   double max_force_N = 0;                 // largest force sent to the device
   double max_force_step_N = 0;            // largest change between consecutive ticks
   std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
+  std::uint64_t non_finite_poses = 0;     // device poses refused (the previous pose is kept)
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
 };

@@ -79,7 +79,12 @@ void HapticLoop::publish_live(std::int64_t now, const Vec3& force, double pose_a
 
 void HapticLoop::tick(std::int64_t now, double dt) {
   // ---- device pose and velocity ----------------------------------------------------------------
-  if (device_.read(now, sample_)) {
+  DeviceSample fresh = sample_;
+  const bool got = device_.read(now, fresh);
+  const Quat& q = fresh.pose.orientation;
+  if (got && !(is_finite(fresh.pose.position) && std::isfinite(q.w + q.x + q.y + q.z))) ++rep_.non_finite_poses;
+  else if (got) {
+    sample_ = fresh;
     const Vec3 x = sample_.pose.position;
     const double ddt = sample_.device_time_s - prev_device_time_;
     if (have_prev_ && ddt > 1e-6 && ddt < 0.1) {

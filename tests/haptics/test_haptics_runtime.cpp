@@ -78,7 +78,8 @@ TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   const nlohmann::json& d = s["device"];
   // What the client saw: every force finite, within 9 N, answering a pose it sent (echoing that
   // pose's timestamp), never going back to an older pose.
-  EXPECT_GT(c["forces_received"].get<std::uint64_t>(), 1000u);
+  EXPECT_EQ(c["poses_sent"], 3000);
+  EXPECT_GT(c["forces_received"].get<std::uint64_t>(), 300u);  // one per haptic tick that got a new pose
   EXPECT_EQ(c["non_finite_forces"], 0);
   EXPECT_EQ(c["forces_over_limit"], 0);
   EXPECT_EQ(c["malformed_received"], 0);
@@ -180,12 +181,9 @@ TEST(HapticRuntime, SimulationStallRampsTheForceDownAndItRecovers) {
   EXPECT_EQ(r.sim.stalls_injected, 1u);
   EXPECT_GE(r.haptic.watchdog_trips, 1u);
   const auto& h = r.recording.haptic;
-  auto force_at = [&](double t) {
-    for (const HapticSample& s : h)
-      if (s.t >= t) return s;
-    return h.back();
-  };
-  const double before = norm(force_at(0.68).force);
+  double before = 0;
+  for (const HapticSample& s : h)
+    if (s.t > 0.4 && s.t < 0.7) before = std::max(before, norm(s.force));
   EXPECT_GT(before, 0.2);
   // During the stall: once the simulation output is stale (25 ms) and the ramp (10 ms) is over,
   // the force is exactly zero. (On a loaded machine the stall may begin a step after 0.7 s.)
@@ -198,14 +196,20 @@ TEST(HapticRuntime, SimulationStallRampsTheForceDownAndItRecovers) {
     }
   }
   EXPECT_GT(zero_ticks, 0u);
-  // Recovered: the ramp up takes 100 ms.
-  const HapticSample later = force_at(1.0);
-  std::printf("force before the stall %.3f N, after %.3f N\n", before, norm(later.force));
-  EXPECT_EQ(later.gain, 1.0);
-  EXPECT_EQ(later.status & (proto::kSimStale | proto::kPoseStale), 0u);
-  // Rendered as computed again (its size is the paste's business: it relaxes during the hold).
-  EXPECT_GT(norm(later.force), 0.0);
-  EXPECT_LT(norm(later.force - later.target), 1e-9);
+  // Recovered: the ramp up takes 100 ms; from then on the force is rendered as computed again
+  // (its size is the paste's business: it relaxes during the hold). On a loaded machine a slow
+  // step may trip the watchdog again for a moment, so some tick after the ramp must show it.
+  std::size_t recovered = 0;
+  double after = 0;
+  for (const HapticSample& s : h)
+    if (s.t > 0.75 + o.watchdog.ramp_up_s + 0.02 && s.gain == 1.0 && !(s.status & (proto::kSimStale | proto::kPoseStale)) &&
+        norm(s.force - s.target) < 1e-9 && norm(s.force) > 0) {
+      ++recovered;
+      after = std::max(after, norm(s.force));
+    }
+  std::printf("force before the stall %.3f N, after: %zu ticks rendered as computed, largest %.3f N\n", before,
+              recovered, after);
+  EXPECT_GT(recovered, 50u);
 }
 
 TEST(HapticRuntime, UdpFaultsAreCountedAndStalePosesRenderZero) {
@@ -269,7 +273,7 @@ TEST(HapticRuntime, ClientsMayLeaveAndAnotherConnects) {
   EXPECT_GT(r.recording.haptic.back().t, 2.9);  // kept running throughout
   expect_safe(r, o.profile);
   for (const HapticSample& s : r.recording.haptic)
-    if (s.t > 0.9 && s.t < 1.9) {
+    if (s.t > 1.1 && s.t < 1.9) {
       EXPECT_EQ(norm(s.force), 0.0) << s.t;  // nobody there
     }
 }
@@ -307,6 +311,47 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   }
   EXPECT_LT(worst, 1e-3);  // within a tick's motion
   std::filesystem::remove_all(dir);
+}
+
+// A device that sends NaN, infinite and absurd poses, and a simulation that diverges: nothing
+// non-finite or above the limit reaches the device, and the run says it diverged.
+TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
+  class Evil final : public Device {
+   public:
+    std::string name() const override { return "evil"; }
+    bool read(std::int64_t now_ns, DeviceSample& s) override {
+      const double nan = std::nan(""), inf = HUGE_VAL;
+      const double z = (++k_ % 3 == 0) ? nan : (k_ % 3 == 1) ? -inf : -0.05 - 1e3 * (k_ % 7 == 0);
+      s.pose.position = {0, 0, z};
+      s.stamp_ns = now_ns;
+      s.device_time_s = double(k_) * 1e-3;
+      s.sequence = std::uint32_t(k_);
+      s.valid = true;
+      return true;
+    }
+    void write(std::int64_t, const ForceCommand& c) override {
+      finite_ &= is_finite(c.force_N);
+      max_ = std::max(max_, norm(c.force_N));
+    }
+    bool finite_ = true;
+    double max_ = 0;
+    std::uint64_t k_ = 0;
+  };
+  Scene scene = press_scene();
+  scene.model.dt = 0.02;  // far over the stability limits: the simulation explodes
+  for (ParticleInit& p : scene.particles) p.material.Kp *= 1e4;
+  Evil device;
+  RealtimeOptions o = options(ForceMode::direct);
+  o.allow_unstable = true;
+  o.pace_realtime = false;
+  o.duration_s = 1.0;
+  const RealtimeResult r = run_realtime(scene, device, o);
+  print_timing(r);
+  EXPECT_TRUE(device.finite_);
+  EXPECT_LE(device.max_, o.profile.max_force_N);
+  EXPECT_GT(r.haptic.non_finite_poses, 10u);
+  expect_safe(r, o.profile);
+  EXPECT_EQ(r.run.status, "diverged") << r.run.message;
 }
 
 TEST(HapticRuntime, RefusesImpossibleOptions) {
