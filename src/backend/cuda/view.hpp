@@ -106,6 +106,6 @@ struct StepView {
 // Threads per block of every kernel, and so the particles per partial sum of the reductions.
 inline constexpr std::uint32_t kBlock = 256;
 
-inline constexpr std::uint32_t blocks_for(std::uint32_t n) { return (n + kBlock - 1) / kBlock; }
+DENTSPH_HD inline constexpr std::uint32_t blocks_for(std::uint32_t n) { return (n + kBlock - 1) / kBlock; }
 
 }  // namespace dentsph::gpu

@@ -1,0 +1,28 @@
+// What every kernel of the CUDA backend shares: the index of the thread's particle, the launch
+// shape, and the block sum of the reductions.
+#pragma once
+
+#include "backend/cuda/view.hpp"
+
+namespace dentsph::gpu {
+
+__device__ inline std::uint32_t thread_index() { return blockIdx.x * blockDim.x + threadIdx.x; }
+
+inline unsigned grid_for(std::uint32_t n) { return blocks_for(n) > 0 ? blocks_for(n) : 1; }
+
+// Sums `mine` over the block (kBlock threads) and stores the sum in out[blockIdx.x]. A tree in
+// shared memory: a fixed order, so the result is the same every run.
+__device__ inline void block_sum(const StepSums& mine, StepSums* out) {
+  __shared__ alignas(StepSums) unsigned char raw[sizeof(StepSums) * kBlock];
+  StepSums* sh = reinterpret_cast<StepSums*>(raw);
+  const unsigned t = threadIdx.x;
+  sh[t] = mine;
+  __syncthreads();
+  for (unsigned stride = kBlock / 2; stride > 0; stride >>= 1) {
+    if (t < stride) sh[t].add(sh[t + stride]);
+    __syncthreads();
+  }
+  if (t == 0) out[blockIdx.x] = sh[0];
+}
+
+}  // namespace dentsph::gpu

@@ -1,0 +1,34 @@
+// Stage 2a on the device: CUB's radix sort of (bucket, index) pairs over the key bits the grid
+// needs (stable, so the CPU's counting-sort order), then each bucket's range of sorted indices.
+#include <cub/device/device_radix_sort.cuh>
+
+#include "backend/cuda/kernel.cuh"
+#include "backend/cuda/launch.hpp"
+#include "backend/cuda/sort.hpp"
+
+namespace dentsph::gpu {
+
+__global__ void cell_range_kernel(StepView v) {
+  const std::uint32_t k = thread_index();
+  if (k < v.n) cell_range_body(v, k);
+}
+
+std::size_t sort_scratch_bytes(const StepView& v) {
+  std::size_t bytes = 0;
+  cub::DeviceRadixSort::SortPairs(nullptr, bytes, v.key, v.key_sorted, v.iota, v.order, int(v.n), 0,
+                                  key_bits(v.buckets));
+  return bytes;
+}
+
+cudaError_t launch_sort(const StepView& v, const SortScratch& scratch, cudaStream_t s) {
+  std::size_t bytes = scratch.bytes;
+  cudaError_t e = cub::DeviceRadixSort::SortPairs(scratch.ptr, bytes, v.key, v.key_sorted, v.iota, v.order, int(v.n),
+                                                  0, key_bits(v.buckets), s);
+  if (e != cudaSuccess) return e;
+  if ((e = cudaMemsetAsync(v.bucket_begin, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
+  if ((e = cudaMemsetAsync(v.bucket_end, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
+  cell_range_kernel<<<grid_for(v.n), kBlock, 0, s>>>(v);
+  return cudaGetLastError();
+}
+
+}  // namespace dentsph::gpu
