@@ -47,6 +47,7 @@ int cmd_validate(const std::string& file) {
 int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   if (quick) {
     opt.sweep_sides = {8, 12, 16};
+    opt.cuda_sweep_sides = {8, 16, 32};
     opt.repeats = 3;
     opt.seconds_per_run = 0.1;
   }
@@ -116,6 +117,11 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress output");
   opt.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
+  const std::vector<std::string> backends = {"cpu", "cuda", "cuda-emulation"};
+  std::string run_backend = "cpu", bench_backend = "cpu";
+  run->add_option("--backend", run_backend, "Where the step runs: cpu, cuda (a GPU), cuda-emulation (its algorithm on the CPU, slow)")
+      ->check(CLI::IsMember(backends))
+      ->capture_default_str();
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -124,7 +130,10 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", bench_opt.threads, "Thread counts to measure (e.g. --threads 1 2)")->capture_default_str();
   bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
-  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 3 repeats)");
+  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 32^3 with cuda, 3 repeats)");
+  bench->add_option("--backend", bench_backend, "cpu (thread counts), or cuda: the sweep then reaches 2 million particles")
+      ->check(CLI::IsMember(backends))
+      ->capture_default_str();
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -134,9 +143,11 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
+      opt.backend = parse_backend(run_backend);
       return cmd_run(run_scene, run_mesh, opt, quiet);
     }
     if (*validate) return cmd_validate(validate_scene);
+    bench_opt.backend = parse_backend(bench_backend);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -16,9 +16,11 @@
 
 namespace dentsph {
 
-enum class Backend { cpu, cuda };
+// cuda_emulation: the CUDA backend's algorithm run on the CPU (make_emulated_gpu_stepper), so that
+// the GPU path of the run loop and the benchmark is exercised where there is no GPU; slow.
+enum class Backend { cpu, cuda, cuda_emulation };
 const char* backend_name(Backend b);
-// "cpu" or "cuda"; anything else throws std::invalid_argument naming the choices.
+// "cpu", "cuda" or "cuda-emulation"; anything else throws std::invalid_argument naming the choices.
 Backend parse_backend(const std::string& name);
 
 // Whether the CUDA backend can run here: built with CUDA, and a device present. `reason` says why
@@ -82,5 +84,7 @@ std::unique_ptr<GpuStepper> make_cuda_stepper(const Model& model, const State& s
 // The same algorithm run on the CPU: the CUDA backend's stage bodies looped over the particles,
 // a stable sort for CUB's radix sort, sums for the reductions. Always built; tested against step().
 std::unique_ptr<GpuStepper> make_emulated_gpu_stepper(const Model& model, const State& state);
+// The stepper of a GPU backend (cuda or cuda_emulation).
+std::unique_ptr<GpuStepper> make_gpu_stepper(Backend backend, const Model& model, const State& state);
 
 }  // namespace dentsph

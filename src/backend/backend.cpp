@@ -5,12 +5,25 @@
 
 namespace dentsph {
 
-const char* backend_name(Backend b) { return b == Backend::cuda ? "cuda" : "cpu"; }
+const char* backend_name(Backend b) {
+  switch (b) {
+    case Backend::cpu: return "cpu";
+    case Backend::cuda: return "cuda";
+    case Backend::cuda_emulation: return "cuda-emulation";
+  }
+  return "unknown";
+}
 
 Backend parse_backend(const std::string& name) {
-  if (name == "cpu") return Backend::cpu;
-  if (name == "cuda") return Backend::cuda;
-  throw std::invalid_argument(fmt::format("unknown backend '{}': choose cpu or cuda", name));
+  for (Backend b : {Backend::cpu, Backend::cuda, Backend::cuda_emulation})
+    if (name == backend_name(b)) return b;
+  throw std::invalid_argument(fmt::format("unknown backend '{}': choose cpu, cuda or cuda-emulation", name));
+}
+
+std::unique_ptr<GpuStepper> make_gpu_stepper(Backend backend, const Model& model, const State& state) {
+  if (backend == Backend::cuda) return make_cuda_stepper(model, state);
+  if (backend == Backend::cuda_emulation) return make_emulated_gpu_stepper(model, state);
+  throw std::invalid_argument("make_gpu_stepper: the cpu backend has no GPU stepper");
 }
 
 void GpuStepper::start_from(const Model& model, const State& state) {
