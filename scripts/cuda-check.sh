@@ -84,6 +84,14 @@ device() {
   timeout 420 "$bin/dentsph" "${args[@]}" >"$OUT/$slug.txt" 2>&1
   echo "bench: exit $? ($((SECONDS - t0)) s), $OUT/$slug.json" | tee -a "$summary"
   sed -n '/^machine/,$p' "$OUT/$slug.txt" | tee -a "$summary"
+
+  # 4. Launch shapes of the neighbour passes, without a rebuild (short runs; compare, then set the
+  # default in cuda_stepper.cpp).
+  local b
+  for b in 32 64 128 256; do
+    echo "neighbour block $b: $(DENTSPH_CUDA_NEIGHBOUR_BLOCK=$b timeout 120 "$bin/dentsph" bench --backend cuda --quick --repeats 3 2>&1 |
+      grep -E 'cuda: +[0-9]|^ +[0-9]+ .* cuda ' | awk '{printf "%s ", $0}')" | tee -a "$summary"
+  done
 }
 
 case "$mode" in

@@ -146,6 +146,9 @@ class Buffers {
     current_ = 0;
   }
 
+  // Threads per block of the neighbour passes (a launch shape; set before the graphs are captured).
+  void set_neighbour_block(std::uint32_t threads) { v_.neighbour_block = threads; }
+
   // The view of the next step: it reads the current set and sorts into the other.
   StepView next_view() const {
     StepView v = v_;

@@ -2,6 +2,7 @@
 // per direction as a CUDA graph and replayed; the tool pose goes in and the step's output comes
 // out through pinned host memory, one small copy each way inside the graph, and the one host
 // synchronisation per step waits for that output.
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -54,6 +55,17 @@ std::string describe(const cudaDeviceProp& p) {
                      p.multiProcessorCount, double(p.totalGlobalMem) / (1 << 30));
 }
 
+// Threads per block of the neighbour passes: DENTSPH_CUDA_NEIGHBOUR_BLOCK (32 to 1024, a multiple
+// of 32) lets a benchmark compare launch shapes without a rebuild; 64 otherwise.
+std::uint32_t neighbour_block() {
+  const char* env = std::getenv("DENTSPH_CUDA_NEIGHBOUR_BLOCK");
+  if (!env) return 64;
+  const long t = std::strtol(env, nullptr, 10);
+  if (t < 32 || t > 1024 || t % 32 != 0)
+    throw std::invalid_argument(fmt::format("DENTSPH_CUDA_NEIGHBOUR_BLOCK={}: give a multiple of 32 from 32 to 1024", env));
+  return std::uint32_t(t);
+}
+
 class CudaStepper final : public GpuStepper {
  public:
   CudaStepper(const Model& model, const State& state) {
@@ -62,6 +74,7 @@ class CudaStepper final : public GpuStepper {
     device_ = st.device;
     check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream");
     buf_.upload(model, state);
+    buf_.set_neighbour_block(neighbour_block());
     start_from(model, state);
     scratch_.bytes = gpu::sort_scratch_bytes(buf_.base());
     scratch_.ptr = buf_.memory().alloc<unsigned char>(scratch_.bytes);

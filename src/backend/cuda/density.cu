@@ -16,12 +16,12 @@ __global__ void density_kernel(StepView v) {
 }
 
 cudaError_t launch_static_density(const StepView& v, cudaStream_t s) {
-  static_density_kernel<<<neighbour_grid_for(v.n), kNeighbourBlock, 0, s>>>(v);
+  static_density_kernel<<<neighbour_grid_for(v), v.neighbour_block, 0, s>>>(v);
   return cudaGetLastError();
 }
 
 cudaError_t launch_density(const StepView& v, cudaStream_t s) {
-  density_kernel<<<neighbour_grid_for(v.n), kNeighbourBlock, 0, s>>>(v);
+  density_kernel<<<neighbour_grid_for(v), v.neighbour_block, 0, s>>>(v);
   return cudaGetLastError();
 }
 

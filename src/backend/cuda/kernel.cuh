@@ -10,11 +10,13 @@ __device__ inline std::uint32_t thread_index() { return blockIdx.x * blockDim.x 
 
 inline unsigned grid_for(std::uint32_t n) { return blocks_for(n) > 0 ? blocks_for(n) : 1; }
 
-// The neighbour passes (density, forces) use smaller blocks than the rest: a haptic scene of a few
+// The neighbour passes (density, forces) use smaller blocks than the rest (StepView::
+// neighbour_block, 64 unless DENTSPH_CUDA_NEIGHBOUR_BLOCK says otherwise): a haptic scene of a few
 // thousand particles then spreads over more of the GPU's 132 multiprocessors (kBlock threads a
 // block would leave most of them idle). A tuning choice, not a correctness one (docs/cuda.md).
-inline constexpr unsigned kNeighbourBlock = 64;
-inline unsigned neighbour_grid_for(std::uint32_t n) { return n > 0 ? (n + kNeighbourBlock - 1) / kNeighbourBlock : 1; }
+inline unsigned neighbour_grid_for(const StepView& v) {
+  return v.n > 0 ? (v.n + v.neighbour_block - 1) / v.neighbour_block : 1;
+}
 
 // Sums `mine` over the block (kBlock threads) and stores the sum in out[blockIdx.x]. A tree in
 // shared memory: a fixed order, so the result is the same every run.

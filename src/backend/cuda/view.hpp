@@ -95,6 +95,9 @@ struct StepView {
   const ToolInput* tool = nullptr;  // [1] this step's tool pose
   StepOutput* out = nullptr;      // [1] this step's output (then copied to the host)
 
+  // Threads per block of the neighbour passes (launch shape only; the emulation ignores it).
+  std::uint32_t neighbour_block = 64;
+
   // The model's constants the stages need.
   GridSpec grid;
   KernelCoeffs kernel;
