@@ -115,22 +115,7 @@ class Buffers {
     v_.gravity = model.gravity;
     v_.dt = model.dt;
 
-    const ParticleArrays& a = sets_[0];
-    put(a.id, s.id);
-    put(a.role, s.role);
-    put(a.pos, s.pos);
-    put(a.vel, s.vel);
-    put(a.anchor, s.anchor);
-    put(a.mass, s.mass);
-    put(a.mu, s.mu);
-    put(a.Kp, s.Kp);
-    put(a.rho0, s.rho0);
-    put(a.Ka, s.Ka);
-    put(v_.index_of_id, s.index_of_id);
-    put(v_.rho, s.rho);
-    put(v_.pressure, s.pressure);
-    put(v_.volume, s.volume);
-    put(v_.force, s.force);
+    each_array(sets_[0], s, [&](auto* d, const auto& h) { put(d, h); });
     std::vector<std::uint32_t> iota(n), count(n), partner(std::size_t(n) * cap, 0);
     std::iota(iota.begin(), iota.end(), 0u);
     put(v_.iota, iota);
@@ -176,22 +161,7 @@ class Buffers {
   // `s`. The bond counters are the state's at the upload plus the events since.
   void download(State& s, const BondEvents& events) const {
     const std::uint32_t n = v_.n;
-    const ParticleArrays& a = sets_[current_];
-    get(s.id, a.id, n);
-    get(s.role, a.role, n);
-    get(s.pos, a.pos, n);
-    get(s.vel, a.vel, n);
-    get(s.anchor, a.anchor, n);
-    get(s.mass, a.mass, n);
-    get(s.mu, a.mu, n);
-    get(s.Kp, a.Kp, n);
-    get(s.rho0, a.rho0, n);
-    get(s.Ka, a.Ka, n);
-    get(s.index_of_id, v_.index_of_id, n);
-    get(s.rho, v_.rho, n);
-    get(s.pressure, v_.pressure, n);
-    get(s.volume, v_.volume, n);
-    get(s.force, v_.force, n);
+    each_array(sets_[current_], s, [&](const auto* d, auto& h) { get(h, d, n); });
     get(s.rho_static, v_.rho_static, n);
     s.rho_static_valid = true;
     const int cap = v_.bond_capacity;
@@ -209,6 +179,27 @@ class Buffers {
   }
 
  private:
+  // Calls fn(device array, state vector) for every per-particle array of a set and of the step
+  // results that a State holds in the same order (rho_static, by id, and the bonds apart).
+  template <class S, class Fn>
+  void each_array(const ParticleArrays& a, S& s, Fn&& fn) const {
+    fn(a.id, s.id);
+    fn(a.role, s.role);
+    fn(a.pos, s.pos);
+    fn(a.vel, s.vel);
+    fn(a.anchor, s.anchor);
+    fn(a.mass, s.mass);
+    fn(a.mu, s.mu);
+    fn(a.Kp, s.Kp);
+    fn(a.rho0, s.rho0);
+    fn(a.Ka, s.Ka);
+    fn(v_.index_of_id, s.index_of_id);
+    fn(v_.rho, s.rho);
+    fn(v_.pressure, s.pressure);
+    fn(v_.volume, s.volume);
+    fn(v_.force, s.force);
+  }
+
   template <class T>
   T* alloc(std::size_t n) {
     T* p = mem_.template alloc<T>(n);

@@ -17,7 +17,7 @@ __global__ void forces_kernel(StepView v) {
 }
 
 cudaError_t launch_forces(const StepView& v, cudaStream_t s) {
-  forces_kernel<<<neighbour_grid_for(v), v.neighbour_block, 0, s>>>(v);
+  forces_kernel<<<(v.n + v.neighbour_block - 1) / v.neighbour_block, v.neighbour_block, 0, s>>>(v);
   return cudaGetLastError();
 }
 

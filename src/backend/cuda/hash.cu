@@ -5,14 +5,6 @@
 
 namespace dentsph::gpu {
 
-__global__ void hash_kernel(StepView v) {
-  const std::uint32_t i = thread_index();
-  if (i < v.n) hash_body(v, i);
-}
-
-cudaError_t launch_hash(const StepView& v, cudaStream_t s) {
-  hash_kernel<<<grid_for(v.n), kBlock, 0, s>>>(v);
-  return cudaGetLastError();
-}
+cudaError_t launch_hash(const StepView& v, cudaStream_t s) { return launch_each<hash_body>(v, kBlock, s); }
 
 }  // namespace dentsph::gpu

@@ -2,6 +2,8 @@
 // shape, and the block sum of the reductions.
 #pragma once
 
+#include <cuda_runtime_api.h>
+
 #include "backend/cuda/view.hpp"
 
 namespace dentsph::gpu {
@@ -10,12 +12,19 @@ __device__ inline std::uint32_t thread_index() { return blockIdx.x * blockDim.x 
 
 inline unsigned grid_for(std::uint32_t n) { return blocks_for(n) > 0 ? blocks_for(n) : 1; }
 
-// The neighbour passes (density, forces) use smaller blocks than the rest (StepView::
-// neighbour_block, 64 unless DENTSPH_CUDA_NEIGHBOUR_BLOCK says otherwise): a haptic scene of a few
-// thousand particles then spreads over more of the GPU's 132 multiprocessors (kBlock threads a
-// block would leave most of them idle). A tuning choice, not a correctness one (docs/cuda.md).
-inline unsigned neighbour_grid_for(const StepView& v) {
-  return v.n > 0 ? (v.n + v.neighbour_block - 1) / v.neighbour_block : 1;
+
+// The kernel of a per-particle stage: body(v, i) for each particle i, a thread each.
+template <void (*Body)(const StepView&, std::uint32_t)>
+__global__ void each_particle(StepView v) {
+  const std::uint32_t i = thread_index();
+  if (i < v.n) Body(v, i);
+}
+
+// Launches each_particle<Body> in blocks of `block` threads on stream s.
+template <void (*Body)(const StepView&, std::uint32_t)>
+cudaError_t launch_each(const StepView& v, unsigned block, cudaStream_t s) {
+  each_particle<Body><<<v.n > 0 ? (v.n + block - 1) / block : 1, block, 0, s>>>(v);
+  return cudaGetLastError();
 }
 
 // Sums `mine` over the block (kBlock threads) and stores the sum in out[blockIdx.x]. A tree in

@@ -5,14 +5,6 @@
 
 namespace dentsph::gpu {
 
-__global__ void reorder_kernel(StepView v) {
-  const std::uint32_t k = thread_index();
-  if (k < v.n) reorder_body(v, k);
-}
-
-cudaError_t launch_reorder(const StepView& v, cudaStream_t s) {
-  reorder_kernel<<<grid_for(v.n), kBlock, 0, s>>>(v);
-  return cudaGetLastError();
-}
+cudaError_t launch_reorder(const StepView& v, cudaStream_t s) { return launch_each<reorder_body>(v, kBlock, s); }
 
 }  // namespace dentsph::gpu

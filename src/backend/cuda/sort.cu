@@ -8,11 +8,6 @@
 
 namespace dentsph::gpu {
 
-__global__ void cell_range_kernel(StepView v) {
-  const std::uint32_t k = thread_index();
-  if (k < v.n) cell_range_body(v, k);
-}
-
 std::size_t sort_scratch_bytes(const StepView& v) {
   std::size_t bytes = 0;
   cub::DeviceRadixSort::SortPairs(nullptr, bytes, v.key, v.key_sorted, v.iota, v.order, int(v.n), 0,
@@ -27,8 +22,7 @@ cudaError_t launch_sort(const StepView& v, const SortScratch& scratch, cudaStrea
   if (e != cudaSuccess) return e;
   if ((e = cudaMemsetAsync(v.bucket_begin, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
   if ((e = cudaMemsetAsync(v.bucket_end, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
-  cell_range_kernel<<<grid_for(v.n), kBlock, 0, s>>>(v);
-  return cudaGetLastError();
+  return launch_each<cell_range_body>(v, kBlock, s);
 }
 
 }  // namespace dentsph::gpu
