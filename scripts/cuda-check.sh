@@ -73,7 +73,8 @@ device() {
   # 1. The device tests (parity with the CPU reference, Fig. 2, overflow, emulation agreement).
   timeout 120 "$bin/test_cuda" --gtest_output="json:$OUT/test_cuda.json" >"$OUT/test_cuda.log" 2>&1
   local tests_rc=$?
-  echo "device tests: exit $tests_rc ($((SECONDS - t0)) s); $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$OUT/test_cuda.log" | tr '\n' ' ')" | tee -a "$summary"
+  echo "device tests: exit $tests_rc ($((SECONDS - t0)) s); $(grep -E '^\[  (PASSED|FAILED|SKIPPED) +\] [0-9]+ test' "$OUT/test_cuda.log" | tr '\n' ' ')" | tee -a "$summary"
+  grep -m1 -E 'skipped, no GPU|Failure' -A3 "$OUT/test_cuda.log" | tee -a "$summary"
 
   fi
 
@@ -102,6 +103,7 @@ device() {
   [ "$quick" = "--quick" ] && args+=(--quick)
   timeout 150 "$bin/dentsph" "${args[@]}" >"$OUT/$slug.txt" 2>&1
   echo "bench: exit $? ($((SECONDS - t0)) s), $OUT/$slug.json" | tee -a "$summary"
+  grep -m1 '^error' "$OUT/$slug.txt" | tee -a "$summary"
   sed -n '/^machine/,$p' "$OUT/$slug.txt" | tee -a "$summary"
 
   fi

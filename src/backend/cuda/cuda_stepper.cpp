@@ -72,6 +72,9 @@ class CudaStepper final : public GpuStepper {
     const CudaStatus st = cuda_status();
     if (!st.available) throw CudaUnavailable(st.reason);
     device_ = st.device;
+    // The haptic step waits for every step's force: spinning wakes the host sooner than yielding
+    // or blocking. Refused (and harmless) once the device's context runs with other flags.
+    if (cudaSetDeviceFlags(cudaDeviceScheduleSpin) != cudaSuccess) cudaGetLastError();
     check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream");
     buf_.upload(model, state);
     buf_.set_neighbour_block(neighbour_block());
@@ -164,6 +167,7 @@ class CudaStepper final : public GpuStepper {
     e = cudaGraphInstantiate(&exec_[dir], graph, 0);
     cudaGraphDestroy(graph);
     check(e, "graph instantiate");
+    check(cudaGraphUpload(exec_[dir], stream_), "graph upload");  // not on the first step's time
   }
 
   void finish(const Pose& tool_pose) {
