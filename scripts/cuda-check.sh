@@ -116,6 +116,9 @@ device() {
     echo "neighbour block $b: $(DENTSPH_CUDA_NEIGHBOUR_BLOCK=$b timeout 25 "$bin/dentsph" bench --backend cuda --quick --repeats 3 2>&1 |
       grep -E 'cuda: +[0-9]|^ +[0-9]+ .* cuda ' | awk '{printf "%s ", $0}')" | tee -a "$summary"
   done
+  # Cells of h / 2 searched two deep: 42% fewer candidates, 125 cells instead of 27.
+  echo "grid reach 2: $(timeout 25 "$bin/dentsph" bench --backend cuda --quick --repeats 3 --grid-reach 2 2>&1 |
+    grep -E '^ +[0-9]+ .* cuda ' | awk '{printf "%s ", $0}')" | tee -a "$summary"
   fi
 }
 

@@ -131,6 +131,9 @@ int main(int argc, char** argv) {
   bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
   bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 32^3 with cuda, 3 repeats)");
+  bench->add_option("--grid-reach", bench_opt.sweep_grid_reach, "The sweep's grid: cells of h / N searched N deep")
+      ->check(CLI::Range(1, 3))
+      ->capture_default_str();
   bench->add_option("--backend", bench_backend, "cpu (thread counts), or cuda: the sweep then reaches 2 million particles")
       ->check(CLI::IsMember(backends))
       ->capture_default_str();

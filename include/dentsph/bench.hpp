@@ -25,6 +25,7 @@ struct BenchOptions {
   // thread counts), over cuda_sweep_sides, which reach a million material particles and more.
   Backend backend = Backend::cpu;
   std::vector<int> cuda_sweep_sides{8, 16, 26, 40, 64, 80, 100, 126};
+  int sweep_grid_reach = 1;  // the sweep scenes' grid: cells of h / reach, searched reach deep
 };
 
 struct BenchRow {
@@ -48,7 +49,7 @@ struct BenchResult {
 };
 
 // A cube of side^3 material particles (1 cm spacing) in an open container: the sweep's scenes.
-Scene sweep_block_scene(int side);
+Scene sweep_block_scene(int side, int grid_reach = 1);
 
 BenchResult run_benchmarks(const BenchOptions& options, const std::function<void(const std::string&)>& log);
 std::string bench_json(const BenchResult& result);

@@ -114,7 +114,7 @@ nlohmann::json stages_json(const StageTimes& t) {
 
 }  // namespace
 
-Scene sweep_block_scene(int side) {
+Scene sweep_block_scene(int side, int grid_reach) {
   constexpr real s = 0.01;
   Scene sc;
   sc.name = fmt::format("block_{}", side);
@@ -126,6 +126,7 @@ Scene sweep_block_scene(int side) {
   sc.params.adhesion.B = 3 * s;
   sc.params.domain_min = {-3 * s, -3 * s, -3 * s};
   sc.params.domain_max = {ext, ext, ext};
+  sc.params.grid_reach = grid_reach;
   sc.model = make_model(sc.params);
   const real m = lattice_particle_mass(1000, s, sc.model.kernel);
   const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
@@ -162,7 +163,7 @@ BenchResult run_gpu_benchmarks(const BenchOptions& opt, const std::function<void
   res.default_stage_us[1] = m.per_step;
   log(fmt::format("{}: {}: {:.0f} steps/s", paper.name, method, m.steps_per_second));
   for (int side : opt.cuda_sweep_sides) {
-    const Scene sc = sweep_block_scene(side);
+    const Scene sc = sweep_block_scene(side, opt.sweep_grid_reach);
     State probe = make_state(sc);
     const real neighbours = mean_neighbours(sc.model, probe);
     const State start = make_state(sc);
@@ -194,7 +195,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   }
 
   for (int side : opt.sweep_sides) {
-    const Scene sc = sweep_block_scene(side);
+    const Scene sc = sweep_block_scene(side, opt.sweep_grid_reach);
     State probe = make_state(sc);
     const real neighbours = mean_neighbours(sc.model, probe);
     auto row = [&](const std::string& method, int t) {

@@ -51,8 +51,9 @@ TEST(Cuda, BondOverflowCountedAsOnTheCpu) {
   gpu_overflow_counted(on_device);
 }
 
-// The device and its emulation run the same algorithm: after 100 steps they agree far closer than
-// either agrees with the all-pairs reference (only the order of floating-point sums differs).
+// The device and its emulation run the same algorithm, each particle's sums in the same order:
+// after 100 steps they agree far closer than either agrees with the reference (1e-6 against 1e-4;
+// nvcc contracts a * b + c into fused multiply-adds where the host rounds twice).
 TEST(Cuda, AgreesWithItsHostEmulation) {
   DENTSPH_REQUIRE_DEVICE();
   const GpuScene scene{6, 0.25, 2, false, 9};
@@ -68,7 +69,7 @@ TEST(Cuda, AgreesWithItsHostEmulation) {
   State a, b;
   dev->download(a);
   emu->download(b);
-  compare_states(a, b, 100, 1e-9);
+  compare_states(a, b, 100, 1e-6);
 }
 
 }  // namespace
