@@ -93,8 +93,8 @@ class Buffers {
     v_.key_sorted = alloc<std::uint32_t>(n);
     v_.iota = alloc<std::uint32_t>(n);
     v_.order = alloc<std::uint32_t>(n);
-    v_.bucket_begin = alloc<std::uint32_t>(buckets);
-    v_.bucket_end = alloc<std::uint32_t>(buckets);
+    v_.bucket_begin = alloc<std::uint32_t>(2 * buckets);  // begin and end in one block: one clear
+    v_.bucket_end = v_.bucket_begin + buckets;
     v_.index_of_id = alloc<std::uint32_t>(n);
     v_.rho = alloc<real>(n);
     v_.pressure = alloc<real>(n);

@@ -74,8 +74,7 @@ class EmulatedStepper final : public GpuStepper {
     std::copy(v.iota, v.iota + v.n, v.order);
     std::stable_sort(v.order, v.order + v.n, [&](std::uint32_t a, std::uint32_t b) { return v.key[a] < v.key[b]; });
     launch(v.n, [&](std::uint32_t k) { v.key_sorted[k] = v.key[v.order[k]]; });
-    std::fill(v.bucket_begin, v.bucket_begin + v.buckets, 0u);
-    std::fill(v.bucket_end, v.bucket_end + v.buckets, 0u);
+    std::fill(v.bucket_begin, v.bucket_begin + 2 * std::size_t(v.buckets), 0u);  // begin and end
     launch(v.n, [&](std::uint32_t k) { gpu::cell_range_body(v, k); });
   }
   static void reorder(const gpu::StepView& v) {

@@ -20,8 +20,7 @@ cudaError_t launch_sort(const StepView& v, const SortScratch& scratch, cudaStrea
   cudaError_t e = cub::DeviceRadixSort::SortPairs(scratch.ptr, bytes, v.key, v.key_sorted, v.iota, v.order, int(v.n),
                                                   0, key_bits(v.buckets), s);
   if (e != cudaSuccess) return e;
-  if ((e = cudaMemsetAsync(v.bucket_begin, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
-  if ((e = cudaMemsetAsync(v.bucket_end, 0, sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
+  if ((e = cudaMemsetAsync(v.bucket_begin, 0, 2 * sizeof(std::uint32_t) * v.buckets, s)) != cudaSuccess) return e;
   return launch_each<cell_range_body>(v, kBlock, s);
 }
 

@@ -79,7 +79,8 @@ struct StepView {
   std::uint32_t* iota = nullptr;         // [n] 0, 1, ..., n - 1 (the sort's values)
   std::uint32_t* order = nullptr;        // [n] sorted position -> src index
   std::uint32_t* bucket_begin = nullptr; // [buckets] first sorted index of a bucket (0 if empty)
-  std::uint32_t* bucket_end = nullptr;   // [buckets] one past its last (0 if empty)
+  std::uint32_t* bucket_end = nullptr;   // [buckets] one past its last (0 if empty); follows
+                                         // bucket_begin in memory, so one memset clears both
   std::uint32_t* index_of_id = nullptr;  // [n] sorted index of each stable id
   real* rho = nullptr;            // [n] kg/m^3
   real* pressure = nullptr;       // [n] Pa
