@@ -48,6 +48,7 @@ int cmd_validate(const std::string& file) {
 int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   if (quick) {
     opt.sweep_sides = {8, 12, 16};
+    opt.cuda_sweep_sides = {8, 16, 32};
     opt.repeats = 3;
     opt.seconds_per_run = 0.1;
   }
@@ -120,6 +121,11 @@ int main(int argc, char** argv) {
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
   cli::RealtimeCommand realtime;
   realtime.add_options(*run);
+  const std::vector<std::string> backends = {"cpu", "cuda", "cuda-emulation"};
+  std::string run_backend = "cpu", bench_backend = "cpu";
+  run->add_option("--backend", run_backend, "Where the step runs: cpu, cuda (a GPU), cuda-emulation (its algorithm on the CPU, slow)")
+      ->check(CLI::IsMember(backends))
+      ->capture_default_str();
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -128,7 +134,13 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", bench_opt.threads, "Thread counts to measure (e.g. --threads 1 2)")->capture_default_str();
   bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
-  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 3 repeats)");
+  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 32^3 with cuda, 3 repeats)");
+  bench->add_option("--grid-reach", bench_opt.sweep_grid_reach, "The sweep's grid: cells of h / N searched N deep")
+      ->check(CLI::Range(1, 3))
+      ->capture_default_str();
+  bench->add_option("--backend", bench_backend, "cpu (thread counts), or cuda: the sweep then reaches 2 million particles")
+      ->check(CLI::IsMember(backends))
+      ->capture_default_str();
 
   std::string replay_dir, replay_scene, replay_mesh;
   int replay_threads = 1;
@@ -149,9 +161,13 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
+      opt.backend = parse_backend(run_backend);
+      if (realtime.enabled() && opt.backend != Backend::cpu)
+        throw std::invalid_argument("--realtime runs the step on the CPU: leave out --backend, or run offline with it");
       return cmd_run(run_scene, run_mesh, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
+    bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene)
                                    : !replay_mesh.empty() ? dental_scene_from_mesh(replay_mesh)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dentsph/backend.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
@@ -20,12 +21,17 @@ struct BenchOptions {
   std::uint32_t all_pairs_max_particles = 8000;    // the all-pairs step only up to this count
   int repeats = 5;                                 // runs per configuration; the median is kept
   double seconds_per_run = 0.25;                   // wall time of one run (at least 5 steps)
+  // cuda (or cuda_emulation): a GPU backend instead of the CPU (one row per size, method "cuda", no
+  // thread counts), over cuda_sweep_sides, which reach a million material particles and more.
+  Backend backend = Backend::cpu;
+  std::vector<int> cuda_sweep_sides{8, 16, 26, 40, 64, 80, 100, 126};
+  int sweep_grid_reach = 1;  // the sweep scenes' grid: cells of h / reach, searched reach deep
 };
 
 struct BenchRow {
   std::uint32_t particles = 0;
   real neighbours = 0;        // mean neighbours within h
-  std::string method;         // grid | all_pairs
+  std::string method;         // grid | all_pairs | cuda | cuda-emulation
   int threads = 1;
   double steps_per_second = 0;  // median over the runs
   StageTimes stage_us;        // per step, from the median run
@@ -38,11 +44,12 @@ struct BenchResult {
   std::map<int, StageTimes> default_stage_us;               // by thread count, per step
   std::vector<BenchRow> sweep;
   std::size_t bytes_per_particle = 0;           // of the largest sweep scene
-  std::string machine;                          // CPU model and core count
+  std::string machine;                          // CPU model and core count, or the GPU
+  Backend backend = Backend::cpu;               // a GPU backend: default_* are keyed 1 (one GPU)
 };
 
 // A cube of side^3 material particles (1 cm spacing) in an open container: the sweep's scenes.
-Scene sweep_block_scene(int side);
+Scene sweep_block_scene(int side, int grid_reach = 1);
 
 BenchResult run_benchmarks(const BenchOptions& options, const std::function<void(const std::string&)>& log);
 std::string bench_json(const BenchResult& result);

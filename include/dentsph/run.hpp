@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dentsph/backend.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
 
@@ -33,6 +34,7 @@ struct RunOptions {
   std::filesystem::path out_dir;    // where to write; empty: write nothing
   bool allow_unstable = false;      // run even when dt is over the acoustic or viscous limit
   int threads = 1;                  // threads of the parallel stages
+  Backend backend = Backend::cpu;   // cuda: the particles stay on the GPU, downloaded for outputs
   std::function<void(const RunProgress&)> on_progress;  // called about every 1% of the run
 };
 

@@ -10,7 +10,7 @@ namespace dentsph {
 struct Vec3 {
   real x = 0, y = 0, z = 0;
 
-  DENTSPH_HD constexpr Vec3() = default;
+  constexpr Vec3() = default;  // defaulted: host and device alike
   DENTSPH_HD constexpr Vec3(real x_, real y_, real z_) : x(x_), y(y_), z(z_) {}
 
   DENTSPH_HD constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }

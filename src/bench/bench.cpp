@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include <fmt/format.h>
@@ -56,6 +57,43 @@ Measured measure(const Model& model, State& state, bool all_pairs, int threads, 
   return runs[runs.size() / 2];
 }
 
+// The CUDA backend: the step rate from graph replays (the haptic path), then the stage times from
+// separately timed steps (each stage waited for, so slower than the replays).
+template <class Prepare>
+Measured measure_gpu(const Model& model, const State& initial, const BenchOptions& opt, Prepare&& pose_of) {
+  std::unique_ptr<GpuStepper> gpu = make_gpu_stepper(opt.backend, model, initial);
+  State st = initial;  // only its time and tool pose are read
+  auto one = [&](StageTimes* times) {
+    pose_of(st);
+    times ? gpu->step_timed(st.tool_pose, *times) : gpu->step(st.tool_pose);
+    st.time = gpu->time();
+  };
+  for (int k = 0; k < 10; ++k) one(nullptr);
+  std::vector<double> rates;
+  for (int r = 0; r < std::max(1, opt.repeats); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::uint64_t steps = 0;
+    double elapsed = 0;
+    while (steps < 5 || elapsed < opt.seconds_per_run) {
+      one(nullptr);
+      ++steps;
+      elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    rates.push_back(double(steps) / elapsed);
+  }
+  std::sort(rates.begin(), rates.end());
+  Measured m;
+  m.steps_per_second = rates[rates.size() / 2];
+  StageTimes t;
+  for (int k = 0; k < 20; ++k) one(&t);
+  for (double StageTimes::*f : {&StageTimes::hash_us, &StageTimes::sort_us, &StageTimes::reorder_us,
+                                &StageTimes::density_us, &StageTimes::pressure_us, &StageTimes::forces_us,
+                                &StageTimes::wrench_us, &StageTimes::integrate_us})
+    m.per_step.*f = t.*f / double(t.steps);
+  m.per_step.steps = t.steps;
+  return m;
+}
+
 std::string machine_name() {
   std::ifstream cpu("/proc/cpuinfo");
   std::string line, model = "unknown CPU";
@@ -76,7 +114,7 @@ nlohmann::json stages_json(const StageTimes& t) {
 
 }  // namespace
 
-Scene sweep_block_scene(int side) {
+Scene sweep_block_scene(int side, int grid_reach) {
   constexpr real s = 0.01;
   Scene sc;
   sc.name = fmt::format("block_{}", side);
@@ -88,6 +126,7 @@ Scene sweep_block_scene(int side) {
   sc.params.adhesion.B = 3 * s;
   sc.params.domain_min = {-3 * s, -3 * s, -3 * s};
   sc.params.domain_max = {ext, ext, ext};
+  sc.params.grid_reach = grid_reach;
   sc.model = make_model(sc.params);
   const real m = lattice_particle_mass(1000, s, sc.model.kernel);
   const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
@@ -103,7 +142,41 @@ Scene sweep_block_scene(int side) {
   return sc;
 }
 
+// A GPU backend's benchmark: the dental scene, then the sweep up to millions of particles.
+BenchResult run_gpu_benchmarks(const BenchOptions& opt, const std::function<void(const std::string&)>& log) {
+  BenchResult res;
+  res.backend = opt.backend;
+  if (opt.backend == Backend::cuda) {
+    const CudaStatus cs = cuda_status();
+    if (!cs.available) throw CudaUnavailable(cs.reason);
+    res.machine = cs.device;
+  } else {
+    res.machine = machine_name() + " (emulating the CUDA backend)";
+  }
+  const std::string method = backend_name(opt.backend);
+  const Scene paper = default_dental_scene();
+  res.default_scene = paper.name;
+  const State st = make_state(paper);
+  for (Role r : {Role::material, Role::boundary, Role::tool}) res.default_particles[role_name(r)] = st.count(r);
+  const Measured m = measure_gpu(paper.model, st, opt, [&](State& s) { s.tool_pose = paper.tool.at(s.time + paper.model.dt); });
+  res.default_steps_per_second[1] = m.steps_per_second;
+  res.default_stage_us[1] = m.per_step;
+  log(fmt::format("{}: {}: {:.0f} steps/s", paper.name, method, m.steps_per_second));
+  for (int side : opt.cuda_sweep_sides) {
+    const Scene sc = sweep_block_scene(side, opt.sweep_grid_reach);
+    State probe = make_state(sc);
+    const real neighbours = mean_neighbours(sc.model, probe);
+    const State start = make_state(sc);
+    const Measured r = measure_gpu(sc.model, start, opt, [](State&) {});
+    res.sweep.push_back({start.size(), neighbours, method, 1, r.steps_per_second, r.per_step});
+    res.bytes_per_particle = start.bytes_per_particle();
+    log(fmt::format("{} particles, {}: {:.1f} steps/s", start.size(), method, r.steps_per_second));
+  }
+  return res;
+}
+
 BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(const std::string&)>& log) {
+  if (opt.backend != Backend::cpu) return run_gpu_benchmarks(opt, log);
   BenchResult res;
   res.machine = machine_name();
 
@@ -122,7 +195,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   }
 
   for (int side : opt.sweep_sides) {
-    const Scene sc = sweep_block_scene(side);
+    const Scene sc = sweep_block_scene(side, opt.sweep_grid_reach);
     State probe = make_state(sc);
     const real neighbours = mean_neighbours(sc.model, probe);
     auto row = [&](const std::string& method, int t) {
@@ -141,6 +214,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
 std::string bench_json(const BenchResult& r) {
   nlohmann::json j;
   j["machine"] = r.machine;
+  j["backend"] = backend_name(r.backend);
   nlohmann::json sps = nlohmann::json::object(), stages = nlohmann::json::object();
   for (const auto& [t, v] : r.default_steps_per_second) sps[std::to_string(t)] = v;
   for (const auto& [t, v] : r.default_stage_us) stages[std::to_string(t)] = stages_json(v);
@@ -164,8 +238,9 @@ std::string bench_table(const BenchResult& r) {
   out += "particles)\n";
   for (const auto& [t, v] : r.default_steps_per_second) {
     const StageTimes& st = r.default_stage_us.at(t);
-    out += fmt::format("  {} threads: {:8.0f} steps/s  ({:.1f} us/step: density {:.1f}, forces and bonds {:.1f}, other {:.1f})\n",
-                       t, v, st.total_us(), st.density_us, st.forces_us, st.total_us() - st.density_us - st.forces_us);
+    const std::string who = r.backend != Backend::cpu ? std::string(backend_name(r.backend)) : fmt::format("{} threads", t);
+    out += fmt::format("  {}: {:8.0f} steps/s  ({:.1f} us/step: density {:.1f}, forces and bonds {:.1f}, other {:.1f})\n",
+                       who, v, st.total_us(), st.density_us, st.forces_us, st.total_us() - st.density_us - st.forces_us);
   }
   out += fmt::format("\n{:>10} {:>10} {:>10} {:>8} {:>12} {:>12}\n", "particles", "neighbours", "method", "threads",
                      "steps/s", "ns/particle");

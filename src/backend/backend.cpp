@@ -1,0 +1,58 @@
+// What every backend shares: names, and the results a GpuStepper hands back each step.
+#include "dentsph/backend.hpp"
+
+#include <fmt/format.h>
+
+namespace dentsph {
+
+const char* backend_name(Backend b) {
+  switch (b) {
+    case Backend::cpu: return "cpu";
+    case Backend::cuda: return "cuda";
+    case Backend::cuda_emulation: return "cuda-emulation";
+  }
+  return "unknown";
+}
+
+Backend parse_backend(const std::string& name) {
+  for (Backend b : {Backend::cpu, Backend::cuda, Backend::cuda_emulation})
+    if (name == backend_name(b)) return b;
+  throw std::invalid_argument(fmt::format("unknown backend '{}': choose cpu, cuda or cuda-emulation", name));
+}
+
+std::unique_ptr<GpuStepper> make_gpu_stepper(Backend backend, const Model& model, const State& state) {
+  if (backend == Backend::cuda) return make_cuda_stepper(model, state);
+  if (backend == Backend::cuda_emulation) return make_emulated_gpu_stepper(model, state);
+  throw std::invalid_argument("make_gpu_stepper: the cpu backend has no GPU stepper");
+}
+
+void GpuStepper::start_from(const Model& model, const State& state) {
+  dt_ = model.dt;
+  wrench_ = state.tool_wrench;
+  diagnostics_ = state.diagnostics;
+  counters_ = state.bonds.counters;
+  tool_pose_applied_ = state.tool_pose_applied;
+  steps_ = state.steps;
+  time_ = state.time;
+}
+
+void GpuStepper::finish_step(const ToolWrench& wrench, const StepDiagnostics& diagnostics,
+                             const BondCounters& counters, const Pose& tool_pose) {
+  wrench_ = wrench;
+  diagnostics_ = diagnostics;
+  counters_ = counters;
+  tool_pose_applied_ = tool_pose;
+  time_ += dt_;
+  ++steps_;
+}
+
+void GpuStepper::copy_results(State& state) const {
+  state.tool_wrench = wrench_;
+  state.diagnostics = diagnostics_;
+  state.bonds.counters = counters_;
+  state.tool_pose_applied = tool_pose_applied_;
+  state.time = time_;
+  state.steps = steps_;
+}
+
+}  // namespace dentsph

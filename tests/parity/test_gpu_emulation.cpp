@@ -1,0 +1,136 @@
+// The GPU backend's algorithm, run on the CPU (make_emulated_gpu_stepper: the CUDA stage bodies
+// looped over the particles), against the CPU reference: the all-pairs step and the grid step
+// within 1e-4 relative over 100 steps, the Fig. 2 bond loop step for step, the bond overflow
+// counted alike. tests/cuda runs the same checks on a device.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "dentsph/bench.hpp"
+#include "dentsph/run.hpp"
+#include "support/gpu_parity.hpp"
+
+namespace dentsph {
+namespace {
+
+using namespace testing;
+
+const GpuFactory emulated = [](const Model& m, const State& s) { return make_emulated_gpu_stepper(m, s); };
+
+class GpuEmulation : public ::testing::TestWithParam<GpuScene> {};
+
+TEST_P(GpuEmulation, MatchesAllPairsOver100Steps) { gpu_parity_run(emulated, GetParam(), true, 1e-4); }
+
+TEST_P(GpuEmulation, MatchesGridStepOver100Steps) { gpu_parity_run(emulated, GetParam(), false, 1e-4, 10); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GpuEmulation,
+                         ::testing::Values(GpuScene{4, 0.2, 1, false, 1}, GpuScene{5, 0.25, 2, true, 2},
+                                           GpuScene{6, 0.0, 1, true, 3}, GpuScene{5, 0.3, 3, false, 4}),
+                         [](const auto& info) {
+                           const GpuScene& c = info.param;
+                           return "side" + std::to_string(c.side) + "_reach" + std::to_string(c.reach) +
+                                  (c.far_cluster ? "_far" : "") + "_seed" + std::to_string(c.seed);
+                         });
+
+TEST(GpuEmulation, Fig2BondLoopStepForStep) { gpu_fig2_loop(emulated); }
+
+TEST(GpuEmulation, BondOverflowCountedAsOnTheCpu) { gpu_overflow_counted(emulated); }
+
+TEST(GpuEmulation, DownloadBeforeAnyStepKeepsTheParticles) {
+  const GpuScene scene;
+  const Model model = gpu_scene_model(scene);
+  const State st = gpu_scene_state(model, scene);
+  State back;
+  make_emulated_gpu_stepper(model, st)->download(back);
+  ASSERT_EQ(back.size(), st.size());
+  for (std::uint32_t id = 0; id < st.size(); ++id) {
+    EXPECT_EQ(back.pos[at(back, id)], st.pos[at(st, id)]);
+    EXPECT_EQ(back.role[at(back, id)], st.role[at(st, id)]);
+  }
+  EXPECT_TRUE(back.rho_static_valid);
+}
+
+TEST(Backend, NamesParseAndUnknownNamesAreRefused) {
+  EXPECT_EQ(parse_backend("cpu"), Backend::cpu);
+  EXPECT_EQ(parse_backend("cuda"), Backend::cuda);
+  EXPECT_EQ(parse_backend("cuda-emulation"), Backend::cuda_emulation);
+  EXPECT_STREQ(backend_name(Backend::cuda), "cuda");
+  EXPECT_THROW(parse_backend("opencl"), std::invalid_argument);
+}
+
+TEST(Backend, CudaUnavailableSaysWhy) {
+  const CudaStatus st = cuda_status();
+  if (st.available) GTEST_SKIP() << "a CUDA device is present: " << st.device;
+  EXPECT_FALSE(st.reason.empty());
+  const std::string expected = cuda_built() ? "no CUDA device" : "this build has no CUDA backend";
+  EXPECT_EQ(st.reason.rfind(expected, 0), 0u) << st.reason;
+  const GpuScene scene;
+  const Model model = gpu_scene_model(scene);
+  try {
+    make_cuda_stepper(model, gpu_scene_state(model, scene));
+    FAIL() << "make_cuda_stepper should throw without CUDA";
+  } catch (const CudaUnavailable& e) {
+    EXPECT_EQ(std::string(e.what()), st.reason);
+  }
+  // The run and the benchmark refuse the same way (the CLI prints it and exits non-zero).
+  RunOptions ro;
+  ro.steps = 1;
+  ro.backend = Backend::cuda;
+  EXPECT_THROW(run_offline(load_scene("scenes/tool_press.json"), ro), CudaUnavailable);
+  BenchOptions bo;
+  bo.backend = Backend::cuda;
+  EXPECT_THROW(run_benchmarks(bo, [](const std::string&) {}), CudaUnavailable);
+}
+
+// The run loop's GPU path (the particles downloaded only for snapshots, events and the end):
+// a scene with a dispense event gives the CPU run's summary.
+TEST(GpuEmulation, RunLoopMatchesTheCpuRun) {
+  Scene sc = load_scene("scenes/tool_press.json");
+  ProcedureEvent more;
+  more.t = 0.01;
+  more.kind = ProcedureEvent::Kind::dispense;
+  for (Vec3 p : lattice({-0.02, -0.02, 0.075}, 0.01, 3, 3, 2))
+    more.particles.push_back(make_particle(Role::material, p, 1e-3, {0.5, 60, 1000, 200}));
+  sc.events.push_back(more);
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_gpu_run";
+  RunOptions opt;
+  opt.steps = 60;
+  opt.out_dir = dir / "cpu";
+  const RunSummary cpu = run_offline(sc, opt);
+  opt.out_dir = dir / "gpu";
+  opt.backend = Backend::cuda_emulation;
+  const RunSummary gpu = run_offline(sc, opt);
+  EXPECT_EQ(gpu.events_applied, 1u);
+  EXPECT_EQ(gpu.material, cpu.material);
+  EXPECT_EQ(gpu.steps, cpu.steps);
+  EXPECT_EQ(gpu.snapshots, cpu.snapshots);
+  EXPECT_EQ(gpu.bonds.formed, cpu.bonds.formed);
+  EXPECT_EQ(gpu.bonds_current, cpu.bonds_current);
+  EXPECT_GT(cpu.peak_tool_force_N, 0);
+  EXPECT_NEAR(gpu.peak_tool_force_N, cpu.peak_tool_force_N, 1e-4 * cpu.peak_tool_force_N);
+  EXPECT_EQ(gpu.status, "completed");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(GpuEmulation, BenchmarkReportsTheBackendAndItsSweep) {
+  BenchOptions opt;
+  opt.backend = Backend::cuda_emulation;
+  opt.cuda_sweep_sides = {4, 6};
+  opt.repeats = 1;
+  opt.seconds_per_run = 0.01;
+  const auto j = nlohmann::json::parse(bench_json(run_benchmarks(opt, [](const std::string&) {})));
+  EXPECT_EQ(j["backend"], "cuda-emulation");
+  EXPECT_GT(j["default_scene"]["steps_per_second"]["1"].get<double>(), 0);
+  EXPECT_GT(j["default_scene"]["stage_us"]["1"]["forces"].get<double>(), 0);
+  ASSERT_EQ(j["sweep"].size(), 2u);
+  for (const auto& row : j["sweep"]) {
+    EXPECT_EQ(row["method"], "cuda-emulation");
+    EXPECT_GT(row["steps_per_second"].get<double>(), 0);
+    EXPECT_GT(row["stage_us"]["density"].get<double>(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
