@@ -78,7 +78,7 @@ TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   const nlohmann::json& d = s["device"];
   // What the client saw: every force finite, within 9 N, answering a pose it sent (echoing that
   // pose's timestamp), never going back to an older pose.
-  EXPECT_EQ(c["poses_sent"], 3000);
+  EXPECT_GE(c["poses_sent"].get<int>(), 2900);  // 3 s at 1 kHz
   EXPECT_GT(c["forces_received"].get<std::uint64_t>(), 300u);  // one per haptic tick that got a new pose
   EXPECT_EQ(c["non_finite_forces"], 0);
   EXPECT_EQ(c["forces_over_limit"], 0);
