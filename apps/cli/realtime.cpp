@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@ void RealtimeCommand::add_options(CLI::App& run) {
   auto* rt = run.add_flag("--realtime", realtime_,
                           "Run the haptic runtime: a haptic loop, the simulation and a consumer on their own threads");
   auto need = [rt](CLI::Option* o) { o->needs(rt); };
+  threads_option_ = run.get_option_no_throw("--threads");
   need(run.add_option("--device", device_, "Haptic device: scripted (the scene's keyframes), replay (a recording), udp (the network bridge)")
            ->check(CLI::IsMember({"scripted", "replay", "udp"}))
            ->capture_default_str());
@@ -55,7 +57,11 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   o.pace_realtime = !free_run_;
   o.sim_rate_limit_hz = sim_rate_;
   o.snapshot_rate_hz = snapshot_rate_;
-  o.threads = offline.threads;
+  // Without --threads the simulation leaves a core to the haptic loop (and the consumer): a
+  // parallel step whose threads share a core with the haptic thread waits at every barrier.
+  o.threads = threads_option_ && threads_option_->count() > 0
+                  ? offline.threads
+                  : std::max(1, int(std::thread::hardware_concurrency()) - 1);
   o.allow_unstable = offline.allow_unstable;
   o.out_dir = offline.out_dir;
   o.workspace.scale = workspace_scale_;
