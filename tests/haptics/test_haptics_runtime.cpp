@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -352,6 +354,31 @@ TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
   EXPECT_GT(r.haptic.non_finite_poses, 10u);
   expect_safe(r, o.profile);
   EXPECT_EQ(r.run.status, "diverged") << r.run.message;
+}
+
+// The command line: a realtime run of a scene file writes its summary and recording, and
+// `dentsph replay` reproduces the recorded tool forces (exit code 0 only when all agree).
+TEST(HapticRuntime, CommandLineRunsAndReplays) {
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_cli_realtime";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "press.json") << testing::press_scene_json();
+  const std::string cli = DENTSPH_CLI;
+  const std::string scene = (dir / "press.json").string(), out = (dir / "out").string();
+  ASSERT_EQ(std::system((cli + " run " + scene + " --realtime --force-scale 20 --threads 1 -q --out " + out + " > " +
+                         (dir / "run.txt").string()).c_str()),
+            0);
+  std::ifstream in(dir / "out" / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  for (const char* key : {"rate_hz", "period_p50_us", "period_p99_us", "period_max_us", "deadline_misses",
+                          "force_age_p99_us", "max_force_N"})
+    EXPECT_TRUE(s["haptic"].contains(key)) << key;
+  EXPECT_GT(s["sim"]["steps_per_second"].get<double>(), 0);
+  EXPECT_EQ(s["device"]["name"], "scripted");
+  EXPECT_LE(s["haptic"]["max_force_N"].get<double>(), 9.0);
+  EXPECT_EQ(std::system((cli + " replay " + out + "/recording " + scene + " > " + (dir / "replay.txt").string()).c_str()), 0);
+  EXPECT_NE(std::system((cli + " run " + scene + " --realtime --haptic-rate 100 -q > /dev/null 2>&1").c_str()), 0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(HapticRuntime, RefusesImpossibleOptions) {
