@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -23,6 +24,7 @@ void RealtimeCommand::add_device_options(CLI::App& run, CLI::Option* rt) {
   auto need = [rt](CLI::Option* o) {
     if (rt) o->needs(rt);
   };
+  threads_option_ = run.get_option_no_throw("--threads");
   need(run.add_option("--device", device_, "Haptic device: scripted (the scene's keyframes), replay (a recording), udp (the network bridge)")
            ->check(CLI::IsMember({"scripted", "replay", "udp"}))
            ->capture_default_str());
@@ -61,7 +63,11 @@ RealtimeOptions RealtimeCommand::options(const Scene& scene, double duration_s, 
   o.pace_realtime = !free_run_;
   o.sim_rate_limit_hz = sim_rate_;
   o.snapshot_rate_hz = snapshot_rate_;
-  o.threads = threads;
+  // Without --threads the simulation leaves a core to the haptic loop (and the consumer): a
+  // parallel step whose threads share a core with the haptic thread waits at every barrier.
+  o.threads = threads_option_ && threads_option_->count() > 0
+                  ? threads
+                  : std::max(1, int(std::thread::hardware_concurrency()) - 1);
   o.allow_unstable = allow_unstable;
   o.out_dir = out_dir;
   o.workspace.scale = workspace_scale_;

@@ -40,6 +40,7 @@ class RealtimeCommand {
   double force_scale_ = 0;  // 0: the scene's
   std::vector<double> origin_;
   CouplingParams coupling_;
+  const CLI::Option* threads_option_ = nullptr;
 };
 
 // `dentsph replay RECORDING [SCENE]`: steps the scene on the recorded tool poses and compares

@@ -9,7 +9,7 @@
 
 namespace dentsph::testing {
 
-inline Scene press_scene(const std::string& keyframes = R"([
+inline std::string press_scene_json(const std::string& keyframes = R"([
       {"t": 0.0, "position": [0, 0, 0.09]},
       {"t": 0.4, "position": [0, 0, 0.05]},
       {"t": 0.7, "position": [0, 0, 0.05]},
@@ -36,7 +36,10 @@ inline Scene press_scene(const std::string& keyframes = R"([
   "output": {"snapshot_interval": 0, "vtk": false},
   "run": {"duration": 1.2}
 })";
-  return parse_scene(json, "press_scene");
+  return json;
 }
+
+inline Scene press_scene(const std::string& keyframes) { return parse_scene(press_scene_json(keyframes), "press_scene"); }
+inline Scene press_scene() { return parse_scene(press_scene_json(), "press_scene"); }
 
 }  // namespace dentsph::testing

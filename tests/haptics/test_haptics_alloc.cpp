@@ -1,0 +1,97 @@
+// The haptic loop allocates nothing once it runs: the global operator new counts the allocations
+// made on the haptic thread after the device was started on it.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <thread>
+
+#include "dentsph/haptics.hpp"
+#include "press_scene.hpp"
+
+// ThreadSanitizer's runtime defines operator new itself: there the count is not taken.
+#if defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define DENTSPH_NO_NEW_COUNT 1
+#endif
+#endif
+#if defined(__SANITIZE_THREAD__)
+#define DENTSPH_NO_NEW_COUNT 1
+#endif
+
+namespace {
+
+std::atomic<std::thread::id> g_watched{};
+std::atomic<std::uint64_t> g_allocations{0};
+
+#ifndef DENTSPH_NO_NEW_COUNT
+void* counted(std::size_t n) {
+  if (g_watched.load(std::memory_order_relaxed) == std::this_thread::get_id())
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+
+#endif
+}  // namespace
+
+#ifndef DENTSPH_NO_NEW_COUNT
+void* operator new(std::size_t n) { return counted(n); }
+void* operator new[](std::size_t n) { return counted(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#endif
+
+namespace dentsph {
+namespace {
+
+// The scripted device, watching the thread it is started on.
+class Watched final : public Device {
+ public:
+  explicit Watched(std::unique_ptr<Device> d) : d_(std::move(d)) {}
+  std::string name() const override { return d_->name(); }
+  void start(std::int64_t t0) override {
+    d_->start(t0);
+    g_allocations = 0;
+    g_watched = std::this_thread::get_id();
+  }
+  bool read(std::int64_t now, DeviceSample& s) override { return d_->read(now, s); }
+  void write(std::int64_t now, const ForceCommand& c) override { d_->write(now, c); }
+  bool finished(std::int64_t now) const override { return d_->finished(now); }
+
+ private:
+  std::unique_ptr<Device> d_;
+};
+
+TEST(HapticLoop, AllocatesNothingWhileItRuns) {
+#ifdef DENTSPH_NO_NEW_COUNT
+  GTEST_SKIP() << "ThreadSanitizer replaces operator new; counted in the other builds";
+#endif
+  // The count works: an allocation on the watched thread is seen.
+  g_watched = std::this_thread::get_id();
+  g_allocations = 0;
+  delete new std::uint64_t(1);
+  g_watched = std::thread::id{};
+  ASSERT_EQ(g_allocations.load(), 1u);
+
+  const Scene scene = testing::press_scene();
+  for (const ForceMode mode : {ForceMode::coupling, ForceMode::direct}) {
+    RealtimeOptions o;
+    o.mode = mode;
+    o.force_scale = 20;
+    o.record_capacity_s = 5;
+    o.workspace.origin = {0, 0, 0.09};
+    Watched device(make_scripted_device(scene, o.workspace, 0.6));
+    const RealtimeResult r = run_realtime(scene, device, o);
+    g_watched = std::thread::id{};
+    EXPECT_GT(r.haptic.timing.ticks, 100u);
+    EXPECT_GT(r.haptic.max_force_N, 0.0);
+    EXPECT_EQ(g_allocations.load(), 0u) << force_mode_name(mode);
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
