@@ -61,9 +61,11 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet) {
-  // No scene file: the dental scene, on the built-in molar crown or on the given scanned tooth.
-  const Scene sc = !file.empty() ? load_scene(file) : !mesh.empty() ? dental_scene_from_mesh(mesh) : default_dental_scene();
+int cmd_run(const std::string& file, const std::string& mesh, const std::string& procedure, RunOptions opt,
+            bool quiet) {
+  // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
+  // crown or on the given scanned tooth.
+  const Scene sc = !file.empty() ? load_scene(file) : dental_run_scene(mesh, procedure);
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
@@ -102,10 +104,14 @@ int main(int argc, char** argv) {
   bool quiet = false;
   CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
   auto* scene_opt =
-      run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in dental scene")->check(CLI::ExistingFile);
+      run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in filling procedure")->check(CLI::ExistingFile);
   std::string run_mesh;
   run->add_option("--mesh", run_mesh, "Run the dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
       ->check(CLI::ExistingFile)
+      ->excludes(scene_opt);
+  std::string run_procedure;
+  run->add_option("--procedure", run_procedure,
+                  "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one")
       ->excludes(scene_opt);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps)")
@@ -134,7 +140,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       opt.out_dir = out_dir;
-      return cmd_run(run_scene, run_mesh, opt, quiet);
+      return cmd_run(run_scene, run_mesh, run_procedure, opt, quiet);
     }
     if (*validate) return cmd_validate(validate_scene);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
