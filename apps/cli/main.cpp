@@ -63,9 +63,11 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const std::string& mesh, RunOptions opt, bool quiet, cli::RealtimeCommand& rt) {
-  // No scene file: the dental scene, on the built-in molar crown or on the given scanned tooth.
-  const Scene sc = !file.empty() ? load_scene(file) : !mesh.empty() ? dental_scene_from_mesh(mesh) : default_dental_scene();
+int cmd_run(const std::string& file, const std::string& mesh, const std::string& procedure, RunOptions opt,
+            bool quiet, cli::RealtimeCommand& rt) {
+  // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
+  // crown or on the given scanned tooth.
+  const Scene sc = !file.empty() ? load_scene(file) : dental_run_scene(mesh, procedure);
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
@@ -105,10 +107,14 @@ int main(int argc, char** argv) {
   bool quiet = false;
   CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
   auto* scene_opt =
-      run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in dental scene")->check(CLI::ExistingFile);
+      run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in filling procedure")->check(CLI::ExistingFile);
   std::string run_mesh;
   run->add_option("--mesh", run_mesh, "Run the dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
       ->check(CLI::ExistingFile)
+      ->excludes(scene_opt);
+  std::string run_procedure;
+  run->add_option("--procedure", run_procedure,
+                  "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one")
       ->excludes(scene_opt);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
@@ -164,7 +170,7 @@ int main(int argc, char** argv) {
       opt.backend = parse_backend(run_backend);
       if (realtime.enabled() && opt.backend != Backend::cpu)
         throw std::invalid_argument("--realtime runs the step on the CPU: leave out --backend, or run offline with it");
-      return cmd_run(run_scene, run_mesh, opt, quiet, realtime);
+      return cmd_run(run_scene, run_mesh, run_procedure, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
     bench_opt.backend = parse_backend(bench_backend);

@@ -43,6 +43,12 @@ struct ProcedureEvent {
   std::vector<ParticleInit> particles;   // dispense: the increment (world frame);
                                          // switch_tool: the new tool's particles (tool frame)
   std::string tool;                      // switch_tool: the instrument's name
+  // dispense: when `count` > 0, `particles` are candidate sites in order of preference and the
+  // increment is the first `count` of them that keep `clearance` (m) from the material already
+  // there: an increment laid on the previous one, whose shape after compaction a procedure file
+  // cannot know. Fewer when fewer are free.
+  std::size_t count = 0;
+  real clearance = 0;
 };
 
 struct OutputSettings {

@@ -210,6 +210,9 @@ class PreparedTooth {
   SurfacePoint distance(const Vec3& p) const;
   // Inside the removed tooth: in the cavity's shape and in the original tooth.
   bool in_cavity(const Vec3& p) const;
+  // Class II: signed distance to the proximal box's own shape (unclipped). Throws
+  // std::logic_error for a Class I cavity.
+  real proximal_box_distance(const Vec3& p) const;
   real cavity_volume() const { return report().cavity_volume; }  // m^3
   Bounds cavity_bounds() const;  // m, world box holding every point where in_cavity() is true
 
@@ -248,6 +251,13 @@ struct BoundarySamples {
 
 BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams& params);
 
+// A matrix band for a Class II cavity: two layers of boundary particles on the tooth's original
+// contour where the proximal box cut it away (and one spacing outside it), up to where the
+// contour turns to face the occlusal side, and `2 spacing` beyond the box's outline. Like the
+// metal strip a dentist wraps round the tooth, it closes the box so that it can be filled.
+// Throws std::invalid_argument for a Class I cavity.
+BoundarySamples matrix_band(const PreparedTooth& tooth, real spacing);
+
 // ---- built-in molar ---------------------------------------------------------------------------
 
 // A procedurally generated lower molar crown (no roots): a rounded box footprint bulging at the
@@ -280,5 +290,10 @@ struct ToothScene {
   BoundarySamples boundary;
 };
 ToothScene default_tooth_scene();
+
+// A scanned tooth's scene: the mesh (mm) loaded, checked and repaired, its frame found, the
+// cavity carved and lined at default_tooth_spacing (a Class II with its matrix band). Throws
+// MeshError or CavityError with the reason.
+ToothScene tooth_scene_from_mesh(const std::filesystem::path& mesh_file, const CavityParams& cavity = {});
 
 }  // namespace dentsph

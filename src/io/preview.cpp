@@ -56,7 +56,8 @@ void write_preview_png(const std::filesystem::path& file, const State& s, const 
   u = u / norm(u);
   const Vec3 w = cross(u, v);
 
-  // Centre on the material (or everything), scale to the extent of all finite particles.
+  // Centre on the material (or everything), scale to the extent of 99% of the finite particles
+  // (a few particles flung far away would otherwise shrink the picture to a dot).
   Vec3 centre;
   int counted = 0;
   for (std::uint32_t i = 0; i < s.size(); ++i)
@@ -65,12 +66,18 @@ void write_preview_png(const std::filesystem::path& file, const State& s, const 
     for (std::uint32_t i = 0; i < s.size(); ++i)
       if (is_finite(s.pos[i])) centre += s.pos[i], ++counted;
   if (counted > 0) centre = centre / counted;
-  real extent = 0;
+  std::vector<real> extents;
   for (std::uint32_t i = 0; i < s.size(); ++i)
     if (is_finite(s.pos[i])) {
       const Vec3 d = s.pos[i] - centre;
-      extent = std::max({extent, std::abs(dot(d, u)), std::abs(dot(d, v)), std::abs(dot(d, w))});
+      extents.push_back(std::max({std::abs(dot(d, u)), std::abs(dot(d, v)), std::abs(dot(d, w))}));
     }
+  real extent = 0;
+  if (!extents.empty()) {
+    const auto k = extents.begin() + std::ptrdiff_t(std::min(extents.size() - 1, extents.size() * 99 / 100));
+    std::nth_element(extents.begin(), k, extents.end());
+    extent = *k;
+  }
   extent = extent > 0 ? extent * 1.05 : 1;
   const real scale = 0.5 * n / extent;  // pixels per metre
   const real radius = std::max<real>(1.5, 0.5 * slab_half_width * scale);

@@ -15,21 +15,14 @@ Scene default_dental_scene(const DentalSceneParams& dp) {
 }
 
 Scene dental_scene_from_mesh(const std::filesystem::path& mesh_file, const DentalSceneParams& dp) {
-  const LoadedMesh loaded = load_mesh(mesh_file);
-  const MeshDistance tooth(loaded.mesh);
-  PreparedTooth prepared = carve_cavity(tooth, find_tooth_frame(loaded.mesh), CavityParams{});
-  BoundaryParams bp;
-  bp.spacing = default_tooth_spacing;
-  BoundarySamples boundary = sample_boundary(prepared, bp);
-  return dental_scene({std::move(prepared), std::move(boundary)}, dp, mesh_file.stem().string(), mesh_file.string());
+  return dental_scene(tooth_scene_from_mesh(mesh_file), dp, mesh_file.stem().string(), mesh_file.string());
 }
 
-Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std::string& name,
-                   const std::string& source) {
+Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const std::string& name,
+                        const std::string& source) {
   const PreparedTooth& tooth = ts.tooth;
   const ToothFrame& fr = tooth.frame();
   const real s = ts.boundary.spacing;
-
   Scene sc;
   sc.name = name;
   sc.source = source;
@@ -48,6 +41,20 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   const real m = lattice_particle_mass(dp.paste.rho0, s, sc.model.kernel);
 
   for (const Vec3& b : ts.boundary.points) sc.particles.push_back(make_particle(Role::boundary, b, m, dp.wall));
+  sc.tooth = tooth;
+  sc.material_spacing = s;
+  sc.output.snapshot_interval = 0.02;
+  sc.force_scale = dental_force_scale;
+  return sc;
+}
+
+Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std::string& name,
+                   const std::string& source) {
+  Scene sc = dental_base_scene(ts, dp, name, source);
+  const PreparedTooth& tooth = ts.tooth;
+  const ToothFrame& fr = tooth.frame();
+  const real s = ts.boundary.spacing;
+  const real m = lattice_particle_mass(dp.paste.rho0, s, sc.model.kernel);
 
   // Paste on a lattice of the tooth frame: first the cavity (half a spacing clear of its walls),
   // then layers above the occlusal reference within the cavity's outline, up to the count.
@@ -82,9 +89,6 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   for (int c = 0; c <= 40; ++c)
     sc.tool.keyframes.push_back({0.05 * c, Pose{above_paste - fr.z * ((c % 2 ? 2.5 : 0.0) * s), {}}});
   sc.duration = 2.0;
-  sc.tooth = tooth;
-  sc.material_spacing = s;
-  sc.output.snapshot_interval = 0.02;
   return sc;
 }
 

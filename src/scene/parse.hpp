@@ -3,6 +3,7 @@
 // keyframes), scene_json.cpp (the top level, simulation settings and the Model).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -68,5 +69,26 @@ struct ToolPart {
 
 // Reads the "tool" object.
 ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel);
+
+// Where the keyframes and events of a file land. A scene file gives world metres (the default);
+// a procedure file (procedure_json.cpp) gives millimetres in a tooth's frame.
+struct Placement {
+  const char* length_unit = "m";  // in the fields' hints
+  real length_scale = 1;          // m per file length unit
+  std::function<Pose(const Pose&)> to_world;  // file pose -> world pose; empty: identity
+  // Reads a "dispense" object `d` (checking it) into the event's particles (and count and
+  // clearance); empty: the scene file's sphere of lattice points ({"volume", "at", "spacing"},
+  // roles.material).
+  std::function<void(const Reader& d, ProcedureEvent& event)> dispense;
+};
+
+// "keyframes" of `owner`: at least one, times strictly increasing, each placed by `placement`.
+ToolTrajectory read_trajectory(const Reader& owner, const Placement& placement);
+
+// "events" of `owner` (dispense, switch_tool) in time order. `materials` gives roles.material
+// for a scene file's dispense; the instruments are of `tool_material`.
+std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& placement,
+                                        const MaterialTable* materials, const Material& tool_material,
+                                        const KernelCoeffs& kernel);
 
 }  // namespace dentsph::scene

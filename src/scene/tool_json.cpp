@@ -20,35 +20,38 @@ Quat read_rotation(const Reader& r) {
   return Quat::from_axis_angle(axis, deg * pi / 180);
 }
 
-ToolKeyframe read_keyframe(const Reader& k, const ToolKeyframe* previous) {
+ToolKeyframe read_keyframe(const Reader& k, const ToolKeyframe* previous, const Placement& place) {
   k.only({"t", "position", "rotation"});
   ToolKeyframe kf;
   kf.t = k.number("t", "the keyframe time in s", Range::non_negative);
   if (previous != nullptr && !(kf.t > previous->t))
     k.fail("t", fmt::format("{} s is not after the previous keyframe's {} s", kf.t, previous->t),
            "keyframe times must strictly increase");
-  kf.pose.position = k.vec3("position", "the tool-frame origin's position [x, y, z] in m");
+  kf.pose.position =
+      place.length_scale *
+      k.vec3("position", fmt::format("the tool-frame origin's position [x, y, z] in {}", place.length_unit));
   if (const std::optional<Reader> rot =
           k.optional_object("rotation", "the orientation {\"axis\": [0, 0, 1], \"angle_deg\": 0}"))
     kf.pose.orientation = read_rotation(*rot);
   return kf;
 }
 
-ToolTrajectory read_trajectory(const Reader& tool) {
-  const Json& kfs = tool.array(
-      "keyframes", "at least one keyframe, e.g. [{\"t\": 0, \"position\": [0, 0, 0.1]}]");
-  ToolTrajectory traj;
-  for (std::size_t i = 0; i < kfs.size(); ++i)
-    traj.keyframes.push_back(read_keyframe(tool.element(kfs, "keyframes", i, "a keyframe"),
-                                           i > 0 ? &traj.keyframes.back() : nullptr));
-  return traj;
+// The scene file's increment: {"volume": m^3, "at": [x, y, z], "spacing": m}, a sphere of lattice
+// points of roles.material (spacing default h / 2).
+std::vector<ParticleInit> sphere_increment(const Reader& d, const MaterialTable& materials, const KernelCoeffs& kernel) {
+  d.only({"volume", "at", "spacing"});
+  const real volume = d.number("volume", "the increment's volume in m^3, e.g. 8e-9 (8 mm^3)", Range::positive);
+  const Vec3 at = d.vec3("at", "the increment's centre [x, y, z] in m");
+  const real spacing = d.number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
+  const std::optional<Material>& m = materials.default_for(Role::material);
+  if (!m) d.fail_here("has no material", "set roles.material to the paste's material");
+  return material_increment(at, volume, spacing, lattice_particle_mass(m->rho0, spacing, kernel), *m);
 }
 
-// One event: {"t": s, "dispense": {"volume": m^3, "at": [x, y, z], "spacing": m}} or
-// {"t": s, "switch_tool": {"name": "flat_plugger", "spacing": m}}. Spacing defaults to h / 2;
-// the increment is of roles.material, the instrument of the tool's material.
-ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const MaterialTable& materials,
-                          const Material& tool_material, const KernelCoeffs& kernel) {
+// One event: {"t": s, "dispense": {...}} or {"t": s, "switch_tool": {"name": "flat_plugger",
+// "spacing": length}}. Spacing defaults to h / 2; the instrument is of the tool's material.
+ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const Placement& place,
+                          const MaterialTable* materials, const Material& tool_material, const KernelCoeffs& kernel) {
   e.only({"t", "dispense", "switch_tool"});
   ProcedureEvent ev;
   ev.t = e.number("t", "the event time in s", Range::non_negative);
@@ -57,23 +60,22 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
            "list events in time order");
   if (e.has("dispense") == e.has("switch_tool"))
     e.fail_here("needs exactly one of \"dispense\" and \"switch_tool\"",
-                "give {\"t\": 1.0, \"dispense\": {\"volume\": 8e-9, \"at\": [0, 0, 0.01]}} or "
+                "give {\"t\": 1.0, \"dispense\": {\"volume\": ..., \"at\": [x, y, z]}} or "
                 "{\"t\": 1.0, \"switch_tool\": {\"name\": \"flat_plugger\"}}");
-  if (const std::optional<Reader> d = e.optional_object("dispense", "the increment {\"volume\": m^3, \"at\": [x, y, z]}")) {
-    d->only({"volume", "at", "spacing"});
-    const real volume = d->number("volume", "the increment's volume in m^3, e.g. 8e-9 (8 mm^3)", Range::positive);
-    const Vec3 at = d->vec3("at", "the increment's centre [x, y, z] in m");
-    const real spacing = d->number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
-    const std::optional<Material>& m = materials.default_for(Role::material);
-    if (!m) d->fail_here("has no material", "set roles.material to the paste's material");
+  if (const std::optional<Reader> d = e.optional_object("dispense", "the increment {\"volume\": ..., \"at\": [x, y, z]}")) {
     ev.kind = ProcedureEvent::Kind::dispense;
-    ev.particles = material_increment(at, volume, spacing, lattice_particle_mass(m->rho0, spacing, kernel), *m);
+    if (place.dispense)
+      place.dispense(*d, ev);
+    else
+      ev.particles = sphere_increment(*d, *materials, kernel);
   } else {
     const Reader sw = e.object("switch_tool", "the instrument {\"name\": \"flat_plugger\"}");
     sw.only({"name", "spacing"});
     ev.kind = ProcedureEvent::Kind::switch_tool;
     ev.tool = sw.string("name", "ball_burnisher, flat_plugger or condenser");
-    const real spacing = sw.number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
+    const real spacing =
+        place.length_scale * sw.number_or("spacing", kernel.h / 2 / place.length_scale,
+                                          fmt::format("the particle spacing in {}", place.length_unit), Range::positive);
     ToolShape shape;
     try {
       shape = tool_by_name(ev.tool, spacing);
@@ -86,6 +88,29 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
 }
 
 }  // namespace
+
+ToolTrajectory read_trajectory(const Reader& owner, const Placement& place) {
+  const Json& kfs = owner.array(
+      "keyframes", fmt::format("at least one keyframe, e.g. [{{\"t\": 0, \"position\": [0, 0, 1]}}] ({})",
+                               place.length_unit));
+  ToolTrajectory traj;
+  for (std::size_t i = 0; i < kfs.size(); ++i)
+    traj.keyframes.push_back(read_keyframe(owner.element(kfs, "keyframes", i, "a keyframe"),
+                                           i > 0 ? &traj.keyframes.back() : nullptr, place));
+  if (place.to_world)
+    for (ToolKeyframe& kf : traj.keyframes) kf.pose = place.to_world(kf.pose);
+  return traj;
+}
+
+std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& place, const MaterialTable* materials,
+                                        const Material& tool_material, const KernelCoeffs& kernel) {
+  const Json& evs = owner.array("events", "a list of events [{\"t\": 1.0, \"dispense\": {...}}]");
+  std::vector<ProcedureEvent> events;
+  for (std::size_t i = 0; i < evs.size(); ++i)
+    events.push_back(read_event(owner.element(evs, "events", i, "an event"), i > 0 ? &events.back() : nullptr, place,
+                                materials, tool_material, kernel));
+  return events;
+}
 
 ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
                     const KernelCoeffs& kernel) {
@@ -107,13 +132,10 @@ ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
         parse_block(tool.element(blocks, "blocks", i, "a block"), ctx);
     part.particles.insert(part.particles.end(), ps.begin(), ps.end());
   }
-  part.trajectory = read_trajectory(tool);
+  part.trajectory = read_trajectory(tool, Placement{});
   if (tool.has("events")) {
     if (!tool_material.material) tool.fail("events", "need the tool's material", "set tool.material or roles.tool");
-    const Json& evs = tool.array("events", "a list of events [{\"t\": 1.0, \"dispense\": {...}}]");
-    for (std::size_t i = 0; i < evs.size(); ++i)
-      part.events.push_back(read_event(tool.element(evs, "events", i, "an event"),
-                                       i > 0 ? &part.events.back() : nullptr, materials, *tool_material.material, kernel));
+    part.events = read_events(tool, Placement{}, &materials, *tool_material.material, kernel);
   }
   return part;
 }

@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <tuple>
 #include <unordered_map>
@@ -66,6 +67,19 @@ class DiskSet {
   std::unordered_map<CellKey, std::vector<Vec3>, CellHash> cells_;
 };
 
+// The layers' source: a 1-Lipschitz signed distance whose level sets k * step (k = 0 .. layers
+// - 1) are the layers, and a 1-Lipschitz region distance: layer k keeps the points where it is
+// at most margin + k |step| and `keep` (if any) agrees.
+struct LevelSets {
+  std::function<SurfacePoint(const Vec3&)> surface;
+  real step = 0;
+  std::function<real(const Vec3&)> region;
+  std::function<bool(const Vec3&, const SurfacePoint&)> keep;
+};
+
+BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
+                              const LevelSets& src);
+
 }  // namespace
 
 BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams& params) {
@@ -77,6 +91,30 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
     throw std::invalid_argument(
         fmt::format("sample_boundary: layers = {} must be in [1, 16]", params.layers));
   const real margin = params.margin > 0 ? params.margin : 2 * s;
+  return sample_layers(tooth, params, margin,
+                       {[&](const Vec3& p) { return tooth.distance(p); }, -params.spacing,
+                        [&](const Vec3& p) { return tooth.cavity_distance(p).distance; }, {}});
+}
+
+BoundarySamples matrix_band(const PreparedTooth& tooth, real spacing) {
+  if (tooth.params().kind != CavityClass::class_2)
+    throw std::invalid_argument("matrix_band: the cavity is Class I: it has no proximal box to close");
+  BoundaryParams bp;
+  bp.spacing = spacing;
+  const Vec3 z = tooth.frame().z;
+  // On the original contour and one spacing outside it, where the proximal box cut it away and
+  // the contour faces sideways (up to the marginal ridge's crest), plus a margin around.
+  return sample_layers(tooth, bp, 2 * spacing,
+                       {[&](const Vec3& p) { return tooth.tooth().query(p); }, spacing,
+                        [&](const Vec3& p) { return tooth.proximal_box_distance(p); },
+                        [z](const Vec3&, const SurfacePoint& sp) { return std::fabs(dot(sp.normal, z)) < 0.5; }});
+}
+
+namespace {
+
+BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
+                              const LevelSets& src) {
+  const real s = params.spacing;
   const ToothFrame& f = tooth.frame();
 
   // Region: the removed tooth's box, grown by the band and the layers.
@@ -103,13 +141,15 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
   std::vector<Coarse> coarse;
   const real half_diag = s * std::sqrt(real(3)) / 2;
   const real deepest = params.layers * s;
+  const real level_lo = std::min(real(0), (params.layers - 1) * src.step),
+             level_hi = std::max(real(0), (params.layers - 1) * src.step);
   // A cell can hold layer points only if its centre is within half a diagonal of the layers'
-  // depth range and of the band. Both distances are 1-Lipschitz, so blocks of 4^3 cells are
+  // level range and of the band. Both distances are 1-Lipschitz, so blocks of 4^3 cells are
   // ruled out at once from their centre: far from the surface a distance query costs several
   // times more than near it.
   auto relevant = [&](real dp, real dc, real slack) {
-    return dc <= margin + deepest + half_diag + slack && dp <= half_diag + slack &&
-           dp >= -deepest - half_diag - slack;
+    return dc <= margin + deepest + half_diag + slack && dp <= level_hi + half_diag + slack &&
+           dp >= level_lo - half_diag - slack;
   };
   constexpr std::int64_t block = 4;
   const real block_slack = s * block * std::sqrt(real(3)) / 2;
@@ -131,16 +171,16 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
       const auto [bi, bj, bk] = blocks[n];
       const real mid = (block - 1) / 2.0;
       const Vec3 centre = f.to_world(Vec3{bi + mid, bj + mid, bk + mid} * s);
-      const real bdc = tooth.cavity_distance(centre).distance;
+      const real bdc = src.region(centre);
       if (bdc > margin + deepest + half_diag + block_slack) continue;
-      if (!relevant(tooth.distance(centre).distance, bdc, block_slack)) continue;
+      if (!relevant(src.surface(centre).distance, bdc, block_slack)) continue;
       for (std::int64_t k = bk; k < std::min(bk + block, k1 + 1); ++k)
         for (std::int64_t j = bj; j < std::min(bj + block, j1 + 1); ++j)
           for (std::int64_t i = bi; i < std::min(bi + block, i1 + 1); ++i) {
             const Vec3 p = f.to_world(Vec3{real(i), real(j), real(k)} * s);
-            const real dc = tooth.cavity_distance(p).distance;
+            const real dc = src.region(p);
             if (dc > margin + deepest + half_diag) continue;
-            const real dp = tooth.distance(p).distance;
+            const real dp = src.surface(p).distance;
             if (relevant(dp, dc, 0)) mine.push_back({i, j, k, dp, dc});
           }
     }
@@ -152,7 +192,7 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
   const real fine_reach = c * std::sqrt(real(3)) / 2;
   const real centre = c * (refine - 1) / 2.0;  // fine points sit symmetrically in the cell
   for (int layer = 0; layer < params.layers; ++layer) {
-    const real level = -layer * s;
+    const real level = layer * src.step;
     const real band = margin + layer * s;
     DiskSet disks(exclusion * s);
     struct Candidate {
@@ -176,7 +216,7 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
               // Lipschitz: skip fine points the cell centre's distance already rules out.
               if (std::fabs(q.dp - level) - norm(offset) > fine_reach) continue;
               Vec3 p = f.to_world(Vec3{real(q.i), real(q.j), real(q.k)} * s + offset);
-              SurfacePoint sp = tooth.distance(p);
+              SurfacePoint sp = src.surface(p);
               if (std::fabs(sp.distance - level) > fine_reach) continue;
               // Newton on the distance function (|gradient| = 1): one step lands on the level
               // set unless the nearest feature changes; a few more settle creases.
@@ -188,9 +228,9 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
                   break;
                 }
                 p -= sp.normal * e;
-                sp = tooth.distance(p);
+                sp = src.surface(p);
               }
-              if (!ok || tooth.cavity_distance(p).distance > band) continue;
+              if (!ok || src.region(p) > band || (src.keep && !src.keep(p, sp))) continue;
               mine.push_back({refine * q.i + a, refine * q.j + b, refine * q.k + d, p});
             }
       }
@@ -208,5 +248,7 @@ BoundarySamples sample_boundary(const PreparedTooth& tooth, const BoundaryParams
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace dentsph

@@ -2,6 +2,8 @@
 // tooth keeps enough wall and floor around it, and measures the tooth removed.
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -354,6 +356,11 @@ SurfacePoint PreparedTooth::distance(const Vec3& p) const {
   c.distance = -c.distance;
   c.normal = -c.normal;
   return c;
+}
+
+real PreparedTooth::proximal_box_distance(const Vec3& p) const {
+  if (impl_->shape.boxes.size() < 2) throw std::logic_error("proximal_box_distance: a Class I cavity has no proximal box");
+  return impl_->shape.boxes[1].distance(impl_->frame.to_local(p)).distance;
 }
 
 bool PreparedTooth::in_cavity(const Vec3& p) const {

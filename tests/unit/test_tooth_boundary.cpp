@@ -3,6 +3,8 @@
 // cavity, even spacing, no holes, and the counts for the real molars.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "test_tooth_support.hpp"
 
 namespace dentsph {
@@ -150,6 +152,42 @@ TEST(ToothBoundary, RealMolarsWithClassOneAndTwoCavitiesAreLinedEvenly) {
       expect_even(b);
     }
   }
+}
+
+TEST(ToothBoundary, AMatrixBandClosesTheClassTwoBox) {
+  const MolarCrown crown = molar_crown();
+  CavityParams cp;
+  cp.kind = CavityClass::class_2;
+  const PreparedTooth t = carve_cavity(MeshDistance(crown.mesh), crown.frame, cp);
+  const real s = 0.3 * mm;
+  const BoundarySamples band = matrix_band(t, s);
+  ASSERT_GT(band.points.size(), 100u);
+  std::printf("matrix band of the built-in crown's Class II: %zu particles\n", band.points.size());
+  const MeshDistance& original = t.tooth();
+  for (std::size_t i = 0; i < band.points.size(); ++i) {
+    // On the original contour (layer 0) or one spacing outside it (layer 1), at the box.
+    EXPECT_NEAR(original.signed_distance(band.points[i]), band.layer[i] * s, 1e-6 * s);
+    EXPECT_LE(t.proximal_box_distance(band.points[i]), (2 + band.layer[i]) * s + 1e-9);
+  }
+  expect_even(band);
+  // Every point of the removed proximal surface (the box's opening: in the box, on the original
+  // contour, facing sideways) lies within a spacing of the band: the paste cannot flow out.
+  const ToothFrame& f = t.frame();
+  int checked = 0;
+  for (real z = -3.2 * mm; z <= -0.3 * mm; z += 0.2 * mm)
+    for (real y = -1.2 * mm; y <= 1.2 * mm; y += 0.2 * mm) {
+      const Vec3 from = f.to_world({0, y, z});
+      const std::optional<real> hit = original.ray(from, f.x);
+      if (!hit) continue;
+      const Vec3 p = from + f.x * *hit;
+      if (t.proximal_box_distance(p) > -0.3 * mm || std::fabs(dot(original.query(p).normal, f.z)) >= 0.5) continue;
+      real nearest = 1e300;
+      for (const Vec3& b : band.points) nearest = std::min(nearest, norm(b - p));
+      EXPECT_LT(nearest, s) << "opening at local y " << y / mm << " mm, z " << z / mm << " mm";
+      ++checked;
+    }
+  EXPECT_GT(checked, 50);
+  EXPECT_THROW(matrix_band(carve_cavity(MeshDistance(crown.mesh), crown.frame, CavityParams{}), s), std::invalid_argument);
 }
 
 }  // namespace
