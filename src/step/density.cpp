@@ -43,20 +43,41 @@ grid::Visit listed(const State& s, std::int64_t i) {
 }
 
 // Density of particle i over its neighbour list (pairs beyond h add nothing), and its own part:
-// itself for a moving particle, the static boundary around it for a boundary particle.
-real density_from_list(const Model& model, const State& s, std::int64_t i) {
-  const GridIndex& g = s.grid;
+// itself for a moving particle, the static boundary around it for a boundary particle. With a
+// skin, a moving particle also keeps the entries within h, in list order, for the force pass
+// (without one, every entry is within h and the force pass reads the list itself).
+real density_from_list(const Model& model, State& s, std::int64_t i) {
+  GridIndex& g = s.grid;
   const bool boundary = s.role[i] == Role::boundary;
   const real own = boundary ? s.rho_static[s.id[i]] : 0;
   if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i));
   const Arrays a(model, s, i);
   const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
-  real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
-  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
-    const std::uint32_t j = list[q];
+  const std::uint32_t count = g.neighbour_count[i];
+  // (h^2 - r^2), clamped at 0 beyond h; it is > 0 exactly when r^2 < h^2.
+  auto w_of = [&](std::uint32_t j) {
     const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
-    const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
-    sum += a.m[j] * w * w * w;
+    return std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+  };
+  real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
+  if (boundary || model.neighbour_skin <= 0) {
+    for (std::uint32_t q = 0; q < count; ++q) {
+      const std::uint32_t j = list[q];
+      const real w = w_of(j);
+      sum += a.m[j] * w * w * w;
+    }
+  } else {
+    // Branch-free: every entry is written, the count advances for those within h.
+    std::uint32_t* within = g.within.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    std::uint32_t kept = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+      const std::uint32_t j = list[q];
+      const real w = w_of(j);
+      sum += a.m[j] * w * w * w;
+      within[kept] = j;
+      kept += w > 0 ? 1 : 0;
+    }
+    g.within_count[i] = std::uint16_t(kept);
   }
   return own + model.kernel.poly6 * sum;
 }

@@ -54,17 +54,29 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
   Vec3 f = bonded_adhesion(model, s, i, si, ev);
-  // The density pass listed the neighbours within h (unless the list overflowed).
-  if (s.grid.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
-    const std::uint32_t* list = s.grid.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
-    for (std::uint32_t q = 0; q < s.grid.neighbour_count[i]; ++q) {
+  // The density pass kept the neighbours within h (unless the list overflowed). Pairs close enough
+  // to bond are noted and bonded after the pair terms (in the same order), so that the loop of
+  // pair terms makes no call.
+  if (g.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
+    // Without a skin the list itself holds exactly the pairs within h.
+    const bool skin = model.neighbour_skin > 0;
+    const std::uint32_t* list = (skin ? g.within : g.neighbours).data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    const std::uint32_t count = skin ? g.within_count[i] : g.neighbour_count[i];
+    const Sides sides(s);
+    const real A2 = model.adhesion.A * model.adhesion.A;
+    std::uint32_t close[GridIndex::kNeighbourStride];
+    real close_r2[GridIndex::kNeighbourStride];
+    std::uint32_t n_close = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
       const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
       const real r2 = norm2(d);
-      if (r2 >= k.h2) continue;  // in the list's skin, not within h this step
-      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
-      bonds::try_form(model, s, i, j, r2, ev);  // A < h: every pair to bond is here
+      f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
+      close[n_close] = j;
+      close_r2[n_close] = r2;
+      n_close += r2 < A2 ? 1 : 0;
     }
+    for (std::uint32_t c = 0; c < n_close; ++c) bonds::try_form(model, s, i, close[c], close_r2[c], ev);
     return f;
   }
   // Otherwise search the grid: candidates filtered without branches into a short buffer.
