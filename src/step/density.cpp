@@ -3,6 +3,9 @@
 // particle's density that comes from other boundary particles is computed once
 // (compute_static_density) and each step adds only its moving neighbours, from its list.
 #include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "physics/kernels.hpp"
 #include "step/grid.hpp"
@@ -20,6 +23,16 @@ struct Arrays {
       : x(s.grid.x.data()), y(s.grid.y.data()), z(s.grid.z.data()), m(s.mass.data()), xi(x[i]), yi(y[i]), zi(z[i]),
         h2(model.kernel.h2) {}
 };
+
+// max(0, t) without a branch (0 for NaN, as std::max(0, t)). Where its result also decides which
+// entries to keep, g++ turned std::max into a branch, mispredicted for every pair in the skin.
+inline real clamp_at_zero(real t) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(t), _mm_setzero_pd()));
+#else
+  return std::max<real>(0, t);
+#endif
+}
 
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
 real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
@@ -55,9 +68,10 @@ real density_from_list(const Model& model, State& s, std::int64_t i) {
   const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   const std::uint32_t count = g.neighbour_count[i];
   // (h^2 - r^2), clamped at 0 beyond h; it is > 0 exactly when r^2 < h^2.
+  const Vec3* pos = s.pos.data();
   auto w_of = [&](std::uint32_t j) {
-    const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
-    return std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+    const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
+    return clamp_at_zero(a.h2 - (dx * dx + dy * dy + dz * dz));
   };
   real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
   if (boundary || model.neighbour_skin <= 0) {

@@ -69,7 +69,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
-      const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
+      const Vec3 d = si.pos - sides.pos[j];
       const real r2 = norm2(d);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
       close[n_close] = j;
