@@ -9,6 +9,7 @@
 
 #include "physics/kernels.hpp"
 #include "step/grid.hpp"
+#include "step/pressure.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {
@@ -139,6 +140,7 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
       s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving);
     else
       s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
+    pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs
   }
 }
 
