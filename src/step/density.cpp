@@ -133,8 +133,7 @@ void compute_static_density(const Model& model, State& s) {
 void compute_density(const Model& model, State& s, int threads, bool build_lists) {
   if (!s.rho_static_valid) compute_static_density(model, s);
   const std::int64_t n = s.size();
-  // Chunks handed out as threads free up (a thread that the machine delays holds up no fixed half).
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64)
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     // Without a skin a boundary particle's list would serve one step only: search directly.
     if (s.role[i] == Role::boundary && model.neighbour_skin <= 0)
