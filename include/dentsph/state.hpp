@@ -77,6 +77,11 @@ struct GridIndex {
   static constexpr int kNeighbourCapacity = kNeighbourStride - 1;
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbour_count;
+  // The entries of each moving particle's list within h this step, in list order: written by the
+  // density pass (which computes every listed distance anyway) for the force pass. Valid where
+  // the list did not overflow.
+  std::vector<std::uint32_t> within;
+  std::vector<std::uint16_t> within_count;
   // Positions when the lists were built (sorted order); the lists (radius h + skin) stay valid
   // until some particle has moved skin / 2 from there.
   std::vector<Vec3> pos_at_build;

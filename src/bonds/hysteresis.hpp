@@ -40,17 +40,26 @@ inline void break_stretched(const Model& model, State& s, std::uint32_t i, Event
   }
 }
 
-// Bonds moving particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
-// are not bonded yet.
-inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
-  if (j == i || !(r2 < model.adhesion.A * model.adhesion.A)) return;
-  if (!pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j])) return;
+// Whether moving particle i may bond to j, whose squared distance is r2: closer than A, and a
+// pair that may bond at all (bonded already or not).
+inline bool may_form(const Model& model, const State& s, std::uint32_t i, std::uint32_t j, real r2) {
+  return j != i && r2 < model.adhesion.A * model.adhesion.A && pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j]);
+}
+
+// Bonds moving particle i to j, known not to be bonded yet (counts the overflow of a full list).
+inline void form(State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
   const std::uint32_t a = s.id[i], b = s.id[j];
-  if (s.bonds.has(a, b)) return;
   if (!s.bonds.try_add(a, b))
     ++ev.overflowed;
   else if (a < b || s.role[j] == Role::boundary)
     ++ev.formed;
+}
+
+// Bonds moving particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
+// are not bonded yet.
+inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
+  if (!may_form(model, s, i, j, r2) || s.bonds.has(s.id[i], s.id[j])) return;
+  form(s, i, j, ev);
 }
 
 inline void record(State& s, const Events& ev) {

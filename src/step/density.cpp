@@ -3,9 +3,13 @@
 // particle's density that comes from other boundary particles is computed once
 // (compute_static_density) and each step adds only its moving neighbours, from its list.
 #include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "physics/kernels.hpp"
 #include "step/grid.hpp"
+#include "step/pressure.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {
@@ -20,6 +24,16 @@ struct Arrays {
       : x(s.grid.x.data()), y(s.grid.y.data()), z(s.grid.z.data()), m(s.mass.data()), xi(x[i]), yi(y[i]), zi(z[i]),
         h2(model.kernel.h2) {}
 };
+
+// max(0, t) without a branch (0 for NaN, as std::max(0, t)). Where its result also decides which
+// entries to keep, g++ turned std::max into a branch, mispredicted for every pair in the skin.
+inline real clamp_at_zero(real t) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(t), _mm_setzero_pd()));
+#else
+  return std::max<real>(0, t);
+#endif
+}
 
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
 real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
@@ -43,20 +57,42 @@ grid::Visit listed(const State& s, std::int64_t i) {
 }
 
 // Density of particle i over its neighbour list (pairs beyond h add nothing), and its own part:
-// itself for a moving particle, the static boundary around it for a boundary particle.
-real density_from_list(const Model& model, const State& s, std::int64_t i) {
-  const GridIndex& g = s.grid;
+// itself for a moving particle, the static boundary around it for a boundary particle. With a
+// skin, a moving particle also keeps the entries within h, in list order, for the force pass
+// (without one, every entry is within h and the force pass reads the list itself).
+real density_from_list(const Model& model, State& s, std::int64_t i) {
+  GridIndex& g = s.grid;
   const bool boundary = s.role[i] == Role::boundary;
   const real own = boundary ? s.rho_static[s.id[i]] : 0;
   if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i));
   const Arrays a(model, s, i);
   const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  const std::uint32_t count = g.neighbour_count[i];
+  // (h^2 - r^2), clamped at 0 beyond h; it is > 0 exactly when r^2 < h^2.
+  const Vec3* pos = s.pos.data();
+  auto w_of = [&](std::uint32_t j) {
+    const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
+    return clamp_at_zero(a.h2 - (dx * dx + dy * dy + dz * dz));
+  };
   real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
-  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
-    const std::uint32_t j = list[q];
-    const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
-    const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
-    sum += a.m[j] * w * w * w;
+  if (boundary || model.neighbour_skin <= 0) {
+    for (std::uint32_t q = 0; q < count; ++q) {
+      const std::uint32_t j = list[q];
+      const real w = w_of(j);
+      sum += a.m[j] * w * w * w;
+    }
+  } else {
+    // Branch-free: every entry is written, the count advances for those within h.
+    std::uint32_t* within = g.within.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    std::uint32_t kept = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+      const std::uint32_t j = list[q];
+      const real w = w_of(j);
+      sum += a.m[j] * w * w * w;
+      within[kept] = j;
+      kept += w > 0 ? 1 : 0;
+    }
+    g.within_count[i] = std::uint16_t(kept);
   }
   return own + model.kernel.poly6 * sum;
 }
@@ -104,6 +140,7 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
       s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving);
     else
       s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
+    pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs
   }
 }
 

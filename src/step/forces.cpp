@@ -43,6 +43,28 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::
   return f;
 }
 
+// Bonds moving particle i to those of the n close pairs (j, r^2 < A^2) that may bond and are not
+// bonded yet, in the order given (as bonds::try_form one by one would). Which are bonded already
+// is found in one pass over i's bond list with loops of fixed length: a search per pair that
+// stops at its partner mispredicted about once per pair.
+void form_bonds(const Model& model, State& s, std::uint32_t i, const std::uint32_t* close, const real* close_r2,
+                std::uint32_t n, bonds::Events& ev) {
+  if (n == 0) return;
+  std::uint32_t close_id[GridIndex::kNeighbourStride];
+  std::uint8_t bonded[GridIndex::kNeighbourStride];
+  for (std::uint32_t c = 0; c < n; ++c) {
+    close_id[c] = s.id[close[c]];
+    bonded[c] = 0;
+  }
+  const std::uint32_t id = s.id[i];
+  for (int b = 0; b < s.bonds.count(id); ++b) {
+    const std::uint32_t partner = s.bonds.partner(id, b);
+    for (std::uint32_t c = 0; c < n; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
+  }
+  for (std::uint32_t c = 0; c < n; ++c)
+    if (!bonded[c] && bonds::may_form(model, s, i, close[c], close_r2[c])) bonds::form(s, i, close[c], ev);
+}
+
 // Force density on moving particle i; updates i's bonds (events into ev).
 Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
@@ -54,17 +76,29 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
   Vec3 f = bonded_adhesion(model, s, i, si, ev);
-  // The density pass listed the neighbours within h (unless the list overflowed).
-  if (s.grid.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
-    const std::uint32_t* list = s.grid.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
-    for (std::uint32_t q = 0; q < s.grid.neighbour_count[i]; ++q) {
+  // The density pass kept the neighbours within h (unless the list overflowed). Pairs close enough
+  // to bond are noted and bonded after the pair terms (in the same order), so that the loop of
+  // pair terms makes no call.
+  if (g.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
+    // Without a skin the list itself holds exactly the pairs within h.
+    const bool skin = model.neighbour_skin > 0;
+    const std::uint32_t* list = (skin ? g.within : g.neighbours).data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    const std::uint32_t count = skin ? g.within_count[i] : g.neighbour_count[i];
+    const Sides sides(s);
+    const real A2 = model.adhesion.A * model.adhesion.A;
+    std::uint32_t close[GridIndex::kNeighbourStride];
+    real close_r2[GridIndex::kNeighbourStride];
+    std::uint32_t n_close = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
-      const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
+      const Vec3 d = si.pos - sides.pos[j];
       const real r2 = norm2(d);
-      if (r2 >= k.h2) continue;  // in the list's skin, not within h this step
-      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(r2), k);
-      bonds::try_form(model, s, i, j, r2, ev);  // A < h: every pair to bond is here
+      f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
+      close[n_close] = j;
+      close_r2[n_close] = r2;
+      n_close += r2 < A2 ? 1 : 0;
     }
+    form_bonds(model, s, i, close, close_r2, n_close, ev);
     return f;
   }
   // Otherwise search the grid: candidates filtered without branches into a short buffer.
@@ -104,6 +138,8 @@ void compute_forces(const Model& model, State& s, int threads) {
   // Bond events summed by an integer reduction (exact in any order). Not a named critical
   // section: libomp 14 under ThreadSanitizer crashes in one entered from a thread it did not
   // create (the haptic runtime's and the viewer's simulation threads).
+  // Static halves: each thread keeps the particles (and caches) it had in the density pass.
+  // Chunks of 64 handed out dynamically balanced the work better but measured slower.
   std::uint64_t formed = 0, broken = 0, overflowed = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : formed, broken, overflowed)
   for (std::int64_t i = 0; i < n; ++i) {

@@ -8,25 +8,23 @@
 
 namespace dentsph::stages {
 
-bool lists_need_rebuild(const Model& model, const State& s, int threads) {
+bool lists_need_rebuild(const Model& model, State& s, int threads) {
   const real skin = model.neighbour_skin;
   if (skin <= 0 || !s.grid.lists_valid) return true;
   const real limit2 = 0.25 * skin * skin;
   const std::int64_t n = s.size();
   real moved2 = 0;
+  // The coordinate arrays are refreshed in the same pass: a step that keeps the lists reads them
+  // (searches of overflowed lists); one that rebuilds rewrites them after sorting.
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : moved2)
-  for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, norm2(s.pos[i] - s.grid.pos_at_build[i]));
-  return !(moved2 <= limit2);  // a non-finite position rebuilds too
-}
-
-void refresh_coordinates(State& s, int threads) {
-  const std::int64_t n = s.size();
-#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    s.grid.x[i] = s.pos[i].x;
-    s.grid.y[i] = s.pos[i].y;
-    s.grid.z[i] = s.pos[i].z;
+    const Vec3 p = s.pos[i];
+    moved2 = std::max(moved2, norm2(p - s.grid.pos_at_build[i]));
+    s.grid.x[i] = p.x;
+    s.grid.y[i] = p.y;
+    s.grid.z[i] = p.z;
   }
+  return !(moved2 <= limit2);  // a non-finite position rebuilds too
 }
 
 void remember_build_positions(State& s, int threads) {

@@ -14,16 +14,17 @@ void sort_by_cell(const Model& model, State& state);
 // 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
 void reorder(State& state, int threads);
 // 3. Density: over the 27 neighbouring cells, building each moving particle's neighbour list
-// (radius h + skin), or, between rebuilds, over those lists (density.cpp).
+// (radius h + skin), or, between rebuilds, over those lists (density.cpp); each particle's
+// pressure (stage 4, pressure.hpp) as soon as its density is known.
 void compute_density(const Model& model, State& state, int threads, bool build_lists);
-// Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild,
-// the coordinate arrays refreshed between rebuilds, and the positions remembered at a rebuild.
-bool lists_need_rebuild(const Model& model, const State& state, int threads);
-void refresh_coordinates(State& state, int threads);
+// Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild (the
+// same pass refreshes the coordinate arrays for the steps that keep the lists), and the
+// positions remembered at a rebuild.
+bool lists_need_rebuild(const Model& model, State& state, int threads);
 void remember_build_positions(State& state, int threads);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).
 void compute_static_density(const Model& model, State& state);
-// 4. Repulsion-only pressure (pressure.cpp).
+// 4. Repulsion-only pressure over all particles (pressure.cpp; the all-pairs step's).
 void compute_pressure(State& state, int threads);
 // 5. Pressure, viscosity and adhesion force densities; moving particles' bond hysteresis on the
 // distances this pass computes anyway (forces.cpp).

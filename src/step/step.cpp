@@ -46,13 +46,12 @@ void step(const Model& model, State& state, const StepOptions& opt) {
     stages::remember_build_positions(state, t);
     clock.lap(&StageTimes::reorder_us);
   } else {
-    stages::refresh_coordinates(state, t);
     clock.lap(&StageTimes::reorder_us);
   }
-  stages::compute_density(model, state, t, rebuild);  // 3. density (and the lists on a rebuild)
+  // 3. density (and the lists on a rebuild), and 4. each particle's pressure in the same pass
+  // (pressure_us stays 0: it is in density_us).
+  stages::compute_density(model, state, t, rebuild);
   clock.lap(&StageTimes::density_us);
-  stages::compute_pressure(state, t);              // 4. pressure
-  clock.lap(&StageTimes::pressure_us);
   stages::compute_forces(model, state, t);         // 5. forces, and bond hysteresis of moving particles
   clock.lap(&StageTimes::forces_us);
   stages::compute_tool_wrench(state);              //    force and torque on the tool

@@ -162,6 +162,45 @@ INSTANTIATE_TEST_SUITE_P(Configs, GridParity,
                                            Config{7, 0.3, false, false, true, 9, 1, 0.3},
                                            Config{5, 0.2, true, false, true, 10, 2, 0.2}));
 
+TEST(GridParity, PairsExactlyOnTheSupportWithASkin) {
+  // A lattice of dyadic spacing (every coordinate and difference exact): pairs two spacings
+  // apart are exactly h apart, r^2 == h^2, inside the list's skin but not within h. The density
+  // pass must leave them out of the force pass's pairs, as the all-pairs kernels give them 0.
+  const real d = 1.0 / 128;
+  ModelParams mp = testing::params_for_spacing(d, {0, 0, 0}, {0.25, 0.25, 0.25}, 1e-4);
+  mp.neighbour_skin = 0.1 * mp.h;
+  const Model model = make_model(mp);
+  const Material paste{0.4, 60, 1000, 300};
+  const real m = lattice_particle_mass(1000, d, model.kernel);
+  std::vector<ParticleInit> ps;
+  for (Vec3 p : testing::lattice({8 * d, 8 * d, 8 * d}, d, 5, 5, 5))
+    ps.push_back(testing::particle(Role::material, p, m, paste));
+  State g, r;
+  g.add_particles(model, ps);
+  r.add_particles(model, ps);
+  step(model, g, StepOptions{2, nullptr});
+  step_all_pairs(model, r);
+  compare(g, r, 0);
+  // Not vacuous: listed pairs at exactly h exist and none of them was kept.
+  std::uint64_t on_support = 0, kept_on_support = 0;
+  for (std::uint32_t i = 0; i < g.size(); ++i) {
+    const std::uint32_t* list = g.grid.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    const std::uint32_t* within = g.grid.within.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    for (std::uint32_t q = 0; q < g.grid.neighbour_count[i]; ++q)
+      on_support += norm2(g.grid.pos_at_build[i] - g.grid.pos_at_build[list[q]]) == model.kernel.h2;
+    for (std::uint32_t q = 0; q < g.grid.within_count[i]; ++q)
+      kept_on_support += norm2(g.grid.pos_at_build[i] - g.grid.pos_at_build[within[q]]) >= model.kernel.h2;
+  }
+  EXPECT_GT(on_support, 100u);
+  EXPECT_EQ(kept_on_support, 0u);
+  for (int k = 1; k < 20; ++k) {
+    step(model, g, StepOptions{2, nullptr});
+    step_all_pairs(model, r);
+    compare(g, r, k);
+    if (HasFatalFailure()) return;
+  }
+}
+
 TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   // Two material particles pulled apart by their initial velocities: the bond formed at r < A
   // breaks past B in both paths; the grid reaches the partner beyond h through the bond list.
