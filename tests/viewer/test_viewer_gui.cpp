@@ -41,14 +41,19 @@ std::string slurp(const fs::path& f) {
   return s.str();
 }
 
+// In sanitizer builds the viewer runs without LeakSanitizer: Mesa's GL driver keeps a few hundred
+// bytes it never frees and is unloaded when the window closes, so the leak cannot even be named
+// (and suppressed) by its library. The viewer's own code is leak-checked by test_viewer.
+constexpr const char* kNoDriverLeakCheck = "env ASAN_OPTIONS=\"${ASAN_OPTIONS}:detect_leaks=0\"";
+
 // Runs the viewer under a fresh virtual display, killed after 240 s whatever happens (a hang is a
 // failure, never a stuck test). `inner` may wrap the viewer's command line (e.g. in `timeout`).
 Result run_viewer(const std::string& args, const std::string& inner = "") {
   const fs::path out = temp("stdout.txt"), err = temp("stderr.txt");
   const std::string cmd = fmt::format(
-      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' {} '{}' --width 800 --height 600 --threads 1 "
+      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' {} {} '{}' --width 800 --height 600 --threads 1 "
       "--timeout 200 {} >'{}' 2>'{}'",
-      inner, kViewer.string(), args, out.string(), err.string());
+      kNoDriverLeakCheck, inner, kViewer.string(), args, out.string(), err.string());
   const int raw = std::system(cmd.c_str());
   Result r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -185,10 +190,11 @@ TEST(ViewerGui, ALostDeviceConnectionDegradesToZeroForce) {
   const int port = 40000 + int(::getpid() % 20000);
   const fs::path sum = temp("udp.json"), client_report = temp("client.json"), out = temp("udp_out.txt");
   const std::string cmd = fmt::format(
-      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' sh -c \"'{}' --width 640 --height 480 --threads 1 "
+      "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' {} sh -c \"'{}' --width 640 --height 480 --threads 1 "
       "--timeout 200 --max-fps 30 --frames 150 --device udp --port {} --summary '{}' & v=$!; sleep 1; "
       "'{}' --port {} --duration 1.5 --no-bye --report '{}' >/dev/null; wait $v\" >'{}' 2>&1",
-      kViewer.string(), port, sum.string(), kClient.string(), port, client_report.string(), out.string());
+      kNoDriverLeakCheck, kViewer.string(), port, sum.string(), kClient.string(), port, client_report.string(),
+      out.string());
   const int raw = std::system(cmd.c_str());
   ASSERT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 0) << slurp(out);
   const auto j = nlohmann::json::parse(slurp(sum));
