@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "io/role_colours.hpp"
+
 namespace dentsph::viewer {
 
 const char* colour_by_name(ColourBy c) {
@@ -38,14 +40,7 @@ ColourBy colour_by_from_name(const std::string& name) {
       fmt::format("colour mode '{}' is unknown; use one of role, pressure, density, speed, bonds", name));
 }
 
-Rgb role_colour(Role r) {
-  switch (r) {
-    case Role::material: return {0.22f, 0.45f, 0.85f};
-    case Role::boundary: return {0.85f, 0.78f, 0.60f};
-    case Role::tool: return {0.95f, 0.55f, 0.15f};
-  }
-  return {1, 0, 1};
-}
+Rgb role_colour(Role r) { return io::role_colour(r); }
 
 Rgb colour_map(float t) {
   if (!std::isfinite(t)) return {1, 0, 1};

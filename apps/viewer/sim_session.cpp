@@ -33,6 +33,7 @@ constexpr real kExplosionSpeedFactor = 10;
 }  // namespace
 
 SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(scene)), opt_(options) {
+  force_scale_ = scene_.force_scale;
   const ParticleInit* paste = first_of(scene_, Role::material);
   const ParticleInit* tool = first_of(scene_, Role::tool);
   const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
@@ -81,6 +82,7 @@ void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions opti
   if (running_.load()) throw std::logic_error("SimSession::use_device after start()");
   device_ = std::move(device);
   rt_options_ = std::move(options);
+  force_scale_ = rt_options_.force_scale.value_or(scene_.force_scale);
 }
 
 void SimSession::start() {
@@ -217,7 +219,8 @@ void SimSession::apply(const Command& c, State& st) {
 }
 
 void SimSession::publish(const State& st, bool with_assessment, double steps_per_second) {
-  Snapshot s;
+  // Filled in the back buffer, whose arrays keep their capacity from publication to publication.
+  Snapshot& s = back_;
   const std::uint32_t n = st.size();
   s.time = st.time;
   s.steps = st.steps;
@@ -238,9 +241,10 @@ void SimSession::publish(const State& st, bool with_assessment, double steps_per
     s.bonds[i] = float(st.bonds.count(st.id[i]));
   }
   s.tool_pose = st.tool_pose_applied;
-  s.tool_force_N = st.tool_wrench.force * scene_.force_scale;
-  if (with_assessment && assessor_) s.assessment = assessor_->assess(state_, scene_.model, forces_);
-  s.limits = stability_limits(scene_.model, state_);
+  s.tool_force_N = st.tool_wrench.force * force_scale_;
+  s.assessment.reset();
+  if (with_assessment && assessor_) s.assessment = assessor_->assess(st, scene_.model, forces_);
+  s.limits = stability_limits(scene_.model, st);
   s.dt = scene_.model.dt;
   s.material = {paste_.Kp, paste_.Ka, paste_.mu, scene_.model.adhesion.A, scene_.model.adhesion.B,
                 scene_.model.adhesion.eps, scene_.model.adhesion.zeta};
@@ -273,23 +277,23 @@ void SimSession::publish(const State& st, bool with_assessment, double steps_per
     h.gain = live_.gain.load(r);
     h.status = live_.status.load(r);
     s.haptic = h;
+  } else {
+    s.haptic.reset();
   }
   std::lock_guard lock(mutex_);
-  const std::uint64_t version = published_.version + 1;
+  s.version = published_.version + 1;
   if (!with_assessment && published_.assessment) s.assessment = published_.assessment;  // keep the last one
-  published_ = std::move(s);
-  published_.version = version;
+  std::swap(published_, back_);
 }
 
-std::deque<Command> SimSession::due(const State& st) {
-  std::unique_lock lock(mutex_);
-  std::deque<Command> now;
-  now.swap(queue_);
+void SimSession::take_due(const State& st) {
+  due_.clear();
+  std::lock_guard lock(mutex_);
+  due_.swap(queue_);  // both keep their capacity: no allocation once they have grown
   while (!scheduled_.empty() && scheduled_.begin()->first <= st.steps) {
-    now.push_back(scheduled_.begin()->second);
+    due_.push_back(scheduled_.begin()->second);
     scheduled_.erase(scheduled_.begin());
   }
-  return now;
 }
 
 void SimSession::run() {
@@ -307,9 +311,9 @@ void SimSession::run() {
                         (scheduled_.empty() || scheduled_.begin()->first > state_.steps || paused_);
       if (idle) wake_.wait_for(lock, std::chrono::milliseconds(20));
     }
-    const std::deque<Command> now_due = due(state_);
-    for (const Command& c : now_due) apply(c, state_);
-    const bool changed = !now_due.empty();
+    take_due(state_);
+    for (const Command& c : due_) apply(c, state_);
+    const bool changed = !due_.empty();
     const bool stepping = (!paused_ || single_) && !diverged_;
     if (stepping) {
       single_ = false;
@@ -322,7 +326,7 @@ void SimSession::run() {
       state_.tool_pose = state_.tool_pose_applied;
       state_.tool_pose.position = len > max_move ? from + d * (max_move / len) : goal;
       step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
-      forces_.add(state_.tool_wrench.force * scene_.force_scale, scene_.model.dt);
+      forces_.add(state_.tool_wrench.force * force_scale_, scene_.model.dt);
       steps_.store(state_.steps, std::memory_order_release);
       if (state_.diagnostics.non_finite > 0 ||
           state_.diagnostics.max_speed > kExplosionSpeedFactor * sound_speed_) {
@@ -349,16 +353,16 @@ void SimSession::run() {
 }
 
 void SimSession::between_steps(State& st) {
-  const std::deque<Command> now_due = due(st);
-  for (const Command& c : now_due) apply(c, st);
+  take_due(st);
+  for (const Command& c : due_) apply(c, st);
   // The runtime's step that follows adds its force; the assessment reads the forces so far.
-  forces_.add(st.tool_wrench.force * scene_.force_scale, scene_.model.dt);
+  forces_.add(st.tool_wrench.force * force_scale_, scene_.model.dt);
   steps_.store(st.steps, std::memory_order_release);
   const auto now = clock_type::now();
   const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);
   const auto assess_every = std::chrono::duration<double>(1.0 / opt_.assess_hz);
-  if (!now_due.empty() || now - last_publish_ >= publish_every) {
-    const bool assess = !now_due.empty() || now - last_assess_ >= assess_every;
+  if (!due_.empty() || now - last_publish_ >= publish_every) {
+    const bool assess = !due_.empty() || now - last_assess_ >= assess_every;
     const double wall = std::chrono::duration<double>(now - rate_t0_).count();
     if (wall >= 0.5) {
       sim_rate_ = double(st.steps - rate_steps0_) / wall;

@@ -11,7 +11,6 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -119,8 +118,8 @@ class SimSession {
   void run();
   void run_device();
   void between_steps(State& st);  // the runtime's hook (device mode)
-  // Takes the commands due at `st.steps` off the queues (under the lock).
-  std::deque<Command> due(const State& st);
+  // Moves the commands due at `st.steps` off the queues into due_ (under the lock).
+  void take_due(const State& st);
   void apply(const Command& c, State& st);
   void publish(const State& st, bool with_assessment, double steps_per_second);
   void reset_state(State& st);
@@ -133,6 +132,7 @@ class SimSession {
   std::optional<CavityAssessor> assessor_;
   ForceStats forces_;
   real paste_mass_ = 0;
+  real force_scale_ = 1;  // device N per simulated N: the scene's, or the runtime's override
   real sound_speed_ = 0;  // m/s, sqrt(max Kp): material far faster than this has exploded
   Material paste_, tool_material_;
   std::string tool_name_ = "ball_burnisher";
@@ -143,7 +143,8 @@ class SimSession {
   bool paused_ = false, single_ = false, diverged_ = false;
 
   mutable std::mutex mutex_;  // guards the command queues and the published snapshot
-  std::deque<Command> queue_;
+  std::vector<Command> queue_, due_;  // posted; taken for this step
+  Snapshot back_;                      // the next publication, filled outside the lock
   std::multimap<std::uint64_t, Command> scheduled_;
   Snapshot published_;
   std::condition_variable wake_;

@@ -91,6 +91,8 @@ struct Input {
   bool dragging_tool = false, orbiting = false, panning = false;
   double last_x = 0, last_y = 0;
   float wheel = 0;
+  bool space_was = false;
+  bool key_down[GLFW_KEY_LAST + 1] = {};
 };
 
 Input* g_input = nullptr;
@@ -175,6 +177,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   std::uint64_t frames_this_second = 0;
   auto t_frame = t_start;
   float force_peak = 0;
+  auto next_frame = t_start;  // the frame cap's schedule
 
   for (;;) {
     if (glfwWindowShouldClose(win.handle) || g_close_requested.load()) {
@@ -219,19 +222,17 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       }
     }
     if (!io.WantCaptureKeyboard) {
-      static bool space_was = false;
       const bool space = glfwGetKey(win.handle, GLFW_KEY_SPACE) == GLFW_PRESS;
-      if (space != space_was) {
+      if (space != input.space_was) {
         Command c{Command::Kind::press};
         c.pressed = space;
         commands.push_back(c);
-        space_was = space;
+        input.space_was = space;
       }
       auto pressed_once = [&](int key) {
-        static bool down[GLFW_KEY_LAST + 1] = {};
         const bool now = glfwGetKey(win.handle, key) == GLFW_PRESS;
-        const bool edge = now && !down[key];
-        down[key] = now;
+        const bool edge = now && !input.key_down[key];
+        input.key_down[key] = now;
         return edge;
       };
       if (pressed_once(GLFW_KEY_P)) commands.push_back({snap.paused ? Command::Kind::resume : Command::Kind::pause});
@@ -348,7 +349,6 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     glfwSwapBuffers(win.handle);
     if (opt.max_fps > 0) {
       // Sleep out the rest of the frame's time share.
-      static auto next_frame = clock_type::now();
       next_frame = std::max(next_frame + std::chrono::duration_cast<clock_type::duration>(
                                              std::chrono::duration<double>(1.0 / opt.max_fps)),
                             clock_type::now() - std::chrono::milliseconds(100));

@@ -1,4 +1,5 @@
 #include "io/preview.hpp"
+#include "io/role_colours.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,12 +18,8 @@ namespace {
 using Rgb = std::array<std::uint8_t, 3>;
 
 Rgb colour_of(Role r) {
-  switch (r) {
-    case Role::material: return {40, 110, 220};
-    case Role::boundary: return {215, 190, 140};
-    case Role::tool: return {240, 130, 30};
-  }
-  return {0, 0, 0};
+  const std::array<float, 3> c = role_colour(r);
+  return {std::uint8_t(c[0] * 255 + 0.5f), std::uint8_t(c[1] * 255 + 0.5f), std::uint8_t(c[2] * 255 + 0.5f)};
 }
 
 struct Panel {
