@@ -211,6 +211,22 @@ TEST(ForceInterpolator, ContinuousBetweenSlowSamples) {
   EXPECT_LE(max_step, 0.1 + 1e-9);  // 1 N spread over the 10 ticks of a sample interval
 }
 
+TEST(ForceInterpolator, NoJumpWhenASampleComesEarlyOrLate) {
+  // Gaps of 8 and 12 ms in turn move the filtered interval at every sample; the output must not
+  // step at the moment a sample arrives (it starts from where it was).
+  haptics::ForceInterpolator f;
+  const std::int64_t ms = 1'000'000;
+  std::int64_t t = 0;
+  double worst = 0;
+  for (int k = 0; k < 60; ++k) {
+    t += (k % 2 ? 8 : 12) * ms;
+    const Vec3 before = f.at(t);
+    f.add({0, 0, double(k % 2)}, t);
+    if (k > 0) worst = std::max(worst, double(norm(f.at(t) - before)));
+  }
+  EXPECT_LE(worst, 1e-12);
+}
+
 TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
   for (const double k : {100.0, 1e4, 1e7}) {
     CouplingParams p;
