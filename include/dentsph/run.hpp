@@ -57,6 +57,7 @@ struct RunSummary {
   std::uint64_t snapshots = 0;
   std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
   std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
+  std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
   std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",

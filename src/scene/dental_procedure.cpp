@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
@@ -125,13 +123,7 @@ void cavity_increment(const Reader& d, const ProcedureContext& ctx, ProcedureEve
 
 Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_json, const std::string& source,
                        const DentalSceneParams& dp) {
-  using scene::Json;
-  Json json;
-  try {
-    json = Json::parse(procedure_json);
-  } catch (const Json::exception& e) {
-    scene::fail(source, "JSON", e.what(), "fix the JSON syntax (strict JSON: no comments, no trailing commas)");
-  }
+  const scene::Json json = scene::parse_json(procedure_json, source);
   const Reader root(json, "", source, "a procedure");
   root.only({"name", "description", "tool", "keyframes", "events", "duration"});
   const std::string name = root.string("name", "the procedure's name, e.g. \"three_increments\"");
@@ -167,14 +159,7 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
 }
 
 Scene load_dental_procedure(const ToothScene& tooth, const std::filesystem::path& file, const DentalSceneParams& dp) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw SceneError(fmt::format("{}: cannot read the procedure file: {}; check the path", file.string(),
-                                 std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return dental_procedure(tooth, text.str(), file.string(), dp);
+  return dental_procedure(tooth, scene::read_text_file(file, "the procedure file"), file.string(), dp);
 }
 
 Scene default_dental_procedure(const DentalSceneParams& dp) {
@@ -182,12 +167,12 @@ Scene default_dental_procedure(const DentalSceneParams& dp) {
                           dp);
 }
 
-Scene dental_run_scene(const std::filesystem::path& mesh_file, const std::filesystem::path& procedure_file) {
-  const ToothScene tooth = mesh_file.empty() ? default_tooth_scene() : tooth_scene_from_mesh(mesh_file);
+Scene dental_run_scene(const ToothSpec& spec, const std::filesystem::path& procedure_file) {
+  const ToothScene tooth = prepare_tooth(spec);
   Scene sc = procedure_file.empty()
                  ? dental_procedure(tooth, std::string(default_procedure_json()), "built-in default_procedure")
                  : load_dental_procedure(tooth, procedure_file);
-  sc.source = fmt::format("{} on {}", sc.source, mesh_file.empty() ? "the built-in crown" : mesh_file.string());
+  sc.source = fmt::format("{} on {}", sc.source, tooth_name(spec));
   return sc;
 }
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/assess.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
@@ -95,6 +96,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     AssessParams ap;
     ap.spacing = scene.material_spacing;
     assessor.emplace(*scene.tooth, ap);
+    sum.cavity_json = cavity_json(*scene.tooth);
   }
   ForceStats forces;
   // A GPU backend keeps the particles on the GPU: each step reads back only the wrench and the
