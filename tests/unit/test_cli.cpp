@@ -147,6 +147,20 @@ TEST(Cli, AClassTwoRunOnTheBuiltInCrown) {
   EXPECT_GE(cavity.at("thinnest_wall_mm").get<double>(), 1.0);
 }
 
+// `dentsph replay` without a scene file replays into the procedure that `dentsph run --realtime`
+// ran, with the same tooth options.
+TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {
+  const fs::path out = dir() / "rt";
+  const std::string cavity = " --cavity-width 3.5 --cavity-depth 2.2";
+  const Result r = dentsph_cli("run --realtime --duration 0.3 --threads 1 -q --out " + out.string() + cavity);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Result same = dentsph_cli("replay " + (out / "recording").string() + cavity);
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
+  // Another cavity is another scene: the forces differ.
+  EXPECT_EQ(dentsph_cli("replay " + (out / "recording").string()).code, 4);
+}
+
 TEST(Cli, ADentalSceneFileIsValidatedAndRun) {
   const Result v = dentsph_cli("validate scenes/class2_fill.json");
   EXPECT_EQ(v.code, 0) << v.output;
