@@ -237,7 +237,8 @@ TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
     // The device 1 cm down, the tool pushed up by a constant 1 N: the proxy settles where the
     // spring balances it, 1 N / k above the device, without oscillating out of bounds.
     for (int i = 0; i < 20000; ++i) {
-      f = c.step({0, 0, -0.01}, {}, {0, 0, 1}, 1e-3);
+      c.step({0, 0, -0.01}, {}, {0, 0, 1}, 1e-3);
+      f = haptics::coupling_force(p, c.position(), c.velocity(), {0, 0, -0.01}, {});
       ASSERT_TRUE(is_finite(f));
       ASSERT_LE(std::abs(c.position().z), 0.02);
     }
@@ -276,6 +277,34 @@ TEST(Passivity, EnergyToHandOfASpringAndOfAnActiveForce) {
   const auto e = energy_to_hand(spring);
   for (double v : e) EXPECT_LE(v, 1e-4);
   EXPECT_GT(energy_to_hand(active).back(), 0.1);
+}
+
+// Between two recorded ticks the replay device moves the position linearly and turns the
+// orientation by slerp (not held at the earlier sample's).
+TEST(ReplayDevice, InterpolatesPositionAndOrientationBetweenSamples) {
+  Recording r;
+  r.mode = "direct";
+  const Quat q0 = Quat::from_axis_angle({0, 0, 1}, 0.0), q1 = Quat::from_axis_angle({0, 0, 1}, 1.2);
+  for (int i = 0; i < 2; ++i) {
+    HapticSample h;
+    h.t = 0.1 * i;
+    h.device_position = {0.01 * i, 0, 0};
+    h.device_orientation = i == 0 ? q0 : q1;
+    r.haptic.push_back(h);
+  }
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_replay_slerp_test";
+  save_recording(dir, r);
+  const std::unique_ptr<Device> dev = make_replay_device(dir);
+  dev->start(0);
+  for (const double w : {0.0, 0.25, 0.5, 1.0}) {
+    DeviceSample s;
+    ASSERT_TRUE(dev->read(std::int64_t(w * 0.1e9), s));
+    EXPECT_NEAR(s.pose.position.x, 0.01 * w, 1e-12) << w;
+    // A unit vector along x turned by w * 1.2 rad about z.
+    const Vec3 turned = s.pose.orientation.rotate({1, 0, 0});
+    EXPECT_NEAR(turned.x, std::cos(1.2 * w), 1e-9) << w;
+    EXPECT_NEAR(turned.y, std::sin(1.2 * w), 1e-9) << w;
+  }
 }
 
 TEST(Recording, SavesAndLoadsExactly) {
