@@ -83,7 +83,8 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOption
              s.steps_per_second);
   fmt::print("bonds: {} now, {} formed, {} broken, {} overflowed\n", s.bonds_current, s.bonds.formed,
              s.bonds.broken, s.bonds.overflowed);
-  fmt::print("peak tool force: {:.4g} N\n", s.peak_tool_force_N);
+  fmt::print("peak tool force: {:.4g} N simulated, {:.4g} N on a haptic device (force scale {:.4g})\n",
+             s.peak_tool_force_N, s.peak_tool_force_N * s.force_scale, s.force_scale);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
   if (s.force_violation_steps > 0)
     fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "

@@ -130,6 +130,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sum.force_violation_steps = sim.summary.force_violation_steps;
   sum.first_force_violation_t = sim.summary.first_force_violation_t;
   sum.peak_tool_force_N = sim.summary.peak_tool_force_N;
+  sum.force_scale = force_scale;
   sum.events_applied = sim.summary.events_applied;
   sum.steps = state.steps;
   sum.sim_time_s = state.time;

@@ -43,7 +43,9 @@ std::string summary_json(const RunSummary& s) {
                                                                       ? nlohmann::json(s.first_force_violation_t)
                                                                       : nlohmann::json(nullptr)}}},
                     {"forced", s.forced}};
-  j["tool"] = {{"peak_force_N", s.peak_tool_force_N}};
+  j["tool"] = {{"peak_force_N", s.peak_tool_force_N},
+               {"force_scale", s.force_scale},
+               {"peak_device_force_N", s.peak_tool_force_N * s.force_scale}};
   j["snapshots"] = s.snapshots;
   j["events_applied"] = s.events_applied;
   if (!s.cavity_json.empty()) j["cavity"] = nlohmann::json::parse(s.cavity_json);

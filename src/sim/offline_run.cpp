@@ -67,6 +67,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   State state = make_state(scene);
   RunSummary sum;
   sum.scene = scene.name;
+  sum.force_scale = scene.force_scale;
   sum.threads = opt.threads;
   sum.dt = scene.model.dt;
   sum.limits = check_time_step(scene, state, opt.allow_unstable);
@@ -164,7 +165,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     sum.snapshots = snaps->count();
   }
   if (assessor) {
-    const Assessment a = assessor->assess(state, scene.model, forces);
+    const Assessment a = assessor->assess(state, scene.model, forces, scene.force_scale);
     sum.assessment_json = assessment_json(a);
     sum.assessment_report = a.report();
   }
