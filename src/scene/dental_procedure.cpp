@@ -10,6 +10,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
 #include "scene/parse.hpp"
+#include "scene/paste_sites.hpp"
 
 namespace dentsph {
 
@@ -41,29 +42,11 @@ Quat frame_rotation(const ToothFrame& f) {
   return q.normalized();
 }
 
-// Lattice points of the tooth frame (pitch s, as the built-in scene's paste) that an increment
-// can take: half a spacing clear of the prepared tooth, inside the cavity's shape, and either
-// in the cavity or above the occlusal reference over it. Tooth-frame coordinates.
+// The sites an increment can take: in the cavity, or above the occlusal reference over it.
 std::vector<Vec3> increment_sites(const PreparedTooth& tooth, real s) {
-  const ToothFrame& fr = tooth.frame();
-  const Bounds b = tooth.cavity_bounds();
-  real reach = 0;
-  for (const Vec3& c : {b.min, b.max}) {
-    const Vec3 l = fr.to_local(c);
-    reach = std::max({reach, std::abs(l.x), std::abs(l.y), std::abs(l.z)});
-  }
-  const int n = int(std::ceil(reach / s)) + 2;
   std::vector<Vec3> sites;
-  for (int k = -n; k <= n; ++k)
-    for (int j = -n; j <= n; ++j)
-      for (int i = -n; i <= n; ++i) {
-        const Vec3 local{i * s, j * s, (k + 0.5) * s};
-        const Vec3 w = fr.to_world(local);
-        if (tooth.cavity_distance(w).distance > -0.5 * s || tooth.distance(w).distance < 0.5 * s) continue;
-        // Above the reference: the column under it must reach into the cavity.
-        const bool over = local.z > 0 && tooth.in_cavity(fr.to_world({local.x, local.y, -0.5 * s}));
-        if (tooth.in_cavity(w) || over) sites.push_back(local);
-      }
+  for (const scene::PasteSite& p : scene::paste_sites(tooth, s))
+    if (p.in_cavity || p.over_cavity) sites.push_back(p.local);
   return sites;
 }
 
