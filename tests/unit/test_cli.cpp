@@ -154,6 +154,7 @@ TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {
   const std::string cavity = " --cavity-width 3.5 --cavity-depth 2.2";
   const Result r = dentsph_cli("run --realtime --duration 0.3 --threads 1 -q --out " + out.string() + cavity);
   ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_DOUBLE_EQ(read_json(out / "summary.json").at("cavity").at("depth_mm").get<double>(), 2.2);
   const Result same = dentsph_cli("replay " + (out / "recording").string() + cavity);
   EXPECT_EQ(same.code, 0) << same.output;
   EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
