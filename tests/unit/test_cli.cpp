@@ -119,7 +119,7 @@ TEST(Cli, ImpossibleCavityOptionsNameTheOptionAndTheFix) {
   expect_refused("run --cavity-depth 5 --steps 1 -q",
                  {"the built-in crown: cavity does not fit", "pulpal floor", "shallower", "--cavity-depth"});
   expect_refused("run --cavity class2 --cavity-box-depth 1 --steps 1 -q", {"box_depth", "pulpal floor", "(--cavity-box-depth)"});
-  expect_refused("run --mesial 0 0 1 --steps 1 -q", {"mesial", "within 10 degrees of the long axis"});
+  expect_refused("run --mesial 0 0 1 --steps 1 -q", {"--long-axis / --mesial", "within 10 degrees of the long axis"});
   // A scene file says its own cavity.
   expect_refused("run scenes/tool_press.json --cavity class2 --steps 1 -q", {"--cavity", "excludes"});
   for (const char* args : {"run --cavity-width -1 --steps 1 -q", "run --cavity-depth 5 --steps 1 -q"})
