@@ -30,7 +30,7 @@ void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool wit
   for (std::size_t i = 0; i < cavity_fields().size(); ++i) {
     const CavityField& f = cavity_fields()[i];
     add(app.add_option(f.option, values_[i],
-                       fmt::format("The cavity's {} (default {:.3g} {}){}", f.hint, CavityParams{}.*f.member / f.scale,
+                       fmt::format("Cavity: {} (default {:.3g} {}){}", f.hint, CavityParams{}.*f.member / f.scale,
                                    f.unit, f.class_2_only ? "; with --cavity class2" : "")));
   }
   add(app.add_option("--long-axis", long_axis_,
