@@ -16,6 +16,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
+#include "dental_options.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
 
@@ -25,6 +26,8 @@ using namespace dentsph;
 
 void print_scene(const Scene& sc, const State& st) {
   fmt::print("scene      {} ({})\n", sc.name, sc.source);
+  if (sc.tooth)
+    fmt::print("cavity     {}; {}\n", cavity_description(sc.tooth->params()), sc.tooth->report().summary());
   fmt::print("particles  {} material, {} boundary, {} tool\n", st.count(Role::material), st.count(Role::boundary),
              st.count(Role::tool));
   fmt::print("kernel     h = {:.4g} m, adhesion A = {:.4g} m, B = {:.4g} m, eps = {}, zeta = {}\n", sc.model.kernel.h,
@@ -63,11 +66,11 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const std::string& mesh, const std::string& procedure, RunOptions opt,
-            bool quiet, cli::RealtimeCommand& rt) {
+int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
+            cli::RealtimeCommand& rt) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
-  // crown or on the given scanned tooth.
-  const Scene sc = !file.empty() ? load_scene(file) : dental_run_scene(mesh, procedure);
+  // crown or on the given scanned tooth, with the cavity of the options.
+  const Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
@@ -80,7 +83,8 @@ int cmd_run(const std::string& file, const std::string& mesh, const std::string&
              s.steps_per_second);
   fmt::print("bonds: {} now, {} formed, {} broken, {} overflowed\n", s.bonds_current, s.bonds.formed,
              s.bonds.broken, s.bonds.overflowed);
-  fmt::print("peak tool force: {:.4g} N\n", s.peak_tool_force_N);
+  fmt::print("peak tool force: {:.4g} N simulated, {:.4g} N on a haptic device (force scale {:.4g})\n",
+             s.peak_tool_force_N, s.peak_tool_force_N * s.force_scale, s.force_scale);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
   if (s.force_violation_steps > 0)
     fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "
@@ -108,14 +112,8 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "Run a scene offline and write snapshots, tool force and a summary");
   auto* scene_opt =
       run->add_option("scene", run_scene, "Scene file (JSON); none: the built-in filling procedure")->check(CLI::ExistingFile);
-  std::string run_mesh;
-  run->add_option("--mesh", run_mesh, "Run the dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
-      ->check(CLI::ExistingFile)
-      ->excludes(scene_opt);
-  std::string run_procedure;
-  run->add_option("--procedure", run_procedure,
-                  "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one")
-      ->excludes(scene_opt);
+  cli::DentalOptions run_dental;
+  run_dental.add_options(*run, scene_opt, true);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
       ->check(CLI::PositiveNumber)
@@ -148,15 +146,17 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(backends))
       ->capture_default_str();
 
-  std::string replay_dir, replay_scene, replay_mesh;
+  std::string replay_dir, replay_scene;
   int replay_threads = 1;
   CLI::App* replay = app.add_subcommand("replay", "Replay a realtime run's recording into its scene and compare the tool forces");
   replay->add_option("recording", replay_dir, "Recording folder (OUT/recording of dentsph run --realtime)")
       ->required()
       ->check(CLI::ExistingDirectory);
-  auto* replay_scene_opt = replay->add_option("scene", replay_scene, "The scene that was run (none: the built-in dental scene)")
-                               ->check(CLI::ExistingFile);
-  replay->add_option("--mesh", replay_mesh, "The dental scene on this scanned tooth")->check(CLI::ExistingFile)->excludes(replay_scene_opt);
+  auto* replay_scene_opt =
+      replay->add_option("scene", replay_scene, "The scene that was run (none: the filling procedure that was run)")
+          ->check(CLI::ExistingFile);
+  cli::DentalOptions replay_dental;
+  replay_dental.add_options(*replay, replay_scene_opt, true);
   replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
 
   std::string validate_scene;
@@ -170,14 +170,12 @@ int main(int argc, char** argv) {
       opt.backend = parse_backend(run_backend);
       if (realtime.enabled() && opt.backend != Backend::cpu)
         throw std::invalid_argument("--realtime runs the step on the CPU: leave out --backend, or run offline with it");
-      return cmd_run(run_scene, run_mesh, run_procedure, opt, quiet, realtime);
+      return cmd_run(run_scene, run_dental, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
-      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene)
-                                   : !replay_mesh.empty() ? dental_scene_from_mesh(replay_mesh)
-                                                          : default_dental_scene(),
+      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
                                    replay_dir, replay_threads);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {

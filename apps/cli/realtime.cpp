@@ -100,8 +100,10 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   std::fflush(stdout);
   const RealtimeResult r = run_realtime(scene, *device, o);
   fmt::print("\n{}", realtime_report(r));
-  fmt::print("{} steps ({:.4g} s simulated) in {:.2f} s; peak tool force {:.4g} N (simulated)\n", r.run.steps,
-             r.run.sim_time_s, r.run.wall_time_s, r.run.peak_tool_force_N);
+  fmt::print("{} steps ({:.4g} s simulated) in {:.2f} s; peak tool force {:.4g} N simulated, {:.4g} N at force scale "
+             "{:.4g}; the device was sent at most {:.4g} N\n",
+             r.run.steps, r.run.sim_time_s, r.run.wall_time_s, r.run.peak_tool_force_N,
+             r.run.peak_tool_force_N * r.run.force_scale, r.run.force_scale, r.haptic.max_force_N);
   if (!r.haptic.realtime_priority && !quiet)
     fmt::print("note: the haptic thread runs without real-time priority (SCHED_FIFO needs root or CAP_SYS_NICE)\n");
   if (!o.out_dir.empty())

@@ -1,6 +1,8 @@
 // Shader programs and vertex arrays (gl_program.hpp).
 #include "gl_program.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +13,18 @@ namespace dentsph::viewer {
 
 namespace {
 
+// The info log of a shader or a program, read by its pair of queries (glGetShaderiv and
+// glGetShaderInfoLog, or glGetProgramiv and glGetProgramInfoLog), whole.
+template <class GetIv, class GetLog>
+std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(id, GL_INFO_LOG_LENGTH, &length);
+  std::string log(std::size_t(std::max(length, 1)), '\0');
+  get_log(id, GLsizei(log.size()), nullptr, log.data());
+  log.resize(std::strlen(log.c_str()));
+  return log;
+}
+
 GLuint compile(const char* name, GLenum type, const char* src) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &src, nullptr);
@@ -18,8 +32,7 @@ GLuint compile(const char* name, GLenum type, const char* src) {
   GLint ok = 0;
   glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    const std::string log = info_log(s, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(s);
     throw std::runtime_error(fmt::format("{} {} shader does not compile: {}", name,
                                          type == GL_VERTEX_SHADER ? "vertex" : "fragment", log));
@@ -41,8 +54,7 @@ GlProgram::GlProgram(const char* name, const char* vertex_src, const char* fragm
   GLint ok = 0;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(id_, sizeof log, nullptr, log);
+    const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(id_);
     throw std::runtime_error(fmt::format("{} shader program does not link: {}", name, log));
   }

@@ -16,6 +16,7 @@
 #include "dentsph/scene.hpp"
 #include "colour_map.hpp"
 #include "dentsph/haptics.hpp"
+#include "dental_options.hpp"
 #include "realtime.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
@@ -53,15 +54,14 @@ int main(int argc, char** argv) {
   CLI::App app{"dentsph-viewer: the dental filling simulation in a window. The mouse moves the tool (left drag; "
                "wheel for depth; space presses), D dispenses an increment, P pauses, N steps, R resets, T switches "
                "the tool, C changes the colouring, X cuts a section, B hides the boundary particles"};
-  std::string scene_file, mesh_file, script_file, screenshot;
+  std::string scene_file, script_file, screenshot;
   viewer::ViewerOptions vo;
   viewer::SessionOptions so;
   so.threads = int(std::max(1u, std::thread::hardware_concurrency() > 1 ? std::thread::hardware_concurrency() - 1 : 1u));
   auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON); none: the built-in dental scene")
                         ->check(CLI::ExistingFile);
-  app.add_option("--mesh", mesh_file, "The dental scene on this scanned tooth (STL, OBJ or PLY, in mm)")
-      ->check(CLI::ExistingFile)
-      ->excludes(scene_opt);
+  cli::DentalOptions dental;
+  dental.add_options(app, scene_opt, false);
   app.add_option("--screenshot", screenshot, "Write a PNG of the window after --frames frames, then exit");
   app.add_option("--frames", vo.frames, "Frames to draw before the screenshot (or before exiting)");
   app.add_option("--script", script_file, "A sequence of inputs to replay (JSON; see docs/viewer.md)")
@@ -91,9 +91,7 @@ int main(int argc, char** argv) {
   try {
     (void)viewer::colour_by_from_name(vo.colour_by);
     if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
-    Scene sc = !scene_file.empty() ? load_scene(scene_file)
-               : !mesh_file.empty() ? dental_scene_from_mesh(mesh_file)
-                                    : default_dental_scene();
+    Scene sc = !scene_file.empty() ? load_scene(scene_file) : dental.filled_scene();
     check_time_step(sc, make_state(sc), false);
     const bool with_device = app.count("--device") > 0;
     RealtimeOptions ro;

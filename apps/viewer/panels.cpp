@@ -118,15 +118,16 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
 void force_panel(const Snapshot& s, UiState& ui) {
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 360, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Tool force", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  const float f = float(norm(s.tool_force_N));
+  ImGui::Begin("Tool force (device N)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  const float f = float(norm(s.device_force_N));
   std::vector<float> h(ui.force_history.begin(), ui.force_history.end());
   const float peak = h.empty() ? 0.f : *std::max_element(h.begin(), h.end());
   const std::string label = fmt::format("{:.3g} N", f);
   ImGui::PlotLines("##force", h.data(), int(h.size()), 0, label.c_str(), 0.f, std::max(peak * 1.1f, 1e-12f),
                    ImVec2(320, 90));
-  ImGui::Text("|F| = %.4g N", double(f));
-  ImGui::Text("F = (%.3g, %.3g, %.3g) N", double(s.tool_force_N.x), double(s.tool_force_N.y), double(s.tool_force_N.z));
+  ImGui::Text("|F| = %.4g N on the device (%.4g N simulated x %.3g)", double(f), double(f) / s.force_scale,
+              s.force_scale);
+  ImGui::Text("F = (%.3g, %.3g, %.3g) N", double(s.device_force_N.x), double(s.device_force_N.y), double(s.device_force_N.z));
   ImGui::End();
 }
 
@@ -140,7 +141,9 @@ void assessment_panel(const Snapshot& s) {
   ImGui::Text("voids      %d (%.3f mm^3)", a.void_count, double(a.void_volume_mm3));
   ImGui::Text("overfill   %.3f mm^3", double(a.overfill_mm3));
   ImGui::Text("leaked     %u   lost %u   of %u", a.leaked_particles, a.lost_particles, a.material_particles);
-  ImGui::Text("tool force peak %.3g N, mean %.3g N", double(a.peak_tool_force_N), double(a.mean_tool_force_N));
+  ImGui::Text("tool force peak %.3g N, mean %.3g N on the device", double(a.peak_device_force_N),
+              double(a.mean_device_force_N));
+  ImGui::Text("           (simulated: peak %.3g N, mean %.3g N)", double(a.peak_tool_force_N), double(a.mean_tool_force_N));
   ImGui::End();
 }
 

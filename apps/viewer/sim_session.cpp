@@ -241,9 +241,10 @@ void SimSession::publish(const State& st, bool with_assessment, double steps_per
     s.bonds[i] = float(st.bonds.count(st.id[i]));
   }
   s.tool_pose = st.tool_pose_applied;
-  s.tool_force_N = st.tool_wrench.force * force_scale_;
+  s.device_force_N = st.tool_wrench.force * force_scale_;
+  s.force_scale = force_scale_;
   s.assessment.reset();
-  if (with_assessment && assessor_) s.assessment = assessor_->assess(st, scene_.model, forces_);
+  if (with_assessment && assessor_) s.assessment = assessor_->assess(st, scene_.model, forces_, force_scale_);
   s.limits = stability_limits(scene_.model, st);
   s.dt = scene_.model.dt;
   s.material = {paste_.Kp, paste_.Ka, paste_.mu, scene_.model.adhesion.A, scene_.model.adhesion.B,
@@ -326,7 +327,7 @@ void SimSession::run() {
       state_.tool_pose = state_.tool_pose_applied;
       state_.tool_pose.position = len > max_move ? from + d * (max_move / len) : goal;
       step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
-      forces_.add(state_.tool_wrench.force * force_scale_, scene_.model.dt);
+      forces_.add(state_.tool_wrench.force, scene_.model.dt);
       steps_.store(state_.steps, std::memory_order_release);
       if (state_.diagnostics.non_finite > 0 ||
           state_.diagnostics.max_speed > kExplosionSpeedFactor * sound_speed_) {
@@ -356,7 +357,7 @@ void SimSession::between_steps(State& st) {
   take_due(st);
   for (const Command& c : due_) apply(c, st);
   // The runtime's step that follows adds its force; the assessment reads the forces so far.
-  forces_.add(st.tool_wrench.force * force_scale_, scene_.model.dt);
+  forces_.add(st.tool_wrench.force, scene_.model.dt);
   steps_.store(st.steps, std::memory_order_release);
   const auto now = clock_type::now();
   const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);

@@ -52,7 +52,8 @@ struct Snapshot {
   std::vector<Role> role;     // [n]
   std::vector<float> pressure, density, speed, bonds;  // [n] Pa, kg/m^3, m/s, count
   Pose tool_pose;
-  Vec3 tool_force_N;          // rendered force: simulated force times the scene's force scale
+  Vec3 device_force_N;        // device N: the simulated tool force times the force scale
+  real force_scale = 1;       // device N per simulated N
   std::optional<Assessment> assessment;
   StabilityLimits limits;
   real dt = 0;

@@ -258,7 +258,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     // ---- the newest snapshot -------------------------------------------------------------------
     if (session.latest(snap) && snap.version != last_version) {
       last_version = snap.version;
-      const float f = float(norm(snap.tool_force_N));
+      const float f = float(norm(snap.device_force_N));
       ui.force_history.push_back(std::isfinite(f) ? f : 0.f);
       while (ui.force_history.size() > 600) ui.force_history.pop_front();
       force_peak = *std::max_element(ui.force_history.begin(), ui.force_history.end());
@@ -299,9 +299,9 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     particles.draw(u, vis_xyz, vis_rgb, float(0.5 * spacing));
     // The force on the tool, from its tip: 1.5 mm (out of the instrument) plus 4 mm at the largest
     // force of the last 10 s.
-    const float f = float(norm(snap.tool_force_N));
+    const float f = float(norm(snap.device_force_N));
     if (f > 0 && force_peak > 0 && std::isfinite(f)) {
-      const glm::vec3 dir = g(snap.tool_force_N) / f;
+      const glm::vec3 dir = g(snap.device_force_N) / f;
       arrows.add(g(snap.tool_pose.position), dir * (1.5e-3f + 4e-3f * f / force_peak), float(0.12 * spacing),
                  glm::vec3(0.9f, 0.15f, 0.2f));
     }

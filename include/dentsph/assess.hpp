@@ -56,8 +56,14 @@ struct Assessment {
   std::uint32_t lost_particles = 0;      // non-finite, or farther than lost_distance
   std::uint32_t outside_particles = 0;   // none of these and outside the voxelised box
   std::uint32_t material_particles = 0;  // all material particles
-  real peak_tool_force_N = 0;            // from the ForceStats passed in
-  real mean_tool_force_N = 0;            // mean while in contact, from the ForceStats
+  // Forces: *_tool_force_N are simulated newtons (the force on the tool in the simulation, from
+  // the ForceStats passed in); *_device_force_N are the same rendered on a haptic device, times
+  // force_scale (Scene::force_scale, device N per simulated N). docs/outputs.md, "Units".
+  real peak_tool_force_N = 0;            // simulated N, from the ForceStats passed in
+  real mean_tool_force_N = 0;            // simulated N, mean while in contact, from the ForceStats
+  real force_scale = 1;                  // device N per simulated N
+  real peak_device_force_N = 0;          // device N: peak_tool_force_N * force_scale
+  real mean_device_force_N = 0;          // device N: mean_tool_force_N * force_scale
   real contact_s = 0;                    // s, tool in contact, from the ForceStats
   real duration_s = 0;                   // s, simulated time of the state
   real cavity_volume_mm3 = 0;            // the voxelised cavity
@@ -80,8 +86,9 @@ class CavityAssessor {
   explicit CavityAssessor(const PreparedTooth& tooth, const AssessParams& params = {});
 
   // The metrics of the material particles of `state`; duration_s is state.time, the force
-  // fields come from `forces`.
-  Assessment assess(const State& state, const Model& model, const ForceStats& forces = {}) const;
+  // fields come from `forces` (simulated N), rendered on a device at `force_scale`.
+  Assessment assess(const State& state, const Model& model, const ForceStats& forces = {},
+                    real force_scale = 1) const;
 
   const AssessParams& params() const;  // with the defaults resolved
   const PreparedTooth& tooth() const;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +45,57 @@ Scene default_dental_scene(const DentalSceneParams& params = {});
 // the default Class I cavity carved and lined. Throws MeshError or CavityError with the reason.
 Scene dental_scene_from_mesh(const std::filesystem::path& mesh_file, const DentalSceneParams& params = {});
 
+// ---- the tooth and its cavity as a user chooses them (the command line, dental scene files) -----
+
+// Which tooth, how it is oriented and which cavity is carved into it.
+struct ToothSpec {
+  std::filesystem::path mesh;     // STL, OBJ or PLY in mm; empty: the built-in crown
+  CavityParams cavity;            // the preparation; default: the built-in Class I
+  std::optional<Vec3> long_axis;  // towards the crown, in the mesh's coordinates; none: found
+                                  // from the mesh (the built-in crown: its own, +z)
+  std::optional<Vec3> mesial;     // towards mesial (the Class II side "mesial"), made orthogonal
+                                  // to the axis; none: the found frame's mesio-distal axis
+};
+
+// "the built-in crown" or the mesh file's name.
+std::string tooth_name(const ToothSpec& spec);
+
+// The tooth of `spec` loaded (or built), its frame found or made from the given axes, the cavity
+// carved and lined at default_tooth_spacing (a Class II with its matrix band). Throws MeshError,
+// CavityError (its reason after the tooth's name) and std::invalid_argument (an axis that is
+// zero or not finite, a mesial direction along the long axis).
+ToothScene prepare_tooth(const ToothSpec& spec);
+
+// One number of CavityParams as a dental scene file ("cavity": {key: ...}) and the command line
+// (option) name it, in the unit people use (mm or degrees). The one table both read.
+struct CavityField {
+  const char* key;              // field of a scene file's "cavity" object
+  const char* option;           // command-line option
+  const char* unit;             // "mm" or "degrees"
+  real CavityParams::*member;   // where it goes
+  real scale;                   // CavityParams' unit (m or degrees) per `unit`
+  real min;                     // smallest value accepted (in `unit`)
+  bool min_inclusive;           // min itself accepted
+  real max;                     // values must be below this (in `unit`)
+  bool class_2_only;            // a proximal box's parameter
+  const char* hint;             // what it is and a typical value, for the fix of a message
+};
+const std::vector<CavityField>& cavity_fields();
+// Empty when `value` (in the field's unit) is accepted, else what is wrong ("must be > 0 mm").
+std::string check_cavity_field(const CavityField& field, real value);
+
+// Names as the command line and scene files write them: "class1", "class2"; "mesial", "distal".
+const char* cavity_class_name(CavityClass kind);
+std::optional<CavityClass> cavity_class_from_name(std::string_view name);
+const char* proximal_side_name(ProximalSide side);
+std::optional<ProximalSide> proximal_side_from_name(std::string_view name);
+
+// One line for people: "Class II (mesial box), outline 3 x 5 mm, 2 mm deep, ...".
+std::string cavity_description(const CavityParams& params);
+// The run summary's "cavity" object (class, side, dimensions in mm and degrees, the volume
+// removed and the thinnest wall and floor left), as JSON text.
+std::string cavity_json(const PreparedTooth& tooth);
+
 // ---- procedures (docs/procedure-format.md) ------------------------------------------------------
 
 // The built-in procedure: scenes/default_procedure.json, compiled in.
@@ -60,7 +112,7 @@ Scene load_dental_procedure(const ToothScene& tooth, const std::filesystem::path
 // The built-in procedure on the built-in crown: what `dentsph run` runs.
 Scene default_dental_procedure(const DentalSceneParams& params = {});
 // What `dentsph run` runs without a scene file: the procedure file (empty: the built-in one) on
-// the scanned tooth (empty: the built-in crown) with its default Class I cavity.
-Scene dental_run_scene(const std::filesystem::path& mesh_file, const std::filesystem::path& procedure_file);
+// the tooth of `tooth` (by default the built-in crown with its Class I cavity).
+Scene dental_run_scene(const ToothSpec& tooth, const std::filesystem::path& procedure_file);
 
 }  // namespace dentsph

@@ -53,10 +53,12 @@ struct RunSummary {
   bool acoustic_violated = false, viscous_violated = false, forced = false;
   std::uint64_t force_violation_steps = 0;  // steps whose dt exceeded the force limit
   real first_force_violation_t = -1;        // s, -1 if none
-  real peak_tool_force_N = 0;
+  real peak_tool_force_N = 0;        // simulated N: the largest force on the tool in the simulation
+  real force_scale = 1;              // device N per simulated N (Scene::force_scale)
   std::uint64_t snapshots = 0;
   std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
   std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
+  std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
   std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",

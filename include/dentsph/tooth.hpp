@@ -291,6 +291,10 @@ struct ToothScene {
 };
 ToothScene default_tooth_scene();
 
+// A carved tooth lined at `spacing` (sample_boundary() with two layers; a Class II with its
+// matrix_band() too).
+ToothScene line_tooth(PreparedTooth tooth, real spacing = default_tooth_spacing);
+
 // A scanned tooth's scene: the mesh (mm) loaded, checked and repaired, its frame found, the
 // cavity carved and lined at default_tooth_spacing (a Class II with its matrix band). Throws
 // MeshError or CavityError with the reason.

@@ -135,8 +135,8 @@ real CavityAssessor::cavity_volume() const {
   return impl_->grid.cavity_voxels * v * v * v;
 }
 
-Assessment CavityAssessor::assess(const State& state, const Model& model,
-                                  const ForceStats& forces) const {
+Assessment CavityAssessor::assess(const State& state, const Model& model, const ForceStats& forces,
+                                  real force_scale) const {
   using namespace assess;
   const Impl& m = *impl_;
   const VoxelGrid& g = m.grid;
@@ -209,6 +209,9 @@ Assessment CavityAssessor::assess(const State& state, const Model& model,
   a.overfill_mm3 = filled_air * v3 / mm3;
   a.peak_tool_force_N = forces.peak_N;
   a.mean_tool_force_N = forces.mean_N();
+  a.force_scale = force_scale;
+  a.peak_device_force_N = a.peak_tool_force_N * force_scale;
+  a.mean_device_force_N = a.mean_tool_force_N * force_scale;
   a.contact_s = forces.contact_s;
   a.duration_s = state.time;
   a.cavity_volume_mm3 = g.cavity_voxels * v3 / mm3;

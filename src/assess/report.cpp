@@ -31,9 +31,10 @@ std::string Assessment::report() const {
       "the assessed box\n",
       material_particles, leaked_particles, lost_particles, outside_particles);
   out += fmt::format(
-      "tool: peak {:.3g} N, mean {:.3g} N over {:.3g} s of contact; {:.3g} s simulated "
-      "(voxels of {:.3g} mm)\n",
-      peak_tool_force_N, mean_tool_force_N, contact_s, duration_s, voxel_mm);
+      "tool: peak {:.3g} N, mean {:.3g} N simulated (on a device at force scale {:.3g}: peak {:.3g} N, mean "
+      "{:.3g} N) over {:.3g} s of contact; {:.3g} s simulated (voxels of {:.3g} mm)\n",
+      peak_tool_force_N, mean_tool_force_N, force_scale, peak_device_force_N, mean_device_force_N, contact_s,
+      duration_s, voxel_mm);
   return out;
 }
 
@@ -50,6 +51,9 @@ std::string assessment_json(const Assessment& a) {
   j["material_particles"] = a.material_particles;
   j["peak_tool_force_N"] = number(a.peak_tool_force_N);
   j["mean_tool_force_N"] = number(a.mean_tool_force_N);
+  j["force_scale"] = number(a.force_scale);
+  j["peak_device_force_N"] = number(a.peak_device_force_N);
+  j["mean_device_force_N"] = number(a.mean_device_force_N);
   j["contact_s"] = number(a.contact_s);
   j["duration_s"] = number(a.duration_s);
   j["cavity_volume_mm3"] = number(a.cavity_volume_mm3);

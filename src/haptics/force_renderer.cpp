@@ -1,5 +1,7 @@
 #include "haptics/force_renderer.hpp"
 
+#include "haptics/virtual_coupling.hpp"
+
 namespace dentsph::haptics {
 
 void ForceRenderer::add(const SimOutput& o, std::int64_t now_ns) {
@@ -19,8 +21,7 @@ void ForceRenderer::add(const SimOutput& o, std::int64_t now_ns) {
 Vec3 ForceRenderer::render(const Vec3& x, const Vec3& v, std::int64_t now_ns) const {
   if (mode_ == ForceMode::direct) return force_.at(now_ns);
   if (!started_) return {};
-  return coupling_.stiffness_N_per_m * (proxy_x_.at(now_ns) - x) +
-         coupling_.damping_N_s_per_m * (proxy_v_.at(now_ns) - v);
+  return coupling_force(coupling_, proxy_x_.at(now_ns), proxy_v_.at(now_ns), x, v);
 }
 
 }  // namespace dentsph::haptics

@@ -25,7 +25,6 @@ class ForceRenderer {
   Vec3 tool_position(const Vec3& x, std::int64_t now_ns) const {
     return mode_ == ForceMode::coupling && started_ ? proxy_x_.at(now_ns) : x;
   }
-  ForceMode mode() const { return mode_; }
 
  private:
   ForceMode mode_;

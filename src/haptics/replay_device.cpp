@@ -1,9 +1,10 @@
 // A replay device: the device poses of a recorded session, played in real time (positions
-// interpolated between recorded ticks).
+// interpolated linearly between recorded ticks, orientations by slerp).
 #include <algorithm>
 #include <memory>
 
 #include "dentsph/haptics/recording.hpp"
+#include "dentsph/pose.hpp"
 #include "haptics/playback_device.hpp"
 
 namespace dentsph {
@@ -22,7 +23,8 @@ class ReplayDevice final : public haptics::PlaybackDevice {
     const HapticSample& a = samples_[next_];
     const HapticSample& b = samples_[std::min(next_ + 1, samples_.size() - 1)];
     const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
-    return {a.device_position + (b.device_position - a.device_position) * w, a.device_orientation};
+    return {a.device_position + (b.device_position - a.device_position) * w,
+            slerp(a.device_orientation, b.device_orientation, w)};
   }
   double end_s() const override { return samples_.empty() ? 0.0 : samples_.back().t; }
 

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/dental.hpp"
 #include "dentsph/haptics.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/consumer_loop.hpp"
@@ -130,6 +131,8 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sum.force_violation_steps = sim.summary.force_violation_steps;
   sum.first_force_violation_t = sim.summary.first_force_violation_t;
   sum.peak_tool_force_N = sim.summary.peak_tool_force_N;
+  sum.force_scale = force_scale;
+  if (scene.tooth) sum.cavity_json = cavity_json(*scene.tooth);
   sum.events_applied = sim.summary.events_applied;
   sum.steps = state.steps;
   sum.sim_time_s = state.time;

@@ -13,16 +13,15 @@ VirtualCoupling::VirtualCoupling(const CouplingParams& p) : p_(p) {
         "virtual coupling: stiffness and proxy mass must be positive, damping and drag non-negative, all finite");
 }
 
-Vec3 VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
+void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
   const double k = p_.stiffness_N_per_m, b = p_.damping_N_s_per_m, c = p_.proxy_drag_N_s_per_m, m = p_.proxy_mass_kg;
   // m (v' - v) / dt = k (xd - x - dt v') + b (vd - v') - c v' + F   (x' = x + dt v')
   const Vec3 rhs = v_ + (k * (xd - x_) + b * vd + tool_force) * (dt / m);
   const double lhs = 1 + dt * (b + c) / m + dt * dt * k / m;
   const Vec3 v = rhs / lhs;
-  if (!is_finite(v)) return {};  // keep the proxy where it is; the limiter sees a zero force
+  if (!is_finite(v)) return;  // keep the proxy where it is
   v_ = v;
   x_ += v_ * dt;
-  return k * (x_ - xd) + b * (v_ - vd);
 }
 
 }  // namespace dentsph::haptics

@@ -10,13 +10,21 @@
 
 namespace dentsph::haptics {
 
+// The spring and damper's force on the hand: the proxy at proxy_x moving at proxy_v, the device
+// at device_x moving at device_v (device frame, N). The one formula of the coupling force: the
+// haptic loop renders it with the device's newest position (force_renderer.cpp).
+inline Vec3 coupling_force(const CouplingParams& p, const Vec3& proxy_x, const Vec3& proxy_v, const Vec3& device_x,
+                           const Vec3& device_v) {
+  return p.stiffness_N_per_m * (proxy_x - device_x) + p.damping_N_s_per_m * (proxy_v - device_v);
+}
+
 class VirtualCoupling {
  public:
   explicit VirtualCoupling(const CouplingParams& p);
   void reset(const Vec3& position) { x_ = position, v_ = {}; }
   // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
-  // (device N). Returns the force on the hand.
-  Vec3 step(const Vec3& device_x, const Vec3& device_v, const Vec3& tool_force, double dt);
+  // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state.
+  void step(const Vec3& device_x, const Vec3& device_v, const Vec3& tool_force, double dt);
   const Vec3& position() const { return x_; }
   const Vec3& velocity() const { return v_; }
 

@@ -17,7 +17,6 @@ class Watchdog {
   bool sim_stale() const { return sim_stale_; }
   bool pose_stale() const { return pose_stale_; }
   std::uint64_t trips() const { return trips_; }
-  double gain() const { return gain_; }
 
  private:
   WatchdogParams p_;

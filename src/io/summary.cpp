@@ -43,9 +43,12 @@ std::string summary_json(const RunSummary& s) {
                                                                       ? nlohmann::json(s.first_force_violation_t)
                                                                       : nlohmann::json(nullptr)}}},
                     {"forced", s.forced}};
-  j["tool"] = {{"peak_force_N", s.peak_tool_force_N}};
+  j["tool"] = {{"peak_force_N", s.peak_tool_force_N},
+               {"force_scale", s.force_scale},
+               {"peak_device_force_N", s.peak_tool_force_N * s.force_scale}};
   j["snapshots"] = s.snapshots;
   j["events_applied"] = s.events_applied;
+  if (!s.cavity_json.empty()) j["cavity"] = nlohmann::json::parse(s.cavity_json);
   if (!s.assessment_json.empty()) j["assessment"] = nlohmann::json::parse(s.assessment_json);
   if (!s.realtime_json.empty()) j.update(nlohmann::json::parse(s.realtime_json));
   return j.dump(2);

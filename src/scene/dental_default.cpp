@@ -7,6 +7,7 @@
 
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
+#include "scene/paste_sites.hpp"
 
 namespace dentsph {
 
@@ -58,20 +59,9 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
 
   // Paste on a lattice of the tooth frame: first the cavity (half a spacing clear of its walls),
   // then layers above the occlusal reference within the cavity's outline, up to the count.
-  const int half = int(std::ceil(8e-3 / s));
   std::vector<Vec3> inside, above;
-  for (int k = -half; k <= half; ++k)
-    for (int j = -half; j <= half; ++j)
-      for (int i = -half; i <= half; ++i) {
-        const Vec3 local{i * s, j * s, (k + 0.5) * s};
-        const Vec3 w = fr.to_world(local);
-        if (tooth.cavity_distance(w).distance > -0.5 * s) continue;  // outside the outline
-        if (tooth.in_cavity(w)) {
-          if (tooth.distance(w).distance >= 0.5 * s) inside.push_back(w);
-        } else if (tooth.distance(w).distance >= 0.5 * s && local.z > 0) {
-          above.push_back(w);
-        }
-      }
+  for (const scene::PasteSite& p : scene::paste_sites(tooth, s))
+    (p.in_cavity ? inside : above).push_back(fr.to_world(p.local));
   std::sort(above.begin(), above.end(),
             [&](const Vec3& a, const Vec3& b) { return dot(a - fr.origin, fr.z) < dot(b - fr.origin, fr.z); });
   for (const Vec3& w : inside) sc.particles.push_back(make_particle(Role::material, w, m, dp.paste));

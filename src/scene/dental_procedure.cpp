@@ -6,12 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
 #include "scene/parse.hpp"
+#include "scene/paste_sites.hpp"
 
 namespace dentsph {
 
@@ -43,29 +42,11 @@ Quat frame_rotation(const ToothFrame& f) {
   return q.normalized();
 }
 
-// Lattice points of the tooth frame (pitch s, as the built-in scene's paste) that an increment
-// can take: half a spacing clear of the prepared tooth, inside the cavity's shape, and either
-// in the cavity or above the occlusal reference over it. Tooth-frame coordinates.
+// The sites an increment can take: in the cavity, or above the occlusal reference over it.
 std::vector<Vec3> increment_sites(const PreparedTooth& tooth, real s) {
-  const ToothFrame& fr = tooth.frame();
-  const Bounds b = tooth.cavity_bounds();
-  real reach = 0;
-  for (const Vec3& c : {b.min, b.max}) {
-    const Vec3 l = fr.to_local(c);
-    reach = std::max({reach, std::abs(l.x), std::abs(l.y), std::abs(l.z)});
-  }
-  const int n = int(std::ceil(reach / s)) + 2;
   std::vector<Vec3> sites;
-  for (int k = -n; k <= n; ++k)
-    for (int j = -n; j <= n; ++j)
-      for (int i = -n; i <= n; ++i) {
-        const Vec3 local{i * s, j * s, (k + 0.5) * s};
-        const Vec3 w = fr.to_world(local);
-        if (tooth.cavity_distance(w).distance > -0.5 * s || tooth.distance(w).distance < 0.5 * s) continue;
-        // Above the reference: the column under it must reach into the cavity.
-        const bool over = local.z > 0 && tooth.in_cavity(fr.to_world({local.x, local.y, -0.5 * s}));
-        if (tooth.in_cavity(w) || over) sites.push_back(local);
-      }
+  for (const scene::PasteSite& p : scene::paste_sites(tooth, s))
+    if (p.in_cavity || p.over_cavity) sites.push_back(p.local);
   return sites;
 }
 
@@ -125,13 +106,7 @@ void cavity_increment(const Reader& d, const ProcedureContext& ctx, ProcedureEve
 
 Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_json, const std::string& source,
                        const DentalSceneParams& dp) {
-  using scene::Json;
-  Json json;
-  try {
-    json = Json::parse(procedure_json);
-  } catch (const Json::exception& e) {
-    scene::fail(source, "JSON", e.what(), "fix the JSON syntax (strict JSON: no comments, no trailing commas)");
-  }
+  const scene::Json json = scene::parse_json(procedure_json, source);
   const Reader root(json, "", source, "a procedure");
   root.only({"name", "description", "tool", "keyframes", "events", "duration"});
   const std::string name = root.string("name", "the procedure's name, e.g. \"three_increments\"");
@@ -167,14 +142,7 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
 }
 
 Scene load_dental_procedure(const ToothScene& tooth, const std::filesystem::path& file, const DentalSceneParams& dp) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw SceneError(fmt::format("{}: cannot read the procedure file: {}; check the path", file.string(),
-                                 std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return dental_procedure(tooth, text.str(), file.string(), dp);
+  return dental_procedure(tooth, scene::read_text_file(file, "the procedure file"), file.string(), dp);
 }
 
 Scene default_dental_procedure(const DentalSceneParams& dp) {
@@ -182,12 +150,12 @@ Scene default_dental_procedure(const DentalSceneParams& dp) {
                           dp);
 }
 
-Scene dental_run_scene(const std::filesystem::path& mesh_file, const std::filesystem::path& procedure_file) {
-  const ToothScene tooth = mesh_file.empty() ? default_tooth_scene() : tooth_scene_from_mesh(mesh_file);
+Scene dental_run_scene(const ToothSpec& spec, const std::filesystem::path& procedure_file) {
+  const ToothScene tooth = prepare_tooth(spec);
   Scene sc = procedure_file.empty()
                  ? dental_procedure(tooth, std::string(default_procedure_json()), "built-in default_procedure")
                  : load_dental_procedure(tooth, procedure_file);
-  sc.source = fmt::format("{} on {}", sc.source, mesh_file.empty() ? "the built-in crown" : mesh_file.string());
+  sc.source = fmt::format("{} on {}", sc.source, tooth_name(spec));
   return sc;
 }
 

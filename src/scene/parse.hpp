@@ -3,6 +3,7 @@
 // keyframes), scene_json.cpp (the top level, simulation settings and the Model).
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -16,6 +17,26 @@
 #include "scene/reader.hpp"
 
 namespace dentsph::scene {
+
+// ---- files and the top level (scene_json.cpp) ---------------------------------------------------
+
+// The JSON of `text`; a syntax error is a SceneError naming `source` and the line and column.
+Json parse_json(const std::string& text, const std::string& source);
+// A file's text; a missing or unreadable one is a SceneError naming it and `what` it should be
+// ("the scene file").
+std::string read_text_file(const std::filesystem::path& file, std::string_view what);
+// "haptics" of the top level ({"force_scale"}) into `scene`, keeping its default when absent.
+void read_haptics(const Reader& root, Scene& scene);
+
+// ---- dental scene files (dental_scene_json.cpp) -------------------------------------------------
+
+// A scene file with a "tooth", "cavity" or "procedure" field is a dental scene: a procedure on a
+// tooth with a cavity, which builds its own particles.
+bool is_dental_scene(const Reader& root);
+// Reads one; paths in it are relative to the folder of root.source().
+Scene parse_dental_scene(const Reader& root);
+// A "cavity" object into CavityParams (missing fields keep the defaults).
+CavityParams read_cavity(const Reader& cavity);
 
 // ---- materials (materials_json.cpp) ------------------------------------------------------------
 

@@ -34,14 +34,6 @@ namespace {
        "numbers within double range)");
 }
 
-Json parse_json(const std::string& text, const std::string& source) {
-  try {
-    return Json::parse(text);
-  } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
-    fail_syntax(source, e);
-  }
-}
-
 // make_model's messages read "<field>: <problem>; <fix>" with fields named as in ModelParams:
 // adhesion.* keep their name, the rest live under "simulation".
 Model build_model(const ModelParams& p, const std::string& source) {
@@ -164,6 +156,37 @@ Domain bounding_domain(const std::vector<ParticleInit>& world, const ToolPart& t
 
 }  // namespace
 
+Json parse_json(const std::string& text, const std::string& source) {
+  try {
+    return Json::parse(text);
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
+    fail_syntax(source, e);
+  }
+}
+
+std::string read_text_file(const std::filesystem::path& file, std::string_view what) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw SceneError(fmt::format("{}: cannot read {}: {}; check the path", name, what,
+                                 std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in || in.bad())
+    throw SceneError(fmt::format("{}: cannot read {}: {}; check its permissions", name, what, std::strerror(errno)));
+  return text.str();
+}
+
+void read_haptics(const Reader& root, Scene& scene) {
+  if (const std::optional<Reader> h = root.optional_object("haptics", "{\"force_scale\": 20}")) {
+    h->only({"force_scale"});
+    scene.force_scale = h->number_or("force_scale", scene.force_scale,
+                                     "device N per simulated N of tool force for the haptic runtime, e.g. 20",
+                                     Range::positive);
+  }
+}
+
 }  // namespace dentsph::scene
 
 namespace dentsph {
@@ -172,6 +195,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   using namespace scene;
   const Json json = parse_json(json_text, source);
   const Reader root(json, "", source, "a scene");
+  if (is_dental_scene(root)) return parse_dental_scene(root);
   root.only({"name", "description", "simulation", "adhesion", "materials", "roles", "blocks",
              "tool", "output", "run", "haptics"});
 
@@ -204,12 +228,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   }
   sc.output = read_output(root);
   sc.duration = read_duration(root);
-  if (const std::optional<Reader> h = root.optional_object("haptics", "{\"force_scale\": 20}")) {
-    h->only({"force_scale"});
-    sc.force_scale = h->number_or("force_scale", sc.force_scale,
-                                  "device N per simulated N of tool force for the haptic runtime, e.g. 20",
-                                  Range::positive);
-  }
+  read_haptics(root, sc);
 
   sc.params.domain_min = domain.min;
   sc.params.domain_max = domain.max;
@@ -218,19 +237,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
 }
 
 Scene load_scene(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw SceneError(
-        fmt::format("{}: cannot read the scene file: {}; check the path", name,
-                    std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in || in.bad())
-    throw SceneError(fmt::format("{}: cannot read the scene file: {}; check its permissions", name,
-                                 std::strerror(errno)));
-  return parse_scene(text.str(), name);
+  return parse_scene(scene::read_text_file(file, "the scene file"), file.string());
 }
 
 }  // namespace dentsph

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/assess.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
@@ -66,6 +67,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   State state = make_state(scene);
   RunSummary sum;
   sum.scene = scene.name;
+  sum.force_scale = scene.force_scale;
   sum.threads = opt.threads;
   sum.dt = scene.model.dt;
   sum.limits = check_time_step(scene, state, opt.allow_unstable);
@@ -95,6 +97,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     AssessParams ap;
     ap.spacing = scene.material_spacing;
     assessor.emplace(*scene.tooth, ap);
+    sum.cavity_json = cavity_json(*scene.tooth);
   }
   ForceStats forces;
   // A GPU backend keeps the particles on the GPU: each step reads back only the wrench and the
@@ -162,7 +165,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     sum.snapshots = snaps->count();
   }
   if (assessor) {
-    const Assessment a = assessor->assess(state, scene.model, forces);
+    const Assessment a = assessor->assess(state, scene.model, forces, scene.force_scale);
     sum.assessment_json = assessment_json(a);
     sum.assessment_report = a.report();
   }

@@ -5,13 +5,21 @@
 
 namespace dentsph {
 
+ToothScene line_tooth(PreparedTooth tooth, real spacing) {
+  BoundaryParams bp;
+  bp.spacing = spacing;
+  BoundarySamples boundary = sample_boundary(tooth, bp);
+  if (tooth.params().kind == CavityClass::class_2) {
+    const BoundarySamples band = matrix_band(tooth, bp.spacing);
+    boundary.points.insert(boundary.points.end(), band.points.begin(), band.points.end());
+    boundary.layer.insert(boundary.layer.end(), band.layer.begin(), band.layer.end());
+  }
+  return {std::move(tooth), std::move(boundary)};
+}
+
 ToothScene default_tooth_scene() {
   const MolarCrown crown = molar_crown();
-  PreparedTooth tooth = carve_cavity(MeshDistance(crown.mesh), crown.frame, CavityParams{});
-  BoundaryParams bp;
-  bp.spacing = default_tooth_spacing;
-  BoundarySamples boundary = sample_boundary(tooth, bp);
-  return {std::move(tooth), std::move(boundary)};
+  return line_tooth(carve_cavity(MeshDistance(crown.mesh), crown.frame, CavityParams{}));
 }
 
 ToothScene tooth_scene_from_mesh(const std::filesystem::path& mesh_file, const CavityParams& cavity) {
@@ -22,16 +30,7 @@ ToothScene tooth_scene_from_mesh(const std::filesystem::path& mesh_file, const C
   } catch (const CavityError& e) {
     throw CavityError(mesh_file.string() + ": " + e.what());  // which tooth
   }
-  PreparedTooth tooth = std::move(*carved);
-  BoundaryParams bp;
-  bp.spacing = default_tooth_spacing;
-  BoundarySamples boundary = sample_boundary(tooth, bp);
-  if (cavity.kind == CavityClass::class_2) {
-    const BoundarySamples band = matrix_band(tooth, bp.spacing);
-    boundary.points.insert(boundary.points.end(), band.points.begin(), band.points.end());
-    boundary.layer.insert(boundary.layer.end(), band.layer.begin(), band.layer.end());
-  }
-  return {std::move(tooth), std::move(boundary)};
+  return line_tooth(std::move(*carved));
 }
 
 }  // namespace dentsph

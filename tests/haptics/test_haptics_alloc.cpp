@@ -7,6 +7,7 @@
 #include <new>
 #include <thread>
 
+#include "client_process.hpp"
 #include "dentsph/haptics.hpp"
 #include "press_scene.hpp"
 
@@ -48,7 +49,7 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace dentsph {
 namespace {
 
-// The scripted device, watching the thread it is started on.
+// A device, watching the thread it is started on.
 class Watched final : public Device {
  public:
   explicit Watched(std::unique_ptr<Device> d) : d_(std::move(d)) {}
@@ -91,6 +92,31 @@ TEST(HapticLoop, AllocatesNothingWhileItRuns) {
     EXPECT_GT(r.haptic.max_force_N, 0.0);
     EXPECT_EQ(g_allocations.load(), 0u) << force_mode_name(mode);
   }
+}
+
+// The same with the UDP bridge, the reference client playing the device from another process:
+// receiving poses and sending forces allocate nothing either.
+TEST(HapticLoop, AllocatesNothingWithTheUdpDevice) {
+#ifdef DENTSPH_NO_NEW_COUNT
+  GTEST_SKIP() << "ThreadSanitizer replaces operator new; counted in the other builds";
+#endif
+  const Scene scene = testing::press_scene();
+  RealtimeOptions o;
+  o.force_scale = 20;
+  o.record_capacity_s = 5;
+  o.duration_s = 1.0;
+  o.workspace.origin = {0, 0, 0.09};
+  std::uint16_t port = 0;
+  Watched device(make_udp_device({"127.0.0.1", 0}, &port));
+  testing::ClientProcess client(port, {"--rate", "1000", "--duration", "0.8", "--motion", "press", "--depth", "0.04"},
+                                "alloc");
+  ASSERT_TRUE(client.started());
+  const RealtimeResult r = run_realtime(scene, device, o);
+  g_watched = std::thread::id{};
+  ASSERT_FALSE(client.wait().is_null()) << "the client failed";
+  EXPECT_GT(r.haptic.timing.ticks, 500u);
+  EXPECT_GT(r.haptic.max_force_N, 0.0);  // poses arrived and forces went back
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 }  // namespace

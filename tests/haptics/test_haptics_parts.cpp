@@ -12,7 +12,10 @@
 #include "dentsph/haptics/protocol.hpp"
 #include "haptics/exchange.hpp"
 #include "haptics/force_interpolator.hpp"
+#include "haptics/clock.hpp"
 #include "haptics/force_limiter.hpp"
+#include "haptics/haptic_loop.hpp"
+#include "haptics/shared.hpp"
 #include "haptics/timing_stats.hpp"
 #include "haptics/virtual_coupling.hpp"
 #include "haptics/watchdog.hpp"
@@ -237,7 +240,8 @@ TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
     // The device 1 cm down, the tool pushed up by a constant 1 N: the proxy settles where the
     // spring balances it, 1 N / k above the device, without oscillating out of bounds.
     for (int i = 0; i < 20000; ++i) {
-      f = c.step({0, 0, -0.01}, {}, {0, 0, 1}, 1e-3);
+      c.step({0, 0, -0.01}, {}, {0, 0, 1}, 1e-3);
+      f = haptics::coupling_force(p, c.position(), c.velocity(), {0, 0, -0.01}, {});
       ASSERT_TRUE(is_finite(f));
       ASSERT_LE(std::abs(c.position().z), 0.02);
     }
@@ -276,6 +280,113 @@ TEST(Passivity, EnergyToHandOfASpringAndOfAnActiveForce) {
   const auto e = energy_to_hand(spring);
   for (double v : e) EXPECT_LE(v, 1e-4);
   EXPECT_GT(energy_to_hand(active).back(), 0.1);
+}
+
+// Between two recorded ticks the replay device moves the position linearly and turns the
+// orientation by slerp (not held at the earlier sample's).
+TEST(ReplayDevice, InterpolatesPositionAndOrientationBetweenSamples) {
+  Recording r;
+  r.mode = "direct";
+  const Quat q0 = Quat::from_axis_angle({0, 0, 1}, 0.0), q1 = Quat::from_axis_angle({0, 0, 1}, 1.2);
+  for (int i = 0; i < 2; ++i) {
+    HapticSample h;
+    h.t = 0.1 * i;
+    h.device_position = {0.01 * i, 0, 0};
+    h.device_orientation = i == 0 ? q0 : q1;
+    r.haptic.push_back(h);
+  }
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_replay_slerp_test";
+  save_recording(dir, r);
+  const std::unique_ptr<Device> dev = make_replay_device(dir);
+  dev->start(0);
+  for (const double w : {0.0, 0.25, 0.5, 1.0}) {
+    DeviceSample s;
+    ASSERT_TRUE(dev->read(std::int64_t(w * 0.1e9), s));
+    EXPECT_NEAR(s.pose.position.x, 0.01 * w, 1e-12) << w;
+    // A unit vector along x turned by w * 1.2 rad about z.
+    const Vec3 turned = s.pose.orientation.rotate({1, 0, 0});
+    EXPECT_NEAR(turned.x, std::cos(1.2 * w), 1e-9) << w;
+    EXPECT_NEAR(turned.y, std::sin(1.2 * w), 1e-9) << w;
+  }
+}
+
+// A device held still that keeps every force it is sent (written on the haptic thread, read
+// after it has stopped; the count is shared).
+class HoldDevice final : public Device {
+ public:
+  std::string name() const override { return "hold"; }
+  bool read(std::int64_t now, DeviceSample& s) override {
+    s.pose = {};
+    s.stamp_ns = now;
+    s.device_time_s = double(now) * 1e-9;
+    ++s.sequence;
+    s.valid = true;
+    return true;
+  }
+  void write(std::int64_t, const ForceCommand& c) override {
+    const std::size_t i = count.load(std::memory_order_relaxed);
+    if (i < forces.size()) forces[i] = c.force_N, count.store(i + 1, std::memory_order_release);
+  }
+  std::vector<Vec3> forces = std::vector<Vec3>(20000);
+  std::atomic<std::size_t> count{0};
+};
+
+// The haptic loop's screen of the simulation's output: a 100 N force (direct) or a proxy a metre
+// away (coupling) is rendered limited to the profile's 9 N; then non-finite outputs arrive
+// through the exchange, as from a diverging simulation: each is counted and rendered as no
+// force (the renderer never sees it), and every force the device gets is finite and within the
+// limit.
+TEST(HapticLoop, ScreensNonFiniteSimulationOutput) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const ForceMode mode : {ForceMode::direct, ForceMode::coupling}) {
+    RealtimeOptions o;
+    o.mode = mode;
+    o.record_capacity_s = 1;
+    haptics::RuntimeShared shared{haptics::Snapshot{}};
+    HoldDevice device;
+    haptics::HapticLoop loop(device, o, shared);
+    std::thread haptic([&] { loop.run(haptics::now_ns()); });
+    std::uint64_t step = 0;
+    auto publish = [&](const Vec3& v, int ms) {
+      for (int i = 0; i < ms; ++i) {
+        haptics::SimOutput& out = shared.output.back();
+        out = {};
+        (mode == ForceMode::direct ? out.force_N : out.proxy_position) = v;
+        if (!is_finite(v)) out.force_N = out.proxy_position = out.proxy_velocity = v;
+        out.step = ++step;
+        out.published_ns = out.command_stamp_ns = haptics::now_ns();
+        out.valid = true;
+        shared.output.publish();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    };
+    publish({0, 0, 100}, 300);
+    const std::size_t finite_until = device.count.load(std::memory_order_acquire);
+    publish({nan, 0, inf}, 300);
+    shared.stop = true;
+    haptic.join();
+    const std::size_t n = device.count.load(std::memory_order_acquire);
+    ASSERT_GT(finite_until, 100u);
+    ASSERT_GT(n, finite_until + 100);
+    double largest = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_TRUE(is_finite(device.forces[i])) << i;
+      ASSERT_LE(norm(device.forces[i]), o.profile.max_force_N + 1e-12) << i;
+      if (i < finite_until) largest = std::max(largest, double(norm(device.forces[i])));
+    }
+    const char* name = force_mode_name(mode);
+    EXPECT_NEAR(largest, o.profile.max_force_N, 1e-9) << name;  // rendered, and limited
+    EXPECT_LT(norm(device.forces[n - 1]), 1e-9) << name;       // the non-finite output: no force
+    EXPECT_GE(loop.report().non_finite_rejected, 200u) << name;
+    // The screen sits before the renderer: what it renders (before the watchdog and the
+    // limiter) and the proxy it follows stay finite throughout.
+    const std::vector<HapticSample> ticks = loop.take_recording();
+    ASSERT_GE(ticks.size(), n - 1);
+    for (const HapticSample& t : ticks) {
+      ASSERT_TRUE(is_finite(t.target)) << name << " at " << t.t;
+      ASSERT_TRUE(is_finite(t.proxy_position)) << name << " at " << t.t;
+    }
+  }
 }
 
 TEST(Recording, SavesAndLoadsExactly) {

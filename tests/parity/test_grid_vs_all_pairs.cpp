@@ -8,6 +8,7 @@
 
 #include "dentsph/step.hpp"
 #include "support/builders.hpp"
+#include "support/state_parity.hpp"
 
 namespace dentsph {
 namespace {
@@ -62,40 +63,10 @@ State build(const Model& model, const Config& c) {
   return st;
 }
 
-// |a - b| <= tol * max(|b|, floor): relative, with a floor set by the field's largest value.
-void expect_close(real a, real b, real floor, const char* what, std::uint32_t id, int step) {
-  const real tol = 1e-5 * std::max(std::abs(b), floor);
-  ASSERT_LE(std::abs(a - b), tol) << what << " of id " << id << " at step " << step << ": " << a << " vs " << b;
-}
-
-void expect_close(const Vec3& a, const Vec3& b, real floor, const char* what, std::uint32_t id, int step) {
-  for (int ax = 0; ax < 3; ++ax) expect_close(a[ax], b[ax], floor, what, id, step);
-}
-
-void compare(const State& g, const State& r, int step) {
-  ASSERT_EQ(g.size(), r.size());
-  real fmax = 0, vmax = 0, pmax = 0;
-  for (std::uint32_t i = 0; i < r.size(); ++i) {
-    fmax = std::max(fmax, norm(r.force[i]));
-    vmax = std::max(vmax, norm(r.vel[i]));
-    pmax = std::max(pmax, r.pressure[i]);
-  }
-  for (std::uint32_t id = 0; id < r.size(); ++id) {
-    const std::uint32_t i = at(g, id), j = at(r, id);
-    ASSERT_EQ(g.id[i], id);
-    expect_close(g.rho[i], r.rho[j], 1e-3 * 1000, "density", id, step);
-    // P = Kp (rho - rho0) cancels near rest: allow the rounding of rho (Kp rho0 1e-16) via a
-    // 1e-3 Pa floor, far below any pressure that moves material (Kp rho0 ~ 1e5 Pa).
-    expect_close(g.pressure[i], r.pressure[j], 1e-6 * pmax + 1e-3, "pressure", id, step);
-    expect_close(g.force[i], r.force[j], 1e-6 * fmax + 1e-12, "force", id, step);
-    expect_close(g.vel[i], r.vel[j], 1e-6 * vmax + 1e-12, "velocity", id, step);
-    expect_close(g.pos[i], r.pos[j], 1e-3, "position", id, step);
-    ASSERT_EQ(g.bonds.count(id), r.bonds.count(id)) << "bond count of id " << id << " at step " << step;
-    for (int b = 0; b < g.bonds.count(id); ++b) ASSERT_TRUE(r.bonds.has(id, g.bonds.partner(id, b)));
-  }
-  expect_close(g.tool_wrench.force, r.tool_wrench.force, 1e-9, "tool force", 0, step);
-  expect_close(g.tool_wrench.torque, r.tool_wrench.torque, 1e-11, "tool torque", 0, step);
-}
+// Within 1e-5 relative; floors a millionth of each field's largest value. P = Kp (rho - rho0)
+// cancels near rest: the rounding of rho (Kp rho0 1e-16) is allowed by a 1e-3 Pa floor, far
+// below any pressure that moves material (Kp rho0 ~ 1e5 Pa).
+void compare(const State& g, const State& r, int step) { testing::compare_states(g, r, step, testing::StateTolerance{}); }
 
 void PrintTo(const Config& c, std::ostream* os) {
   *os << "material" << c.n_side << "cubed_jitter" << int(c.jitter * 100) << "pct" << (c.on_borders ? "_on_cell_borders" : "")

@@ -417,9 +417,13 @@ TEST(Assess, ForceStatsAndDurationReachTheAssessment) {
   const Case& c = default_case();
   State st = material_state(c.model, c.world);
   st.time = 1.25;
-  const Assessment a = c.assessor.assess(st, c.model, fs);
-  EXPECT_DOUBLE_EQ(a.peak_tool_force_N, 5);
+  const Assessment a = c.assessor.assess(st, c.model, fs, 1.5e4);
+  EXPECT_DOUBLE_EQ(a.peak_tool_force_N, 5);  // simulated N
   EXPECT_DOUBLE_EQ(a.mean_tool_force_N, 3);
+  EXPECT_DOUBLE_EQ(a.force_scale, 1.5e4);
+  EXPECT_DOUBLE_EQ(a.peak_device_force_N, 5 * 1.5e4);  // rendered on a device
+  EXPECT_DOUBLE_EQ(a.mean_device_force_N, 3 * 1.5e4);
+  EXPECT_DOUBLE_EQ(c.assessor.assess(st, c.model, fs).peak_device_force_N, 5);  // no scale given: 1
   EXPECT_DOUBLE_EQ(a.contact_s, 2 * dt);
   EXPECT_DOUBLE_EQ(a.duration_s, 1.25);
 }
@@ -436,13 +440,17 @@ TEST(Assess, ReportAndJsonCarryTheMetrics) {
   a.material_particles = 1600;
   a.peak_tool_force_N = 0.125;
   a.mean_tool_force_N = 0.0625;
+  a.force_scale = 16;
+  a.peak_device_force_N = 2;
+  a.mean_device_force_N = 1;
   a.duration_s = 2;
   a.cavity_volume_mm3 = 32.5;
   a.voxel_mm = 0.15;
   const std::string r = a.report();
   for (const char* part :
        {"95.1%", "32.50 mm^3", "2 voids", "0.750 mm^3", "largest 0.500", "overfill 3.25 mm^3",
-        "1600 particles", "7 leaked", "4 lost", "peak 0.125 N", "mean 0.0625 N"})
+        "1600 particles", "7 leaked", "4 lost", "peak 0.125 N, mean 0.0625 N simulated",
+        "force scale 16: peak 2 N, mean 1 N"})
     EXPECT_NE(r.find(part), std::string::npos) << part << " in\n" << r;
   EXPECT_EQ(std::count(r.begin(), r.end(), '\n'), 3);
 
@@ -450,7 +458,8 @@ TEST(Assess, ReportAndJsonCarryTheMetrics) {
   for (const char* part :
        {"\"fill_fraction\": 0.9512", "\"void_count\": 2", "\"void_volume_mm3\": 0.75",
         "\"overfill_mm3\": 3.25", "\"leaked_particles\": 7", "\"lost_particles\": 4",
-        "\"peak_tool_force_N\": 0.125", "\"mean_tool_force_N\": 0.0625", "\"duration_s\": 2"})
+        "\"peak_tool_force_N\": 0.125", "\"mean_tool_force_N\": 0.0625", "\"duration_s\": 2",
+        "\"force_scale\": 16", "\"peak_device_force_N\": 2", "\"mean_device_force_N\": 1"})
     EXPECT_NE(j.find(part), std::string::npos) << part << " in\n" << j;
   a.fill_fraction = std::numeric_limits<real>::quiet_NaN();
   EXPECT_NE(assessment_json(a).find("\"fill_fraction\": null"), std::string::npos);

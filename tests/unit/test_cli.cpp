@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "test_tooth_support.hpp"
 
 namespace dentsph {
@@ -101,6 +103,80 @@ TEST(Cli, AProcedureFileRuns) {
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("assessment of the filling"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir() / "out" / "summary.json"));
+}
+
+TEST(Cli, ImpossibleCavityOptionsNameTheOptionAndTheFix) {
+  expect_refused("run --cavity-width -1 --steps 1 -q", {"--cavity-width -1", "must be > 0 mm", "bucco-lingual width"});
+  expect_refused("run --cavity-length 0 --steps 1 -q", {"--cavity-length 0", "must be > 0 mm"});
+  expect_refused("run --cavity-taper 40 --steps 1 -q", {"--cavity-taper 40", "< 30 degrees", "2 to 8 is usual"});
+  expect_refused("run --cavity-rounding -0.1 --steps 1 -q", {"--cavity-rounding", "must be >= 0 mm"});
+  expect_refused("run --cavity class3 --steps 1 -q", {"--cavity class3", "give class1", "class2"});
+  expect_refused("run --cavity-side distal --steps 1 -q", {"--cavity-side distal", "no proximal box", "--cavity class2"});
+  expect_refused("run --cavity-box-depth 4 --steps 1 -q", {"--cavity-box-depth", "--cavity class2"});
+  expect_refused("run --cavity class2 --cavity-side left --steps 1 -q", {"--cavity-side left", "mesial or distal"});
+  expect_refused("run --long-axis 0 0 0 --steps 1 -q", {"--long-axis", "not a direction"});
+  // The library's refusals reach the user with their reason, and the options that set the cavity.
+  expect_refused("run --cavity-depth 5 --steps 1 -q",
+                 {"the built-in crown: cavity does not fit", "pulpal floor", "shallower", "--cavity-depth"});
+  expect_refused("run --cavity class2 --cavity-box-depth 1 --steps 1 -q", {"box_depth", "pulpal floor", "(--cavity-box-depth)"});
+  expect_refused("run --mesial 0 0 1 --steps 1 -q", {"--long-axis / --mesial", "within 10 degrees of the long axis"});
+  // A scene file says its own cavity.
+  expect_refused("run scenes/tool_press.json --cavity class2 --steps 1 -q", {"--cavity", "excludes"});
+  for (const char* args : {"run --cavity-width -1 --steps 1 -q", "run --cavity-depth 5 --steps 1 -q"})
+    EXPECT_EQ(dentsph_cli(args).code, 2) << args;
+}
+
+nlohmann::json read_json(const fs::path& f) {
+  std::ifstream in(f);
+  return nlohmann::json::parse(in);
+}
+
+TEST(Cli, AClassTwoRunOnTheBuiltInCrown) {
+  const fs::path out = dir() / "class2";
+  const Result r = dentsph_cli("run --cavity class2 --cavity-side distal --cavity-width 3.5 --cavity-taper 4 --steps 5 "
+                               "--threads 1 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("cavity     Class II, outline 3.5 x 5 mm"), std::string::npos) << r.output;
+  const nlohmann::json cavity = read_json(out / "summary.json").at("cavity");
+  EXPECT_EQ(cavity.at("class"), "class2");
+  EXPECT_EQ(cavity.at("side"), "distal");
+  EXPECT_DOUBLE_EQ(cavity.at("width_mm").get<double>(), 3.5);
+  EXPECT_DOUBLE_EQ(cavity.at("taper_deg").get<double>(), 4);
+  EXPECT_DOUBLE_EQ(cavity.at("box_depth_mm").get<double>(), 3.5);
+  EXPECT_GT(cavity.at("volume_mm3").get<double>(), 40);  // the Class I is 32.5 mm^3
+  EXPECT_GE(cavity.at("thinnest_wall_mm").get<double>(), 1.0);
+}
+
+// `dentsph replay` without a scene file replays into the procedure that `dentsph run --realtime`
+// ran, with the same tooth options.
+TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {
+  const fs::path out = dir() / "rt";
+  const std::string cavity = " --cavity-width 3.5 --cavity-depth 2.2";
+  const Result r = dentsph_cli("run --realtime --duration 0.3 --threads 1 -q --out " + out.string() + cavity);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_DOUBLE_EQ(read_json(out / "summary.json").at("cavity").at("depth_mm").get<double>(), 2.2);
+  const Result same = dentsph_cli("replay " + (out / "recording").string() + cavity);
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
+  // Another cavity is another scene: the forces differ.
+  EXPECT_EQ(dentsph_cli("replay " + (out / "recording").string()).code, 4);
+}
+
+TEST(Cli, ADentalSceneFileIsValidatedAndRun) {
+  const Result v = dentsph_cli("validate scenes/class2_fill.json");
+  EXPECT_EQ(v.code, 0) << v.output;
+  EXPECT_NE(v.output.find("cavity     Class II"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("ok: scenes/class2_fill.json is a valid scene"), std::string::npos) << v.output;
+
+  write(dir() / "deep.json", R"({"name": "deep", "cavity": {"depth": 5}})");
+  const Result bad = dentsph_cli("validate " + (dir() / "deep.json").string());
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("deep.json: cavity: the built-in crown: cavity does not fit"), std::string::npos) << bad.output;
+
+  const fs::path out = dir() / "scene_class2";
+  const Result r = dentsph_cli("run scenes/class2_fill.json --steps 3 --threads 1 -q --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(read_json(out / "summary.json").at("cavity").at("class"), "class2");
 }
 
 }  // namespace

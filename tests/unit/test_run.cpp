@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/run.hpp"
+#include "io/summary.hpp"
 #include "support/small_scene.hpp"
 
 namespace dentsph {
@@ -29,7 +30,9 @@ TEST(Run, WritesSummaryCsvAndSnapshots) {
     ++progress_calls;
     EXPECT_LE(p.step, p.total);
   };
-  const RunSummary sum = run_offline(small_scene(5e-4), opt);
+  Scene scene = small_scene(5e-4);
+  scene.force_scale = 20;
+  const RunSummary sum = run_offline(scene, opt);
   EXPECT_EQ(sum.status, "completed");
   EXPECT_EQ(sum.steps, 100u);
   EXPECT_GT(progress_calls, 10);
@@ -38,6 +41,14 @@ TEST(Run, WritesSummaryCsvAndSnapshots) {
   EXPECT_NEAR(j["sim_time_s"].get<double>(), 0.05, 1e-12);
   EXPECT_EQ(j["particles"]["material"], 48);
   EXPECT_EQ(j["particles"]["tool"], 1);
+  // The tool force in simulated N, and rendered on a device at the scene's force scale.
+  EXPECT_EQ(j["tool"]["force_scale"], 20);
+  EXPECT_EQ(sum.force_scale, 20);
+  RunSummary pressed = sum;
+  pressed.peak_tool_force_N = 0.25;
+  const auto t = nlohmann::json::parse(io::summary_json(pressed))["tool"];
+  EXPECT_EQ(t["peak_force_N"], 0.25);
+  EXPECT_EQ(t["peak_device_force_N"], 5.0);
   std::ifstream csv(out / "tool_force.csv");
   int lines = 0;
   for (std::string l; std::getline(csv, l);) ++lines;

@@ -158,6 +158,13 @@ TEST(ViewerGui, BrokenSceneMeshOrScriptEndsWithAMessage) {
   r = run_viewer(fmt::format("--script '{}' --frames 5", script.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("actions[0].action"), std::string::npos) << r.err;
+  // The cavity options are dentsph run's: the same checks, the same messages.
+  r = run_viewer("--cavity-depth 5 --frames 5");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cavity does not fit"), std::string::npos) << r.err;
+  r = run_viewer("--cavity-box-width 2 --frames 5");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--cavity class2"), std::string::npos) << r.err;
 }
 
 TEST(ViewerGui, ClosingMidRunStopsCleanly) {

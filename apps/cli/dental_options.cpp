@@ -1,0 +1,124 @@
+#include "dental_options.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace dentsph::cli {
+
+namespace {
+
+Vec3 direction(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+}  // namespace
+
+void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool with_procedure) {
+  auto add = [&](CLI::Option* o) {
+    if (scene_file) o->excludes(scene_file);
+    options_.push_back(o);
+    return o;
+  };
+  add(app.add_option("--mesh", mesh_, "The tooth: a scanned tooth (STL, OBJ or PLY, in mm); default: the built-in crown")
+          ->check(CLI::ExistingFile));
+  if (with_procedure)
+    add(app.add_option("--procedure", procedure_,
+                       "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one"));
+  add(app.add_option("--cavity", kind_, "The cavity: class1 (occlusal) or class2 (occlusal and a proximal box)"));
+  add(app.add_option("--cavity-side", side_, "Class II: the proximal box's side, mesial (default) or distal"));
+  values_.assign(cavity_fields().size(), 0.0);
+  for (std::size_t i = 0; i < cavity_fields().size(); ++i) {
+    const CavityField& f = cavity_fields()[i];
+    add(app.add_option(f.option, values_[i],
+                       fmt::format("Cavity: {} (default {:.3g} {}){}", f.hint, CavityParams{}.*f.member / f.scale,
+                                   f.unit, f.class_2_only ? "; with --cavity class2" : "")));
+  }
+  add(app.add_option("--long-axis", long_axis_,
+                     "The tooth's long axis towards the crown, X Y Z in the mesh's coordinates (default: found from the "
+                     "mesh; the built-in crown's is 0 0 1)")
+          ->expected(3));
+  add(app.add_option("--mesial", mesial_,
+                     "A direction X Y Z towards the tooth's mesial surface (default: the found mesio-distal axis, whose "
+                     "sign a single tooth cannot tell)")
+          ->expected(3));
+}
+
+ToothSpec DentalOptions::tooth() const {
+  ToothSpec spec;
+  spec.mesh = mesh_;
+  auto given = [&](std::string_view name) {
+    for (const CLI::Option* o : options_)
+      if (o->get_name() == name) return o->count() > 0;
+    return false;
+  };
+  if (given("--cavity")) {
+    const std::optional<CavityClass> k = cavity_class_from_name(kind_);
+    if (!k)
+      throw std::invalid_argument(fmt::format(
+          "--cavity {}: unknown cavity class; give class1 (occlusal) or class2 (occlusal and one proximal box)", kind_));
+    spec.cavity.kind = *k;
+  }
+  const bool class_2 = spec.cavity.kind == CavityClass::class_2;
+  if (given("--cavity-side")) {
+    if (!class_2)
+      throw std::invalid_argument(
+          fmt::format("--cavity-side {}: a Class I cavity has no proximal box; add --cavity class2", side_));
+    const std::optional<ProximalSide> s = proximal_side_from_name(side_);
+    if (!s) throw std::invalid_argument(fmt::format("--cavity-side {}: unknown side; give mesial or distal", side_));
+    spec.cavity.side = *s;
+  }
+  for (std::size_t i = 0; i < cavity_fields().size(); ++i) {
+    const CavityField& f = cavity_fields()[i];
+    if (!given(f.option)) continue;
+    if (f.class_2_only && !class_2)
+      throw std::invalid_argument(
+          fmt::format("{} {}: a Class I cavity has no proximal box; add --cavity class2", f.option, values_[i]));
+    if (const std::string problem = check_cavity_field(f, values_[i]); !problem.empty())
+      throw std::invalid_argument(fmt::format("{} {}: {}; give {}", f.option, values_[i], problem, f.hint));
+    spec.cavity.*f.member = values_[i] * f.scale;
+  }
+  if (!long_axis_.empty()) spec.long_axis = direction(long_axis_);
+  if (!mesial_.empty()) spec.mesial = direction(mesial_);
+  for (const auto& [name, v] : {std::pair{"--long-axis", spec.long_axis}, std::pair{"--mesial", spec.mesial}})
+    if (v && (!is_finite(*v) || norm(*v) == 0))
+      throw std::invalid_argument(
+          fmt::format("{} {} {} {}: not a direction; give three numbers, not all zero, e.g. 0 0 1", name, v->x, v->y, v->z));
+  return spec;
+}
+
+namespace {
+
+// The tooth's CavityError with the options that set the cavity named; a refused axis with the
+// axis options.
+template <class Build>
+Scene with_cavity_options(const ToothSpec& spec, Build build) {
+  try {
+    return build();
+  } catch (const std::invalid_argument& e) {
+    if (!spec.long_axis && !spec.mesial) throw;
+    throw std::invalid_argument(fmt::format("--long-axis / --mesial: {}", e.what()));
+  } catch (const CavityError& e) {
+    std::string msg = e.what();
+    for (const CavityField& f : cavity_fields())
+      if (msg.find(fmt::format("parameter {} ", f.key)) != std::string::npos) msg += fmt::format(" ({})", f.option);
+    throw CavityError(msg + " (the cavity is set by --cavity, --cavity-width, --cavity-length, --cavity-depth, "
+                            "--cavity-taper, --cavity-rounding and, for Class II, --cavity-side and --cavity-box-*)");
+  }
+}
+
+}  // namespace
+
+Scene DentalOptions::procedure_scene() const {
+  const ToothSpec spec = tooth();
+  return with_cavity_options(spec, [&] { return dental_run_scene(spec, procedure_); });
+}
+
+Scene DentalOptions::filled_scene() const {
+  const ToothSpec spec = tooth();
+  return with_cavity_options(spec, [&] {
+    return dental_scene(prepare_tooth(spec), DentalSceneParams{},
+                        spec.mesh.empty() ? std::string("dental_default") : spec.mesh.stem().string(), tooth_name(spec));
+  });
+}
+
+}  // namespace dentsph::cli

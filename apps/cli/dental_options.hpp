@@ -1,0 +1,42 @@
+// The tooth, cavity and procedure options that `dentsph run`, `dentsph replay` and
+// `dentsph-viewer` share (--mesh, --cavity, --cavity-width, ..., --long-axis, --mesial,
+// --procedure), and the scene they describe.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "dentsph/dental.hpp"
+
+namespace dentsph::cli {
+
+class DentalOptions {
+ public:
+  // Adds the options to `app`, each excluding `scene_file` (a scene file says all of it itself);
+  // --procedure only when `with_procedure`.
+  void add_options(CLI::App& app, CLI::Option* scene_file, bool with_procedure);
+
+  // The tooth the options describe. Throws std::invalid_argument naming the option and the fix
+  // for an impossible value (a negative width, a taper of 40 degrees, a proximal box's option
+  // without --cavity class2, a zero axis).
+  ToothSpec tooth() const;
+  const std::string& procedure() const { return procedure_; }
+
+  // The filling procedure (--procedure, or the built-in one) on the tooth: what `dentsph run`
+  // runs without a scene file.
+  Scene procedure_scene() const;
+  // The dental scene of the tooth (paste in the cavity, a ball pressing): what the viewer opens.
+  Scene filled_scene() const;
+
+ private:
+  std::string mesh_, procedure_, kind_, side_;
+  std::vector<double> values_;  // one per cavity_fields() entry; NaN: not given
+  std::vector<double> long_axis_, mesial_;
+  std::vector<CLI::Option*> options_;
+};
+
+}  // namespace dentsph::cli

@@ -1,0 +1,113 @@
+// Dental scene files (docs/scene-format.md, "Dental scenes"): a filling procedure on a tooth (a
+// mesh, or the built-in crown) with a cavity, each part checked with the file, the field and the
+// fix named.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "dentsph/dental.hpp"
+#include "scene/parse.hpp"
+
+namespace dentsph::scene {
+
+namespace {
+
+// A path of the scene file, relative to the scene file's folder.
+std::filesystem::path relative_to_scene(const Reader& root, const std::string& path) {
+  const std::filesystem::path p(path);
+  return p.is_absolute() ? p : std::filesystem::path(root.source()).parent_path() / p;
+}
+
+// The file of field `key` of `owner`: must exist.
+std::filesystem::path existing_file(const Reader& owner, std::string_view key, std::string_view hint,
+                                    const Reader& root) {
+  const std::string given = owner.string(key, hint);
+  if (given.empty()) owner.fail(key, "is empty", fmt::format("give {}", hint));
+  const std::filesystem::path file = relative_to_scene(root, given);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    owner.fail(key, fmt::format("{} ({})", std::filesystem::exists(file, ec) ? "not a regular file" : "no such file",
+                                file.string()),
+               "check the path: it is relative to the scene file's folder");
+  return file;
+}
+
+}  // namespace
+
+bool is_dental_scene(const Reader& root) { return root.has("tooth") || root.has("cavity") || root.has("procedure"); }
+
+CavityParams read_cavity(const Reader& c) {
+  std::vector<std::string_view> known = {"class", "side"};
+  for (const CavityField& f : cavity_fields()) known.push_back(f.key);
+  c.only(known);
+  CavityParams p;
+  if (const std::optional<std::string> kind = c.optional_string("class", "the cavity's class: \"class1\" or \"class2\"")) {
+    const std::optional<CavityClass> k = cavity_class_from_name(*kind);
+    if (!k)
+      c.fail("class", fmt::format("unknown class \"{}\"", *kind),
+             "give \"class1\" (occlusal) or \"class2\" (occlusal and one proximal box)");
+    p.kind = *k;
+  }
+  const bool class_2 = p.kind == CavityClass::class_2;
+  if (const std::optional<std::string> side = c.optional_string("side", "the proximal box's side: \"mesial\" or \"distal\"")) {
+    if (!class_2)
+      c.fail("side", "is the proximal box's side, but the cavity is class1", "add \"class\": \"class2\" or leave it out");
+    const std::optional<ProximalSide> s = proximal_side_from_name(*side);
+    if (!s) c.fail("side", fmt::format("unknown side \"{}\"", *side), "give \"mesial\" or \"distal\"");
+    p.side = *s;
+  }
+  for (const CavityField& f : cavity_fields()) {
+    if (!c.has(f.key)) continue;
+    if (f.class_2_only && !class_2)
+      c.fail(f.key, "is a proximal box's parameter, but the cavity is class1", "add \"class\": \"class2\" or leave it out");
+    const real v = c.number(f.key, f.hint);
+    if (const std::string problem = check_cavity_field(f, v); !problem.empty())
+      c.fail(f.key, problem, fmt::format("give {}", f.hint));
+    p.*f.member = v * f.scale;
+  }
+  return p;
+}
+
+Scene parse_dental_scene(const Reader& root) {
+  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics"});
+  const std::string name = root.string("name", "the scene's name, e.g. \"class2_fill\"");
+  if (name.empty()) root.fail("name", "is empty", "give the scene a name");
+  (void)root.optional_string("description", "a description of the scene");
+
+  ToothSpec spec;
+  if (const std::optional<Reader> t = root.optional_object(
+          "tooth", "the tooth {\"mesh\": \"molar.stl\"} (mm; leave it out for the built-in crown)")) {
+    t->only({"mesh", "long_axis", "mesial"});
+    if (t->has("mesh"))
+      spec.mesh = existing_file(*t, "mesh", "the tooth's surface (STL, OBJ or PLY in mm), e.g. \"molar.stl\"", root);
+    spec.long_axis = t->optional_vec3("long_axis", "the long axis towards the crown [x, y, z] in the mesh's coordinates");
+    spec.mesial = t->optional_vec3("mesial", "a direction towards the tooth's mesial surface [x, y, z]");
+  }
+  if (const std::optional<Reader> c = root.optional_object(
+          "cavity", "the cavity {\"class\": \"class2\", \"width\": 3, \"length\": 5, \"depth\": 2, ...} (mm)"))
+    spec.cavity = read_cavity(*c);
+  std::filesystem::path procedure;
+  if (root.has("procedure"))
+    procedure = existing_file(root, "procedure", "the procedure file (docs/procedure-format.md), e.g. \"fill.json\"", root);
+
+  // The tooth's and the cavity's own messages carry their fix.
+  std::optional<ToothScene> tooth;
+  try {
+    tooth = prepare_tooth(spec);
+  } catch (const MeshError& e) {
+    throw SceneError(fmt::format("{}: tooth.mesh: {}", root.source(), e.what()));
+  } catch (const CavityError& e) {
+    throw SceneError(fmt::format("{}: cavity: {}", root.source(), e.what()));
+  } catch (const std::invalid_argument& e) {
+    root.fail("tooth", e.what(), "give the tooth's axes in the mesh's coordinates, or leave them out");
+  }
+  Scene sc = procedure.empty()
+                 ? dental_procedure(*tooth, std::string(default_procedure_json()), "built-in default_procedure")
+                 : load_dental_procedure(*tooth, procedure);
+  sc.name = name;
+  sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
+  read_haptics(root, sc);
+  return sc;
+}
+
+}  // namespace dentsph::scene

@@ -1,0 +1,129 @@
+// Dental scene files (docs/scene-format.md, "Dental scenes"): a tooth (a mesh relative to the
+// scene file, or the built-in crown), a cavity and a procedure; every field checked with the
+// file, the field and the fix named.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <utility>
+#include <vector>
+
+#include "dentsph/dental.hpp"
+#include "test_tooth_support.hpp"
+
+namespace dentsph {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr real mm = 1e-3;
+
+const fs::path& dir() {
+  static const fs::path d = [] {
+    const fs::path p = testing::temp_dir("dental_scene_file");
+    fs::create_directories(p / "teeth");
+    // A 10 x 9 x 12 mm block stands in for a scanned tooth: the default cavity fits its top.
+    testing::write_ascii_stl(p / "teeth" / "block.stl", testing::box_mesh({0, 0, 0}, {10 * mm, 9 * mm, 12 * mm}));
+    std::ofstream(p / "fill.json") << R"({"name": "one", "keyframes": [{"t": 0, "position": [0, 0, 3]}],
+      "events": [{"t": 0, "dispense": {"cavity_fraction": 0.5, "at": [0, 0, -2]}}]})";
+    return p;
+  }();
+  return d;
+}
+
+Scene parse(const std::string& text) { return parse_scene(text, (dir() / "scene.json").string()); }
+
+TEST(DentalSceneFile, AClassTwoCavityOnTheBuiltInCrown) {
+  const Scene sc = parse(R"({"name": "c2", "cavity": {"class": "class2", "side": "distal", "width": 3.5,
+    "depth": 2.2, "taper_deg": 4, "rounding": 0.4, "box_depth": 3.6}, "haptics": {"force_scale": 2e4}})");
+  ASSERT_TRUE(sc.tooth);
+  const CavityParams& p = sc.tooth->params();
+  EXPECT_EQ(p.kind, CavityClass::class_2);
+  EXPECT_EQ(p.side, ProximalSide::distal);
+  EXPECT_NEAR(p.width, 3.5 * mm, 1e-12);
+  EXPECT_NEAR(p.length, CavityParams{}.length, 1e-12);  // not given: the default
+  EXPECT_NEAR(p.depth, 2.2 * mm, 1e-12);
+  EXPECT_EQ(p.taper_deg, 4);
+  EXPECT_NEAR(p.rounding, 0.4 * mm, 1e-12);
+  EXPECT_NEAR(p.box_depth, 3.6 * mm, 1e-12);
+  EXPECT_EQ(sc.name, "c2");
+  EXPECT_EQ(sc.force_scale, 2e4);
+  // The box opens distally: on the frame's -x side.
+  const ToothFrame& f = sc.tooth->frame();
+  EXPECT_LT(sc.tooth->proximal_box_distance(f.to_world({-4.5 * mm, 0, -2 * mm})), 0);
+  EXPECT_GT(sc.tooth->proximal_box_distance(f.to_world({4.5 * mm, 0, -2 * mm})), 0);
+  // The built-in procedure, lined with the matrix band: more boundary particles than the Class I.
+  EXPECT_FALSE(sc.events.empty());
+  const auto boundary = [](const Scene& s) {
+    std::size_t n = 0;
+    for (const ParticleInit& q : s.particles) n += q.role == Role::boundary;
+    return n;
+  };
+  EXPECT_GT(boundary(sc), boundary(parse(R"({"name": "c1", "tooth": {}})")) + 200);
+}
+
+TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {
+  const Scene sc = load_scene("scenes/class2_fill.json");
+  ASSERT_TRUE(sc.tooth);
+  EXPECT_EQ(sc.tooth->params().kind, CavityClass::class_2);
+  EXPECT_EQ(sc.tooth->params().side, ProximalSide::distal);
+  EXPECT_EQ(sc.name, "class2_distal_fill");
+  EXPECT_EQ(sc.events.size(), parse(R"({"name": "d", "tooth": {}})").events.size());  // the built-in procedure
+}
+
+TEST(DentalSceneFile, MeshAndProcedurePathsAreRelativeToTheSceneFile) {
+  std::ofstream(dir() / "scene.json") << R"({"name": "block", "tooth": {"mesh": "teeth/block.stl",
+    "long_axis": [0, 0, 2], "mesial": [-1, 0, 0]}, "procedure": "fill.json"})";
+  const Scene sc = load_scene(dir() / "scene.json");  // the working directory is elsewhere
+  ASSERT_TRUE(sc.tooth);
+  EXPECT_NE(sc.source.find("block.stl"), std::string::npos) << sc.source;
+  EXPECT_EQ(sc.name, "block");
+  ASSERT_EQ(sc.events.size(), 1u);  // fill.json's one increment
+  const ToothFrame& f = sc.tooth->frame();
+  EXPECT_NEAR(f.z.z, 1, 1e-12);   // the given axis
+  EXPECT_NEAR(f.x.x, -1, 1e-12);  // the given mesial direction
+  EXPECT_NEAR(sc.tooth->report().occlusal_point.z, 12 * mm, 1e-6);  // the block's top
+}
+
+TEST(DentalSceneFile, ErrorsNameTheFileTheFieldAndTheFix) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {R"({"name": "x", "cavity": {"widht": 3}})", {"scene.json: cavity.widht", "unknown field", "width"}},
+      {R"({"name": "x", "cavity": {"width": -1}})", {"scene.json: cavity.width", "must be > 0 mm", "bucco-lingual"}},
+      {R"({"name": "x", "cavity": {"taper_deg": 40}})", {"cavity.taper_deg", "< 30 degrees", "2 to 8"}},
+      {R"({"name": "x", "cavity": {"rounding": "big"}})", {"cavity.rounding", "a string"}},
+      {R"({"name": "x", "cavity": {"box_width": 2}})", {"cavity.box_width", "class1", "\"class\": \"class2\""}},
+      {R"({"name": "x", "cavity": {"side": "mesial"}})", {"cavity.side", "class1"}},
+      {R"({"name": "x", "cavity": {"class": "class3"}})", {"cavity.class", "class3", "\"class1\""}},
+      {R"({"name": "x", "cavity": {"class": "class2", "side": "left"}})", {"cavity.side", "left", "\"distal\""}},
+      {R"({"name": "x", "cavity": {"depth": 5}})", {"scene.json: cavity: ", "does not fit", "shallower"}},
+      {R"({"name": "x", "cavity": {"class": "class2", "box_depth": 1}})", {"scene.json: cavity: ", "box_depth", "pulpal floor"}},
+      {R"({"name": "x", "tooth": {"mesh": "teeth/none.stl"}})", {"scene.json: tooth.mesh", "no such file", "none.stl", "relative to the scene file"}},
+      {R"({"name": "x", "tooth": {"mesh": "fill.json"}})", {"scene.json: tooth.mesh", "fill.json"}},
+      {R"({"name": "x", "tooth": {"long_axis": [0, 0, 0]}})", {"scene.json: tooth", "long axis", "non-zero"}},
+      {R"({"name": "x", "tooth": {"mesial": [0, 0, 1]}})", {"scene.json: tooth", "mesial", "across the tooth"}},
+      {R"({"name": "x", "tooth": {"axis": [0, 0, 1]}})", {"tooth.axis", "unknown field", "long_axis"}},
+      {R"({"name": "x", "procedure": "none.json"})", {"scene.json: procedure", "no such file", "relative to the scene file"}},
+      {R"({"name": "x", "tooth": {}, "blocks": []})", {"scene.json: blocks", "unknown field"}},
+      {R"({"tooth": {}})", {"scene.json: name", "missing"}},
+  };
+  for (const auto& [text, phrases] : cases) {
+    try {
+      (void)parse(text);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const SceneError& e) {
+      for (const std::string& p : phrases)
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << "'" << p << "' in: " << e.what();
+    }
+  }
+}
+
+TEST(DentalSceneFile, ABrokenProcedureFileIsNamedWithItsLine) {
+  std::ofstream(dir() / "broken.json") << "{\n  \"name\": \"b\",\n}";
+  try {
+    (void)parse(R"({"name": "x", "procedure": "broken.json"})");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.json: line 3, column 1: syntax error"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
