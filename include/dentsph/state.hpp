@@ -68,7 +68,9 @@ struct GridIndex {
   std::vector<std::uint32_t> order;         // [n] sorted position -> old index
   std::vector<std::uint32_t> bucket_start;  // [2 cells + 1] first sorted index of each bucket
   std::vector<std::uint32_t> bucket_fill;   // [2 cells] counting-sort cursor
-  std::vector<real> x, y, z;                // [n] m, positions in sorted order as separate arrays
+  // [n] m, positions as separate arrays for the searches of the grid: written by the reorder,
+  // valid until the particles next move (a step that keeps its lists does not refresh them).
+  std::vector<real> x, y, z;
   // Neighbours within h of each moving particle, found by the density pass for the force pass:
   // [n * kNeighbourStride] sorted indices (kNeighbourCapacity used, one scratch slot), and [n]
   // counts. A count above the capacity means the list overflowed and the force pass searches
@@ -77,6 +79,9 @@ struct GridIndex {
   static constexpr int kNeighbourCapacity = kNeighbourStride - 1;
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbour_count;
+  // Whether the lists are kept between steps (the model has a skin): only then are `within` and
+  // `pos_at_build` sized (empty otherwise, where every list is rebuilt and is itself within h).
+  bool keep_lists = false;
   // The entries of each moving particle's list within h this step, in list order: written by the
   // density pass (which computes every listed distance anyway) for the force pass. Valid where
   // the list did not overflow.

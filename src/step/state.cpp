@@ -87,9 +87,16 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   grid.z.resize(n);
   grid.neighbours.resize(std::size_t(n) * GridIndex::kNeighbourStride);
   grid.neighbour_count.resize(n);
-  grid.within.resize(std::size_t(n) * GridIndex::kNeighbourStride);
-  grid.within_count.resize(n);
-  grid.pos_at_build.resize(n);
+  // The within-h part of the lists, and the positions at the last build, serve the steps that keep
+  // their lists (a skin) alone: without one every list is rebuilt and is itself within h.
+  grid.keep_lists = model.neighbour_skin > 0;
+  const std::size_t kept = grid.keep_lists ? n : 0;
+  grid.within.resize(kept * GridIndex::kNeighbourStride);
+  grid.within.shrink_to_fit();
+  grid.within_count.resize(kept);
+  grid.within_count.shrink_to_fit();
+  grid.pos_at_build.resize(kept);
+  grid.pos_at_build.shrink_to_fit();
   grid.lists_valid = false;
   scratch_vec.resize(n);
   scratch_real.resize(n);
