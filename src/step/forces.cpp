@@ -24,20 +24,21 @@ struct NeighbourBuffer {
 };
 
 // Adhesion on moving particle i from its bonded partners; breaks the bonds stretched past B.
-Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, bonds::Events& ev) {
+Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, const Sides& sides,
+                     bonds::Events& ev) {
   const real B2 = model.adhesion.B * model.adhesion.B;
   const std::uint32_t id = s.id[i];
   Vec3 f;
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
     const std::uint32_t other = s.bonds.partner(id, b);
     const std::uint32_t j = s.index_of_id[other];
-    const Vec3 d = si.pos - s.pos[j];
+    const Vec3 d = si.pos - sides.pos(j);
     const real r2 = norm2(d);
     if (r2 > B2) {
       bonds::count_break(s, i, j, ev);
       s.bonds.remove_at(id, b);
     } else {
-      f += pair::adhesion(si, side_of(s, j), d, std::sqrt(r2), model.adhesion, model.kernel);
+      f += pair::adhesion(si, sides[j], d, std::sqrt(r2), model.adhesion, model.kernel);
     }
   }
   return f;
@@ -74,12 +75,12 @@ void form_bonds(const Model& model, State& s, std::uint32_t i, const std::uint32
 Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
   const GridIndex& g = s.grid;
-  const pair::Side si = side_of(s, i);
   const Sides sides(s);
+  const pair::Side si = sides[i];
   const real A2 = model.adhesion.A * model.adhesion.A;
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
-  Vec3 f = bonded_adhesion(model, s, i, si, ev);
+  Vec3 f = bonded_adhesion(model, s, i, si, sides, ev);
   // The density pass kept the neighbours within h (unless the list overflowed). Pairs close enough
   // to bond are noted and bonded after the pair terms (in the same order), so that the loop of
   // pair terms makes no call.
@@ -93,7 +94,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
-      const Vec3 d = si.pos - sides.pos[j];
+      const Vec3 d = si.pos - sides.pos(j);
       const real r2 = norm2(d);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
       close[n_close] = j;
@@ -114,7 +115,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     for (std::uint32_t q = 0; q < nb.n; ++q) {
       const std::uint32_t j = nb.j[q];
       if (j == i) continue;
-      const Vec3 d = si.pos - sides.pos[j];
+      const Vec3 d = si.pos - sides.pos(j);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(nb.r2[q]), k);
       close[n_close] = j;
       close_r2[n_close] = nb.r2[q];
@@ -127,7 +128,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     while (b < e) {
       const std::uint32_t end = std::min(e, b + (NeighbourBuffer::capacity - nb.n));
       for (std::uint32_t j = b; j < end; ++j) {
-        const Vec3 d = si.pos - sides.pos[j];
+        const Vec3 d = si.pos - sides.pos(j);
         const real dx = d.x, dy = d.y, dz = d.z;
         const real r2 = dx * dx + dy * dy + dz * dz;
         nb.j[nb.n] = j;

@@ -98,6 +98,7 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   grid.pos_at_build.resize(kept);
   grid.pos_at_build.shrink_to_fit();
   grid.lists_valid = false;
+  grid.pair_data.resize(n);
   scratch_vec.resize(n);
   scratch_real.resize(n);
   scratch_u32.resize(n);
@@ -109,7 +110,7 @@ std::size_t State::bytes_per_particle() const {
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
                             bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + bytes(grid.key) +
-                            bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(scratch_vec) +
+                            bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
                             bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role);
   return total / size();
 }
