@@ -120,19 +120,18 @@ real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;
-  std::uint32_t overflow = 0;
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
-    // Branch-free filter: every candidate is written (slot `cap` is scratch), the count advances
-    // for those within h until the list is full; one more within h marks the overflow.
+    // Branch-free filter: every candidate is written, at the count (at slot `cap`, scratch, once
+    // the list is full), and the count advances for those within reach; past the capacity it
+    // marks the overflow.
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
       const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != std::uint32_t(i));
-      list[count] = j;
-      overflow |= within & (count == cap);
-      count += within & (count < cap);
+      list[count < cap ? count : cap] = j;
+      count += within;
     }
   });
-  g.neighbour_count[i] = std::uint16_t(overflow ? cap + 1 : count);
+  g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
   return density_from_list(model, s, i, Coords::sorted);
 }
 
