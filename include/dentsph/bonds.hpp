@@ -23,6 +23,8 @@ class BondStore {
   int count(std::uint32_t id) const { return count_[id]; }
   std::uint32_t partner(std::uint32_t id, int k) const { return partner_[std::size_t(id) * capacity_ + k]; }
   bool has(std::uint32_t id, std::uint32_t other) const;
+  // Where the list of `id` starts (for prefetching it ahead of its use).
+  const std::uint32_t* list(std::uint32_t id) const { return partner_.data() + std::size_t(id) * capacity_; }
 
   // Adds `other` to the list of `id`; false when the list is full (the caller counts the
   // overflow: the step per thread, then into `counters`).

@@ -59,6 +59,14 @@ struct StepDiagnostics {
   std::uint64_t non_finite = 0;  // material particles whose state became NaN or infinite
 };
 
+// What the force pass reads of a neighbour, gathered in one record per particle by the density
+// pass: one stream of memory per row of cells instead of six (the hardware prefetcher follows a
+// few streams, not 54; measured on large scenes, where the rows no longer fit in the cache).
+struct PairData {
+  Vec3 pos, vel;
+  real vol, pressure, mu, Ka;
+};
+
 // Scratch of the broad phase, sized with the particles (no allocation inside a step).
 // Particles are sorted into buckets 2 * cell + (role == boundary): in each cell the moving
 // particles (material, tool) come first and the static boundary particles after them, so a
@@ -68,7 +76,9 @@ struct GridIndex {
   std::vector<std::uint32_t> order;         // [n] sorted position -> old index
   std::vector<std::uint32_t> bucket_start;  // [2 cells + 1] first sorted index of each bucket
   std::vector<std::uint32_t> bucket_fill;   // [2 cells] counting-sort cursor
-  std::vector<real> x, y, z;                // [n] m, positions in sorted order as separate arrays
+  // [n] m, positions as separate arrays for the searches of the grid: written by the reorder,
+  // valid until the particles next move (a step that keeps its lists does not refresh them).
+  std::vector<real> x, y, z;
   // Neighbours within h of each moving particle, found by the density pass for the force pass:
   // [n * kNeighbourStride] sorted indices (kNeighbourCapacity used, one scratch slot), and [n]
   // counts. A count above the capacity means the list overflowed and the force pass searches
@@ -77,6 +87,9 @@ struct GridIndex {
   static constexpr int kNeighbourCapacity = kNeighbourStride - 1;
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbour_count;
+  // Whether the lists are kept between steps (the model has a skin): only then are `within` and
+  // `pos_at_build` sized (empty otherwise, where every list is rebuilt and is itself within h).
+  bool keep_lists = false;
   // The entries of each moving particle's list within h this step, in list order: written by the
   // density pass (which computes every listed distance anyway) for the force pass. Valid where
   // the list did not overflow.
@@ -86,6 +99,8 @@ struct GridIndex {
   // until some particle has moved skin / 2 from there.
   std::vector<Vec3> pos_at_build;
   bool lists_valid = false;
+  // [n] each particle's pair data this step (after its density and pressure), for the force pass.
+  std::vector<PairData> pair_data;
 };
 
 class State {

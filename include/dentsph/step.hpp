@@ -9,6 +9,8 @@
 namespace dentsph {
 
 // Wall time of each stage, summed over the steps that were given this struct (microseconds).
+// pressure_us is measured by the GPU backend alone: the CPU step computes each particle's pressure
+// inside its density pass, whose time is density_us.
 struct StageTimes {
   double hash_us = 0, sort_us = 0, reorder_us = 0, density_us = 0, pressure_us = 0, forces_us = 0,
          wrench_us = 0, integrate_us = 0;

@@ -56,7 +56,8 @@ inline void form(State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
 }
 
 // Bonds moving particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
-// are not bonded yet.
+// are not bonded yet: the all-pairs reference's rule, pair by pair. The grid step forms the bonds of
+// each particle's close pairs at once, in the same order (form_bonds in step/forces.cpp).
 inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
   if (!may_form(model, s, i, j, r2) || s.bonds.has(s.id[i], s.id[j])) return;
   form(s, i, j, ev);

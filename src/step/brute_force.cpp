@@ -3,6 +3,7 @@
 // tested against; it shares the pair terms, pressure, integration and tool wrench.
 #include "dentsph/step.hpp"
 #include "physics/kernels.hpp"
+#include "step/pressure.hpp"
 #include "step/side.hpp"
 #include "step/stages.hpp"
 
@@ -17,6 +18,11 @@ void compute_density_all_pairs(const Model& model, State& s) {
     for (std::uint32_t j = 0; j < n; ++j) rho += s.mass[j] * kernels::poly6(norm2(s.pos[i] - s.pos[j]), model.kernel);
     s.rho[i] = rho;
   }
+}
+
+// Stage 4, a pass of its own: P = max(0, Kp (rho - rho0)) and m / rho of every particle.
+void compute_pressure_all_pairs(State& s) {
+  for (std::uint32_t i = 0; i < s.size(); ++i) pressure_of(s, i);
 }
 
 void compute_forces_all_pairs(const Model& model, State& s) {
@@ -45,7 +51,7 @@ void compute_forces_all_pairs(const Model& model, State& s) {
 void step_all_pairs(const Model& model, State& state) {
   stages::update_bonds_all_pairs(model, state);
   stages::compute_density_all_pairs(model, state);
-  stages::compute_pressure(state, 1);
+  stages::compute_pressure_all_pairs(state);
   stages::compute_forces_all_pairs(model, state);
   stages::compute_tool_wrench(state);
   stages::integrate(model, state, 1);

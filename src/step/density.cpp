@@ -16,14 +16,19 @@ namespace dentsph::stages {
 
 namespace {
 
-// What the density loops read: the sorted coordinates and masses, and particle i's position.
+// What the density loops read: the coordinate arrays of the grid (valid after a reorder only) and
+// the masses, and particle i's position.
 struct Arrays {
   const real *x, *y, *z, *m;
   real xi, yi, zi, h2;
   Arrays(const Model& model, const State& s, std::int64_t i)
-      : x(s.grid.x.data()), y(s.grid.y.data()), z(s.grid.z.data()), m(s.mass.data()), xi(x[i]), yi(y[i]), zi(z[i]),
-        h2(model.kernel.h2) {}
+      : x(s.grid.x.data()), y(s.grid.y.data()), z(s.grid.z.data()), m(s.mass.data()), xi(s.pos[i].x),
+        yi(s.pos[i].y), zi(s.pos[i].z), h2(model.kernel.h2) {}
 };
+
+// Whether this step sorted the particles, so that the grid's coordinate arrays hold the current
+// positions (a step that keeps its lists reads the positions themselves).
+enum class Coords { sorted, moved };
 
 // max(0, t) without a branch (0 for NaN, as std::max(0, t)). Where its result also decides which
 // entries to keep, g++ turned std::max into a branch, mispredicted for every pair in the skin.
@@ -36,15 +41,24 @@ inline real clamp_at_zero(real t) {
 }
 
 // Sum of m_j W(r_ij) over the particles of the 27 cells around i of the kind `visit` asks for.
-real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit) {
+real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit visit, Coords coords) {
   const Arrays a(model, s, i);
+  const Vec3* pos = s.pos.data();
   real sum = 0;  // of m_j (h^2 - r^2)^3 over r < h; the kernel's constant is applied once
   grid::for_each_neighbour_range(model.grid, s.grid, s.pos[i], visit, [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free so that the compiler vectorises it: pairs beyond h contribute max(0, .) = 0.
-    for (std::uint32_t j = b; j < e; ++j) {
-      const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
-      const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
-      sum += a.m[j] * w * w * w;
+    if (coords == Coords::sorted) {
+      for (std::uint32_t j = b; j < e; ++j) {
+        const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
+        const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+        sum += a.m[j] * w * w * w;
+      }
+    } else {
+      for (std::uint32_t j = b; j < e; ++j) {
+        const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
+        const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
+        sum += a.m[j] * w * w * w;
+      }
     }
   });
   return model.kernel.poly6 * sum;
@@ -60,11 +74,11 @@ grid::Visit listed(const State& s, std::int64_t i) {
 // itself for a moving particle, the static boundary around it for a boundary particle. With a
 // skin, a moving particle also keeps the entries within h, in list order, for the force pass
 // (without one, every entry is within h and the force pass reads the list itself).
-real density_from_list(const Model& model, State& s, std::int64_t i) {
+real density_from_list(const Model& model, State& s, std::int64_t i, Coords coords) {
   GridIndex& g = s.grid;
   const bool boundary = s.role[i] == Role::boundary;
   const real own = boundary ? s.rho_static[s.id[i]] : 0;
-  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i));
+  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i), coords);
   const Arrays a(model, s, i);
   const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   const std::uint32_t count = g.neighbour_count[i];
@@ -75,7 +89,7 @@ real density_from_list(const Model& model, State& s, std::int64_t i) {
     return clamp_at_zero(a.h2 - (dx * dx + dy * dy + dz * dz));
   };
   real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
-  if (boundary || model.neighbour_skin <= 0) {
+  if (boundary || !g.keep_lists) {
     for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
       const real w = w_of(j);
@@ -106,41 +120,45 @@ real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;
-  std::uint32_t overflow = 0;
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
-    // Branch-free filter: every candidate is written (slot `cap` is scratch), the count advances
-    // for those within h until the list is full; one more within h marks the overflow.
+    // Branch-free filter: every candidate is written, at the count (at slot `cap`, scratch, once
+    // the list is full), and the count advances for those within reach; past the capacity it
+    // marks the overflow.
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
       const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != std::uint32_t(i));
-      list[count] = j;
-      overflow |= within & (count == cap);
-      count += within & (count < cap);
+      list[count < cap ? count : cap] = j;
+      count += within;
     }
   });
-  g.neighbour_count[i] = std::uint16_t(overflow ? cap + 1 : count);
-  return density_from_list(model, s, i);
+  g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
+  return density_from_list(model, s, i, Coords::sorted);
 }
 
 }  // namespace
 
 void compute_static_density(const Model& model, State& s) {
   for (std::uint32_t i = 0; i < s.size(); ++i)
-    s.rho_static[s.id[i]] = s.role[i] == Role::boundary ? density_sum(model, s, i, grid::Visit::boundary) : 0;
+    s.rho_static[s.id[i]] =
+        s.role[i] == Role::boundary ? density_sum(model, s, i, grid::Visit::boundary, Coords::sorted) : 0;
   s.rho_static_valid = true;
 }
 
 void compute_density(const Model& model, State& s, int threads, bool build_lists) {
-  if (!s.rho_static_valid) compute_static_density(model, s);
+  if (!s.rho_static_valid) compute_static_density(model, s);  // after a reorder: added particles rebuild
   const std::int64_t n = s.size();
+  constexpr std::int64_t kPrefetch = 8;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
+    // rho_static is kept by id, so in cell order it is read at scattered places: fetched ahead.
+    if (i + kPrefetch < n) __builtin_prefetch(&s.rho_static[s.id[i + kPrefetch]]);
     // Without a skin a boundary particle's list would serve one step only: search directly.
-    if (s.role[i] == Role::boundary && model.neighbour_skin <= 0)
-      s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving);
+    if (s.role[i] == Role::boundary && !s.grid.keep_lists)
+      s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving, Coords::sorted);
     else
-      s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
+      s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i, Coords::moved);
     pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs
+    s.grid.pair_data[i] = {s.pos[i], s.vel[i], s.volume[i], s.pressure[i], s.mu[i], s.Ka[i]};
   }
 }
 

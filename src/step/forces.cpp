@@ -24,74 +24,77 @@ struct NeighbourBuffer {
 };
 
 // Adhesion on moving particle i from its bonded partners; breaks the bonds stretched past B.
-Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, bonds::Events& ev) {
+Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, const Sides& sides,
+                     bonds::Events& ev) {
   const real B2 = model.adhesion.B * model.adhesion.B;
   const std::uint32_t id = s.id[i];
   Vec3 f;
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
     const std::uint32_t other = s.bonds.partner(id, b);
     const std::uint32_t j = s.index_of_id[other];
-    const Vec3 d = si.pos - s.pos[j];
+    const Vec3 d = si.pos - sides.pos(j);
     const real r2 = norm2(d);
     if (r2 > B2) {
       bonds::count_break(s, i, j, ev);
       s.bonds.remove_at(id, b);
     } else {
-      f += pair::adhesion(si, side_of(s, j), d, std::sqrt(r2), model.adhesion, model.kernel);
+      f += pair::adhesion(si, sides[j], d, std::sqrt(r2), model.adhesion, model.kernel);
     }
   }
   return f;
 }
 
 // Bonds moving particle i to those of the n close pairs (j, r^2 < A^2) that may bond and are not
-// bonded yet, in the order given (as bonds::try_form one by one would). Which are bonded already
-// is found in one pass over i's bond list with loops of fixed length: a search per pair that
-// stops at its partner mispredicted about once per pair.
+// bonded yet, in the order given (as bonds::try_form of the all-pairs step one by one would): the
+// grid step's one way of forming bonds, from its lists and from its search of overflowed ones.
+// Which are bonded already is found in one pass over i's bond list per chunk, with loops of fixed
+// length: a search per pair that stops at its partner mispredicted about once per pair.
 void form_bonds(const Model& model, State& s, std::uint32_t i, const std::uint32_t* close, const real* close_r2,
                 std::uint32_t n, bonds::Events& ev) {
-  if (n == 0) return;
-  std::uint32_t close_id[GridIndex::kNeighbourStride];
-  std::uint8_t bonded[GridIndex::kNeighbourStride];
-  for (std::uint32_t c = 0; c < n; ++c) {
-    close_id[c] = s.id[close[c]];
-    bonded[c] = 0;
-  }
+  constexpr std::uint32_t chunk = GridIndex::kNeighbourStride;
   const std::uint32_t id = s.id[i];
-  for (int b = 0; b < s.bonds.count(id); ++b) {
-    const std::uint32_t partner = s.bonds.partner(id, b);
-    for (std::uint32_t c = 0; c < n; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
+  for (std::uint32_t c0 = 0; c0 < n; c0 += chunk) {
+    const std::uint32_t m = std::min(chunk, n - c0);
+    std::uint32_t close_id[chunk];
+    std::uint8_t bonded[chunk];
+    for (std::uint32_t c = 0; c < m; ++c) {
+      close_id[c] = s.id[close[c0 + c]];
+      bonded[c] = 0;
+    }
+    for (int b = 0; b < s.bonds.count(id); ++b) {
+      const std::uint32_t partner = s.bonds.partner(id, b);
+      for (std::uint32_t c = 0; c < m; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
+    }
+    for (std::uint32_t c = 0; c < m; ++c)
+      if (!bonded[c] && bonds::may_form(model, s, i, close[c0 + c], close_r2[c0 + c]))
+        bonds::form(s, i, close[c0 + c], ev);
   }
-  for (std::uint32_t c = 0; c < n; ++c)
-    if (!bonded[c] && bonds::may_form(model, s, i, close[c], close_r2[c])) bonds::form(s, i, close[c], ev);
 }
 
 // Force density on moving particle i; updates i's bonds (events into ev).
 Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
   const GridIndex& g = s.grid;
-  const real* x = g.x.data();
-  const real* y = g.y.data();
-  const real* z = g.z.data();
-  const pair::Side si = side_of(s, i);
+  const Sides sides(s);
+  const pair::Side si = sides[i];
+  const real A2 = model.adhesion.A * model.adhesion.A;
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
-  Vec3 f = bonded_adhesion(model, s, i, si, ev);
+  Vec3 f = bonded_adhesion(model, s, i, si, sides, ev);
   // The density pass kept the neighbours within h (unless the list overflowed). Pairs close enough
   // to bond are noted and bonded after the pair terms (in the same order), so that the loop of
   // pair terms makes no call.
   if (g.neighbour_count[i] <= GridIndex::kNeighbourCapacity) {
-    // Without a skin the list itself holds exactly the pairs within h.
-    const bool skin = model.neighbour_skin > 0;
-    const std::uint32_t* list = (skin ? g.within : g.neighbours).data() + std::size_t(i) * GridIndex::kNeighbourStride;
-    const std::uint32_t count = skin ? g.within_count[i] : g.neighbour_count[i];
-    const Sides sides(s);
-    const real A2 = model.adhesion.A * model.adhesion.A;
+    // Lists rebuilt every step hold exactly the pairs within h.
+    const bool kept = g.keep_lists;
+    const std::uint32_t* list = (kept ? g.within : g.neighbours).data() + std::size_t(i) * GridIndex::kNeighbourStride;
+    const std::uint32_t count = kept ? g.within_count[i] : g.neighbour_count[i];
     std::uint32_t close[GridIndex::kNeighbourStride];
     real close_r2[GridIndex::kNeighbourStride];
     std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
-      const Vec3 d = si.pos - sides.pos[j];
+      const Vec3 d = si.pos - sides.pos(j);
       const real r2 = norm2(d);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
       close[n_close] = j;
@@ -101,23 +104,32 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     form_bonds(model, s, i, close, close_r2, n_close, ev);
     return f;
   }
-  // Otherwise search the grid: candidates filtered without branches into a short buffer.
+  // Otherwise search the grid (over the positions themselves: the coordinate arrays are as old as
+  // the lists): candidates filtered without branches into a short buffer, pairs closer than A
+  // bonded after each buffer's pair terms (A < h: every pair to bond is here).
   NeighbourBuffer nb;
   auto flush = [&] {
+    std::uint32_t close[NeighbourBuffer::capacity];
+    real close_r2[NeighbourBuffer::capacity];
+    std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < nb.n; ++q) {
       const std::uint32_t j = nb.j[q];
       if (j == i) continue;
-      const Vec3 d{si.pos.x - x[j], si.pos.y - y[j], si.pos.z - z[j]};
-      f += pair::pressure_viscosity(si, side_of(s, j), d, std::sqrt(nb.r2[q]), k);
-      bonds::try_form(model, s, i, j, nb.r2[q], ev);  // A < h: every pair to bond is here
+      const Vec3 d = si.pos - sides.pos(j);
+      f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(nb.r2[q]), k);
+      close[n_close] = j;
+      close_r2[n_close] = nb.r2[q];
+      n_close += nb.r2[q] < A2 ? 1 : 0;
     }
+    form_bonds(model, s, i, close, close_r2, n_close, ev);
     nb.n = 0;
   };
   grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {
     while (b < e) {
       const std::uint32_t end = std::min(e, b + (NeighbourBuffer::capacity - nb.n));
       for (std::uint32_t j = b; j < end; ++j) {
-        const real dx = si.pos.x - x[j], dy = si.pos.y - y[j], dz = si.pos.z - z[j];
+        const Vec3 d = si.pos - sides.pos(j);
+        const real dx = d.x, dy = d.y, dz = d.z;
         const real r2 = dx * dx + dy * dy + dz * dz;
         nb.j[nb.n] = j;
         nb.r2[nb.n] = r2;
@@ -134,6 +146,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
 }  // namespace
 
 void compute_forces(const Model& model, State& s, int threads) {
+  constexpr std::int64_t kBondPrefetch = 8;
   const std::int64_t n = s.size();
   // Bond events summed by an integer reduction (exact in any order). Not a named critical
   // section: libomp 14 under ThreadSanitizer crashes in one entered from a thread it did not
@@ -143,6 +156,9 @@ void compute_forces(const Model& model, State& s, int threads) {
   std::uint64_t formed = 0, broken = 0, overflowed = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : formed, broken, overflowed)
   for (std::int64_t i = 0; i < n; ++i) {
+    // The bond lists are kept by id, so in cell order they are read at scattered places: fetched
+    // a few particles ahead, they are in cache when their particle comes.
+    if (i + kBondPrefetch < n) __builtin_prefetch(s.bonds.list(s.id[i + kBondPrefetch]));
     bonds::Events ev;
     s.force[i] = s.role[i] == Role::boundary ? Vec3{} : force_on(model, s, std::uint32_t(i), ev);  // static: unused
     formed += ev.formed;

@@ -8,26 +8,21 @@
 
 namespace dentsph::stages {
 
-bool lists_need_rebuild(const Model& model, State& s, int threads) {
+bool lists_need_rebuild(const Model& model, const State& s, int threads) {
   const real skin = model.neighbour_skin;
-  if (skin <= 0 || !s.grid.lists_valid) return true;
+  if (skin <= 0 || !s.grid.keep_lists || !s.grid.lists_valid) return true;
   const real limit2 = 0.25 * skin * skin;
   const std::int64_t n = s.size();
+  const Vec3* pos = s.pos.data();
+  const Vec3* built = s.grid.pos_at_build.data();
   real moved2 = 0;
-  // The coordinate arrays are refreshed in the same pass: a step that keeps the lists reads them
-  // (searches of overflowed lists); one that rebuilds rewrites them after sorting.
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : moved2)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Vec3 p = s.pos[i];
-    moved2 = std::max(moved2, norm2(p - s.grid.pos_at_build[i]));
-    s.grid.x[i] = p.x;
-    s.grid.y[i] = p.y;
-    s.grid.z[i] = p.z;
-  }
+  for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, norm2(pos[i] - built[i]));
   return !(moved2 <= limit2);  // a non-finite position rebuilds too
 }
 
 void remember_build_positions(State& s, int threads) {
+  if (!s.grid.keep_lists) return;  // every step rebuilds: nothing to remember
   const std::int64_t n = s.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) s.grid.pos_at_build[i] = s.pos[i];

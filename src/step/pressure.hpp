@@ -1,6 +1,7 @@
 // Stage 4 for one particle: P_i = max(0, Kp_i (rho_i - rho0_i)), repulsion only (the paper,
 // section 3.1), and its volume m_i / rho_i, which every pair term of the force pass needs. It
-// needs particle i's density alone, so the density pass applies it as soon as rho_i is known.
+// needs particle i's density alone, so the grid step's density pass applies it as soon as rho_i is
+// known; the all-pairs reference applies it in a pass of its own (brute_force.cpp).
 #pragma once
 
 #include <algorithm>

@@ -17,15 +17,12 @@ void reorder(State& state, int threads);
 // (radius h + skin), or, between rebuilds, over those lists (density.cpp); each particle's
 // pressure (stage 4, pressure.hpp) as soon as its density is known.
 void compute_density(const Model& model, State& state, int threads, bool build_lists);
-// Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild (the
-// same pass refreshes the coordinate arrays for the steps that keep the lists), and the
-// positions remembered at a rebuild.
-bool lists_need_rebuild(const Model& model, State& state, int threads);
+// Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild, and
+// the positions remembered at a rebuild (with a skin only).
+bool lists_need_rebuild(const Model& model, const State& state, int threads);
 void remember_build_positions(State& state, int threads);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).
 void compute_static_density(const Model& model, State& state);
-// 4. Repulsion-only pressure over all particles (pressure.cpp; the all-pairs step's).
-void compute_pressure(State& state, int threads);
 // 5. Pressure, viscosity and adhesion force densities; moving particles' bond hysteresis on the
 // distances this pass computes anyway (forces.cpp).
 void compute_forces(const Model& model, State& state, int threads);
@@ -34,9 +31,11 @@ void compute_tool_wrench(State& state);
 // 6. Semi-implicit Euler for material; the tool moves to its pose (integrate.cpp).
 void integrate(const Model& model, State& state, int threads);
 
-// The all-pairs versions of the neighbour stages (brute_force.cpp).
+// The all-pairs versions of the neighbour stages (brute_force.cpp), and its stage 4 as a pass of
+// its own over all particles (the grid step applies pressure.hpp inside its density pass).
 void update_bonds_all_pairs(const Model& model, State& state);
 void compute_density_all_pairs(const Model& model, State& state);
+void compute_pressure_all_pairs(State& state);
 void compute_forces_all_pairs(const Model& model, State& state);
 
 }  // namespace dentsph::stages

@@ -87,10 +87,18 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   grid.z.resize(n);
   grid.neighbours.resize(std::size_t(n) * GridIndex::kNeighbourStride);
   grid.neighbour_count.resize(n);
-  grid.within.resize(std::size_t(n) * GridIndex::kNeighbourStride);
-  grid.within_count.resize(n);
-  grid.pos_at_build.resize(n);
+  // The within-h part of the lists, and the positions at the last build, serve the steps that keep
+  // their lists (a skin) alone: without one every list is rebuilt and is itself within h.
+  grid.keep_lists = model.neighbour_skin > 0;
+  const std::size_t kept = grid.keep_lists ? n : 0;
+  grid.within.resize(kept * GridIndex::kNeighbourStride);
+  grid.within.shrink_to_fit();
+  grid.within_count.resize(kept);
+  grid.within_count.shrink_to_fit();
+  grid.pos_at_build.resize(kept);
+  grid.pos_at_build.shrink_to_fit();
   grid.lists_valid = false;
+  grid.pair_data.resize(n);
   scratch_vec.resize(n);
   scratch_real.resize(n);
   scratch_u32.resize(n);
@@ -102,7 +110,7 @@ std::size_t State::bytes_per_particle() const {
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
                             bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + bytes(grid.key) +
-                            bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(scratch_vec) +
+                            bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
                             bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role);
   return total / size();
 }

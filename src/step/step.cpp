@@ -49,7 +49,7 @@ void step(const Model& model, State& state, const StepOptions& opt) {
     clock.lap(&StageTimes::reorder_us);
   }
   // 3. density (and the lists on a rebuild), and 4. each particle's pressure in the same pass
-  // (pressure_us stays 0: it is in density_us).
+  // (its time is in density_us; pressure_us is the GPU's, where it is a kernel of its own).
   stages::compute_density(model, state, t, rebuild);
   clock.lap(&StageTimes::density_us);
   stages::compute_forces(model, state, t);         // 5. forces, and bond hysteresis of moving particles

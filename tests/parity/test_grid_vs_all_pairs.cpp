@@ -172,6 +172,40 @@ TEST(GridParity, PairsExactlyOnTheSupportWithASkin) {
   }
 }
 
+TEST(GridParity, WithinListsAndBuildPositionsOnlyWithASkin) {
+  // Without a skin every list is rebuilt each step and holds exactly the pairs within h: the
+  // within-h copy and the build positions are not allocated, and the step still matches.
+  const real d = 1.0 / 128;
+  const Material paste{0.4, 60, 1000, 300};
+  auto run = [&](real skin) {
+    ModelParams mp = testing::params_for_spacing(d, {0, 0, 0}, {0.25, 0.25, 0.25}, 1e-4);
+    mp.neighbour_skin = skin * mp.h;
+    const Model model = make_model(mp);
+    const real m = lattice_particle_mass(1000, d, model.kernel);
+    std::vector<ParticleInit> ps;
+    for (Vec3 p : testing::lattice({8 * d, 8 * d, 8 * d}, d, 5, 5, 5))
+      ps.push_back(testing::particle(Role::material, p, m, paste));
+    State g, r;
+    g.add_particles(model, ps);
+    r.add_particles(model, ps);
+    for (int k = 0; k < 5; ++k) {
+      step(model, g, StepOptions{2, nullptr});
+      step_all_pairs(model, r);
+      compare(g, r, k);
+    }
+    return g;
+  };
+  const State without = run(0), with = run(0.1);
+  EXPECT_FALSE(without.grid.keep_lists);
+  EXPECT_EQ(without.grid.within.capacity(), 0u);
+  EXPECT_EQ(without.grid.pos_at_build.capacity(), 0u);
+  EXPECT_TRUE(with.grid.keep_lists);
+  EXPECT_EQ(with.grid.within.size(), std::size_t(with.size()) * GridIndex::kNeighbourStride);
+  // The within-h lists (4 bytes a slot) and the build positions are the difference per particle.
+  EXPECT_GE(with.bytes_per_particle() - without.bytes_per_particle(),
+            std::size_t(4 * GridIndex::kNeighbourStride + sizeof(Vec3)));
+}
+
 TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   // Two material particles pulled apart by their initial velocities: the bond formed at r < A
   // breaks past B in both paths; the grid reaches the partner beyond h through the bond list.
