@@ -241,11 +241,13 @@ struct BoundaryParams {
 // Points on the prepared surface where it bounds the cavity (walls and floors) or lies within
 // `margin` of it (the occlusal surface around the outline, and for Class II the proximal
 // surface around the box), and the same surface offset `spacing` deeper per layer. Each layer
-// is a maximal Poisson-disk set: no two points closer than 0.9 spacing, every surface point
-// within about 0.9 spacing of one.
+// is a maximal Poisson-disk set: no two points closer than 0.9 spacing. The first layer's holes
+// (wherever a surface point is more than 0.7 spacing from every point) are closed by a point
+// 0.75 spacing under the hole (labelled layer 0), so every surface point is within 0.9 spacing
+// of a first-layer point.
 struct BoundarySamples {
   std::vector<Vec3> points;  // m, world
-  std::vector<int> layer;    // 0 on the surface, 1 one spacing deeper, ...
+  std::vector<int> layer;    // 0 on the surface (and under its holes), 1 one spacing deeper, ...
   real spacing = 0;          // m
 };
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
 
 #include "test_tooth_support.hpp"
 
@@ -18,6 +19,14 @@ std::vector<Vec3> layer(const BoundarySamples& b, int k) {
   for (std::size_t i = 0; i < b.points.size(); ++i)
     if (b.layer[i] == k) out.push_back(b.points[i]);
   return out;
+}
+
+// Whether a point of the given layer lies where it should: layer k at depth k s, or a point
+// closing a hole of the first layer, 0.75 s under the surface along its normal (less deep by the
+// distance near an edge, as at the rim). `depth` is measured into the tooth (for a matrix band:
+// outwards, away from the cavity).
+bool at_its_depth(real depth, int k, real s) {
+  return std::fabs(depth - k * s) < 0.01 * s || (k == 0 && depth > 0 && depth < 0.76 * s);
 }
 
 // Distance from each point to its nearest other point of the set.
@@ -37,16 +46,40 @@ real quantile(std::vector<real> v, real q) {
   return v[std::size_t(q * real(v.size() - 1))];
 }
 
-// Spacing checks shared by every case.
-void expect_even(const BoundarySamples& b) {
+// Spacing checks shared by every case, on the layers' own level sets (`depth`: into the tooth,
+// or for a matrix band outwards); the points closing the first layer's holes are checked apart.
+void expect_even(const BoundarySamples& b, const std::function<real(const Vec3&)>& depth) {
   const real s = b.spacing;
   for (int k = 0; k < 2; ++k) {
-    const auto nn = nearest_neighbour(layer(b, k));
+    std::vector<Vec3> on_level;
+    for (const Vec3& p : layer(b, k))
+      if (std::fabs(depth(p) - k * s) < 1e-3 * s) on_level.push_back(p);
+    const auto nn = nearest_neighbour(on_level);
     ASSERT_FALSE(nn.empty());
-    EXPECT_GE(quantile(nn, 0), 0.9 * s * (1 - 1e-9));  // the Poisson-disk radius
+    // The Poisson-disk radius; in the first layer, a point closing a hole at a thin or folded
+    // part can come out on the surface (measured 0.54 s from its neighbour on FDI 46 Class II).
+    EXPECT_GE(quantile(nn, 0), (k == 0 ? 0.5 : 0.9) * s * (1 - 1e-9));
     EXPECT_LE(quantile(nn, 0.95), 1.1 * s);            // mostly the lattice pitch
     EXPECT_LE(quantile(nn, 1), 1.6 * s);               // no stragglers
   }
+}
+
+// The widest hole in the first layer: the largest distance from a point of the lined surface
+// (sampled three times finer) to its nearest first-layer particle.
+real widest_hole(const PreparedTooth& t, const BoundarySamples& b) {
+  const real s = b.spacing;
+  const auto first = layer(b, 0);
+  BoundaryParams fine;
+  fine.spacing = s / 3;
+  fine.layers = 1;
+  fine.margin = 2 * s;
+  real widest = 0;
+  for (const Vec3& q : sample_boundary(t, fine).points) {
+    real best = 1e300;
+    for (const Vec3& p : first) best = std::min(best, norm(p - q));
+    widest = std::max(widest, best);
+  }
+  return widest;
 }
 
 TEST(ToothBoundary, DefaultSceneLinesItsCavityWithAboutFourteenHundredParticles) {
@@ -66,7 +99,13 @@ TEST(ToothBoundary, DefaultSceneLinesItsCavityWithAboutFourteenHundredParticles)
   const TriMesh& mesh = t.tooth().mesh();
   const auto first = layer(b, 0), second = layer(b, 1);
   EXPECT_EQ(first.size() + second.size(), b.points.size());
+  std::size_t closing = 0;
   for (const Vec3& p : first) {
+    if (t.distance(p).distance < -0.01 * s) {
+      ASSERT_TRUE(at_its_depth(-t.distance(p).distance, 0, s));
+      ++closing;  // under a hole of the layer
+      continue;
+    }
     // On the prepared surface: on the tooth's own surface outside the cavity (the occlusal band)
     // or on the cavity's walls inside the tooth. Brute force over every triangle.
     const real to_mesh = brute_distance(mesh, p);
@@ -78,26 +117,18 @@ TEST(ToothBoundary, DefaultSceneLinesItsCavityWithAboutFourteenHundredParticles)
     // Within the band around the outline (2 spacings by default).
     ASSERT_LE(to_cavity, 2 * s * (1 + 1e-9));
   }
+  EXPECT_GT(closing, 0u) << "the crown's curved walls have holes to close";
+  EXPECT_LT(closing, first.size() / 5);
   for (const Vec3& p : second) ASSERT_NEAR(t.distance(p).distance, -s, 0.01 * s);
   // None in the cavity: the first layer on its walls (up to the projection's round-off),
   // the deeper ones clear of it.
   for (const Vec3& p : first) ASSERT_GE(t.cavity_distance(p).distance, -1e-5 * s);
   for (const Vec3& p : second) ASSERT_FALSE(t.in_cavity(p));
-  expect_even(b);
+  expect_even(b, [&](const Vec3& p) { return -t.distance(p).distance; });
 
-  // No holes: every point of the lined surface (sampled four times finer) lies within a
-  // spacing of a first-layer particle.
-  BoundaryParams fine;
-  fine.spacing = s / 3;
-  fine.layers = 1;
-  fine.margin = 2 * s;
-  real widest = 0;
-  for (const Vec3& q : sample_boundary(t, fine).points) {
-    real best = 1e300;
-    for (const Vec3& p : first) best = std::min(best, norm(p - q));
-    widest = std::max(widest, best);
-  }
-  EXPECT_LT(widest, s);
+  // No holes: every point of the lined surface lies within 0.9 spacing of a first-layer
+  // particle (one under a closed hole counts; measured 0.82).
+  EXPECT_LT(widest_hole(t, b), 0.9 * s);
 }
 
 TEST(ToothBoundary, LayersMarginAndSpacingFollowTheParameters) {
@@ -109,9 +140,8 @@ TEST(ToothBoundary, LayersMarginAndSpacingFollowTheParameters) {
   const BoundarySamples b = sample_boundary(scene.tooth, p);
   EXPECT_EQ(*std::max_element(b.layer.begin(), b.layer.end()), 2);
   for (std::size_t i = 0; i < b.points.size(); ++i)
-    ASSERT_NEAR(scene.tooth.distance(b.points[i]).distance, -b.layer[i] * p.spacing,
-                0.01 * p.spacing);
-  expect_even(b);
+    ASSERT_TRUE(at_its_depth(-scene.tooth.distance(b.points[i]).distance, b.layer[i], p.spacing));
+  expect_even(b, [&](const Vec3& p) { return -scene.tooth.distance(p).distance; });
   // Same input, same points, same order.
   const BoundarySamples again = sample_boundary(scene.tooth, p);
   ASSERT_EQ(again.points.size(), b.points.size());
@@ -139,17 +169,22 @@ TEST(ToothBoundary, RealMolarsWithClassOneAndTwoCavitiesAreLinedEvenly) {
       const BoundarySamples b = sample_boundary(t, bp);
       SCOPED_TRACE(file.string() + (kind == CavityClass::class_1 ? " class I: " : " class II: ") +
                    std::to_string(b.points.size()) + " particles");
-      // Measured: 1317 / 1885 (36), 1051 / 1526 (46).
+      // Measured: 1382 / 1993 (36), 1112 / 1618 (46).
       EXPECT_GT(b.points.size(), kind == CavityClass::class_1 ? 800u : 1100u);
       EXPECT_LT(b.points.size(), kind == CavityClass::class_1 ? 2000u : 2600u);
       for (std::size_t i = 0; i < b.points.size(); ++i) {
-        ASSERT_NEAR(t.distance(b.points[i]).distance, -b.layer[i] * bp.spacing, 0.01 * bp.spacing);
+        ASSERT_TRUE(at_its_depth(-t.distance(b.points[i]).distance, b.layer[i], bp.spacing)) << t.distance(b.points[i]).distance / bp.spacing << " layer " << b.layer[i];
         ASSERT_GE(t.cavity_distance(b.points[i]).distance, -1e-5 * bp.spacing);
         if (b.layer[i] > 0) {
           ASSERT_FALSE(t.in_cavity(b.points[i]));
         }
       }
-      expect_even(b);
+      expect_even(b, [&](const Vec3& p) { return -t.distance(p).distance; });
+      // The scans' curved walls leave holes up to a spacing wide in a Poisson-disk set of
+      // 0.9 spacing; with the points that close them (0.75 spacing under the surface), every
+      // point of the lined surface is within 0.9 spacing of a first-layer point (measured 0.83
+      // and 0.88).
+      EXPECT_LT(widest_hole(t, b), 0.9 * bp.spacing);
     }
   }
 }
@@ -166,10 +201,10 @@ TEST(ToothBoundary, AMatrixBandClosesTheClassTwoBox) {
   const MeshDistance& original = t.tooth();
   for (std::size_t i = 0; i < band.points.size(); ++i) {
     // On the original contour (layer 0) or one spacing outside it (layer 1), at the box.
-    EXPECT_NEAR(original.signed_distance(band.points[i]), band.layer[i] * s, 1e-6 * s);
-    EXPECT_LE(t.proximal_box_distance(band.points[i]), (2 + band.layer[i]) * s + 1e-9);
+    EXPECT_TRUE(at_its_depth(original.signed_distance(band.points[i]), band.layer[i], s));
+    EXPECT_LE(t.proximal_box_distance(band.points[i]), (2 + std::max(band.layer[i], 1)) * s + 1e-9);
   }
-  expect_even(band);
+  expect_even(band, [&](const Vec3& p) { return original.signed_distance(p); });
   // Every point of the removed proximal surface (the box's opening: in the box, on the original
   // contour, facing sideways) lies within a spacing of the band: the paste cannot flow out.
   const ToothFrame& f = t.frame();
