@@ -30,6 +30,7 @@ struct BenchOptions {
 
 struct BenchRow {
   std::uint32_t particles = 0;
+  std::uint32_t moving = 0;   // of which material and tool (the rest is static boundary)
   real neighbours = 0;        // mean neighbours within h
   std::string method;         // grid | all_pairs | cuda | cuda-emulation
   int threads = 1;

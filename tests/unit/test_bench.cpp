@@ -34,8 +34,10 @@ TEST(Bench, JsonHasDefaultSceneSweepAndMemory) {
   EXPECT_EQ(j["default_scene"]["particles"]["material"], 1600);
   ASSERT_EQ(j["sweep"].size(), 6u) << "2 sizes x (grid at 1 and 2 threads + all-pairs)";
   for (const auto& row : j["sweep"]) {
-    for (const char* k : {"particles", "neighbours", "method", "threads", "steps_per_second", "stage_us"})
+    for (const char* k : {"particles", "moving_particles", "neighbours", "method", "threads", "steps_per_second", "stage_us"})
       EXPECT_TRUE(row.contains(k)) << k;
+    EXPECT_GT(row["moving_particles"].get<int>(), 0);
+    EXPECT_LT(row["moving_particles"].get<int>(), row["particles"].get<int>()) << "paste in a box of boundary particles";
     EXPECT_GT(row["steps_per_second"].get<double>(), 0);
     EXPECT_GT(row["neighbours"].get<double>(), 5) << "h = 2 spacings: a lattice particle has ~30 neighbours inside";
     EXPECT_GE(row["stage_us"]["total"].get<double>(), 0);
