@@ -133,19 +133,31 @@ INSTANTIATE_TEST_SUITE_P(Configs, GridParity,
                                            Config{7, 0.3, false, false, true, 9, 1, 0.3},
                                            Config{5, 0.2, true, false, true, 10, 2, 0.2}));
 
+// A 5^3 block of paste on a lattice of dyadic spacing (every coordinate and difference exact,
+// pairs two spacings apart exactly h apart), with a neighbour skin of `skin` h.
+struct DyadicBlock {
+  Model model;
+  std::vector<ParticleInit> particles;
+};
+DyadicBlock dyadic_block(real skin) {
+  const real d = 1.0 / 128;
+  ModelParams mp = testing::params_for_spacing(d, {0, 0, 0}, {0.25, 0.25, 0.25}, 1e-4);
+  mp.neighbour_skin = skin * mp.h;
+  DyadicBlock b{make_model(mp), {}};
+  const Material paste{0.4, 60, 1000, 300};
+  const real m = lattice_particle_mass(1000, d, b.model.kernel);
+  for (Vec3 p : testing::lattice({8 * d, 8 * d, 8 * d}, d, 5, 5, 5))
+    b.particles.push_back(testing::particle(Role::material, p, m, paste));
+  return b;
+}
+
 TEST(GridParity, PairsExactlyOnTheSupportWithASkin) {
   // A lattice of dyadic spacing (every coordinate and difference exact): pairs two spacings
   // apart are exactly h apart, r^2 == h^2, inside the list's skin but not within h. The density
   // pass must leave them out of the force pass's pairs, as the all-pairs kernels give them 0.
-  const real d = 1.0 / 128;
-  ModelParams mp = testing::params_for_spacing(d, {0, 0, 0}, {0.25, 0.25, 0.25}, 1e-4);
-  mp.neighbour_skin = 0.1 * mp.h;
-  const Model model = make_model(mp);
-  const Material paste{0.4, 60, 1000, 300};
-  const real m = lattice_particle_mass(1000, d, model.kernel);
-  std::vector<ParticleInit> ps;
-  for (Vec3 p : testing::lattice({8 * d, 8 * d, 8 * d}, d, 5, 5, 5))
-    ps.push_back(testing::particle(Role::material, p, m, paste));
+  const DyadicBlock block = dyadic_block(0.1);
+  const Model& model = block.model;
+  const std::vector<ParticleInit>& ps = block.particles;
   State g, r;
   g.add_particles(model, ps);
   r.add_particles(model, ps);
@@ -175,16 +187,10 @@ TEST(GridParity, PairsExactlyOnTheSupportWithASkin) {
 TEST(GridParity, WithinListsAndBuildPositionsOnlyWithASkin) {
   // Without a skin every list is rebuilt each step and holds exactly the pairs within h: the
   // within-h copy and the build positions are not allocated, and the step still matches.
-  const real d = 1.0 / 128;
-  const Material paste{0.4, 60, 1000, 300};
   auto run = [&](real skin) {
-    ModelParams mp = testing::params_for_spacing(d, {0, 0, 0}, {0.25, 0.25, 0.25}, 1e-4);
-    mp.neighbour_skin = skin * mp.h;
-    const Model model = make_model(mp);
-    const real m = lattice_particle_mass(1000, d, model.kernel);
-    std::vector<ParticleInit> ps;
-    for (Vec3 p : testing::lattice({8 * d, 8 * d, 8 * d}, d, 5, 5, 5))
-      ps.push_back(testing::particle(Role::material, p, m, paste));
+    const DyadicBlock block = dyadic_block(skin);
+    const Model& model = block.model;
+    const std::vector<ParticleInit>& ps = block.particles;
     State g, r;
     g.add_particles(model, ps);
     r.add_particles(model, ps);
