@@ -49,6 +49,8 @@ void check_options(const RealtimeOptions& o, double force_scale) {
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
   const WatchdogParams& w = o.watchdog;
+  if (!(o.dispense_volume >= 0) || !std::isfinite(o.dispense_volume))
+    bad(fmt::format("dispense volume {} m^3: must be non-negative and finite (0: a sixth of the cavity)", o.dispense_volume));
   if (!(w.sim_timeout_s > 0 && w.pose_timeout_s > 0 && w.ramp_down_s >= 0 && w.ramp_up_s >= 0))
     bad("watchdog: timeouts must be positive, ramps non-negative");
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <thread>
 
+#include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
 #include "haptics/exchange.hpp"
