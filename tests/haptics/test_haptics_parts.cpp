@@ -8,7 +8,6 @@
 #include <limits>
 #include <thread>
 
-#include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
 #include "haptics/exchange.hpp"

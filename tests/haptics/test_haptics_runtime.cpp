@@ -446,6 +446,29 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   EXPECT_EQ(realtime_sections(r)["sim"]["button_dispenses"], 2);
 }
 
+// Over UDP: the reference client holds button 1 for 0.3 s, then presses it for 0.1 s; the bit
+// reaches the simulation loop through the UDP device and the haptic loop: two increments.
+TEST(HapticRuntime, ReferenceClientButtonDispensesOverUdp) {
+  const Scene scene = press_scene();
+  const std::uint32_t before = make_state(scene).count(Role::material);
+  RealtimeOptions o = options(ForceMode::direct);
+  o.workspace.origin = {0.03, 0, 0.11};  // the still device's tool beside the increments' drop
+  o.duration_s = 1.4;
+  const real s = increment_spacing(scene);
+  o.dispense_volume = 20 * s * s * s;
+  const std::size_t increment = material_increment({}, real(o.dispense_volume), s, 1, Material{}).size();
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  ClientProcess client(port, {"--duration", "1.2", "--motion", "still", "--press-button-at", "0.3", "0.8",
+                              "--press-button-for", "0.3"}, "button");
+  ASSERT_TRUE(client.started());
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  ASSERT_FALSE(client.wait().is_null()) << "the client failed";
+  print_timing(r);
+  EXPECT_EQ(r.sim.button_dispenses, 2u);
+  EXPECT_EQ(r.run.material, before + 2 * increment);
+}
+
 // The command line: a realtime run of a scene file writes its summary and recording, and
 // `dentsph replay` reproduces the recorded tool forces (exit code 0 only when all agree).
 TEST(HapticRuntime, CommandLineRunsAndReplays) {
