@@ -78,6 +78,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       // Button 1 dispenses one increment when it goes down (holding it does not repeat).
       const bool down = (cmd.buttons & haptic_protocol::kButtonDispense) != 0;
       if (down && !dispense_down) {
+        events.push_back({state_.steps, kButtonIncrement});
         dispense_increment(scene_, state_, dispense_volume, increment_axis(scene_), paste);
         ++rep_.button_dispenses;
       }

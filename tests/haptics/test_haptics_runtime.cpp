@@ -444,6 +444,24 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   EXPECT_EQ(r.sim.button_dispenses, 2u);
   EXPECT_EQ(r.run.material, before + 2 * increment);
   EXPECT_EQ(realtime_sections(r)["sim"]["button_dispenses"], 2);
+
+  // The increments are in the recording: a replay reproduces the tool's forces bit for bit, and
+  // they differ from a replay without them (the tool beside the drop feels the increments).
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_button_replay";
+  save_recording(dir, r.recording);
+  Recording loaded = load_recording(dir);
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(loaded.events.size(), 2u);
+  EXPECT_EQ(loaded.events[0].index, kButtonIncrement);
+  EXPECT_EQ(loaded.dispense_volume, o.dispense_volume);
+  const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
+  ASSERT_EQ(a.size(), r.recording.steps.size());
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
+  loaded.events.clear();
+  const std::vector<Vec3> without = replay_steps(scene, loaded, 1);
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) differ += !(without[k] == a[k]);
+  EXPECT_GT(differ, 0u);
 }
 
 // Over UDP: the reference client holds button 1 for 0.3 s, then presses it for 0.1 s; the bit
