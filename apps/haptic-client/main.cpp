@@ -48,6 +48,8 @@ struct Options {
   double limit_N = 9.0;
   double drop = 0, duplicate = 0, reorder = 0, truncate = 0, garbage = 0;
   double pause_at_s = -1, pause_for_s = 0;
+  std::vector<double> press_button_at_s;  // button 1 (dispense) down for press_button_for_s from each
+  double press_button_for_s = 0.1;
   bool bye = true;
   unsigned seed = 1;
   std::string report;
@@ -101,6 +103,11 @@ int main(int argc, char** argv) {
   app.add_option("--garbage", o.garbage, "Probability of a random datagram after a pose")->check(CLI::Range(0.0, 1.0));
   app.add_option("--pause-at", o.pause_at_s, "Go silent at this time (s)");
   app.add_option("--pause-for", o.pause_for_s, "For this long (s)");
+  app.add_option("--press-button-at", o.press_button_at_s,
+                 "Hold button 1 (dispense an increment) down from these times (s), e.g. --press-button-at 0.5 1.5");
+  app.add_option("--press-button-for", o.press_button_for_s, "For this long each time (s)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("!--no-bye", o.bye, "Leave without saying bye");
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
@@ -197,6 +204,8 @@ int main(int argc, char** argv) {
     sent_stamp[seq & 0xffff] = p.header.timestamp_ns;
     const auto x = motion(o, t);
     std::copy(x.begin(), x.end(), p.position);
+    for (const double at : o.press_button_at_s)
+      if (t >= at && t < at + o.press_button_for_s) p.buttons |= proto::kButtonDispense;
     const std::size_t n = proto::encode(p, buf);
     ++st.poses_sent;
     const std::span<const std::uint8_t> pkt(buf.data(), n);

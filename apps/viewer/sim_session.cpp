@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/dispense.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/tools.hpp"
 
@@ -17,15 +18,6 @@ namespace {
 
 using clock_type = std::chrono::steady_clock;
 
-const ParticleInit* first_of(const Scene& sc, Role r) {
-  for (const ParticleInit& p : sc.particles)
-    if (p.role == r) return &p;
-  for (const ProcedureEvent& e : sc.events)
-    for (const ParticleInit& p : e.particles)
-      if (p.role == r) return &p;
-  return nullptr;
-}
-
 // Material runs faster than ten times its sound speed only when the simulation has exploded
 // (the offline runner uses the same test).
 constexpr real kExplosionSpeedFactor = 10;
@@ -34,20 +26,19 @@ constexpr real kExplosionSpeedFactor = 10;
 
 SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(scene)), opt_(options) {
   force_scale_ = scene_.force_scale;
-  const ParticleInit* paste = first_of(scene_, Role::material);
-  const ParticleInit* tool = first_of(scene_, Role::tool);
-  const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
-  paste_ = paste ? paste->material : Material{1.0, 10, 2000, 50};
-  paste_mass_ = paste ? paste->mass : lattice_particle_mass(paste_.rho0, s, scene_.model.kernel);
+  const ParticleInit* tool = first_particle(scene_, Role::tool);
+  const real s = increment_spacing(scene_);
+  const IncrementPaste paste = scene_paste(scene_);
+  paste_ = paste.material;
+  paste_mass_ = paste.mass;
   tool_material_ = tool ? tool->material : Material{1.0, 15, 2000, 0};
-  press_axis_ = scene_.tooth ? scene_.tooth->frame().z : Vec3{0, 0, 1};
+  press_axis_ = increment_axis(scene_);
   if (scene_.tooth) {
     AssessParams ap;
     ap.spacing = s;
     assessor_.emplace(*scene_.tooth, ap);
   }
-  if (opt_.dispense_volume <= 0)
-    opt_.dispense_volume = scene_.tooth ? scene_.tooth->cavity_volume() / 6 : 200 * s * s * s;
+  if (opt_.dispense_volume <= 0) opt_.dispense_volume = default_increment_volume(scene_);
   paused_ = opt_.start_paused;
   reset_state(state_);
   publish(state_, true, 0);
@@ -149,20 +140,9 @@ void SimSession::apply(const Command& c, State& st) {
     case Command::Kind::reset: reset_state(st); return;
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
-    case Command::Kind::dispense: {
-      const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
-      const real r = std::cbrt(3 * opt_.dispense_volume / (4 * M_PI));
-      // Above the highest material on the tooth's axis (or the domain's middle), clear of it.
-      const Vec3 up = press_axis_;
-      const Vec3 axis_origin = scene_.tooth ? scene_.tooth->frame().origin
-                                            : 0.5 * (scene_.model.domain_min + scene_.model.domain_max);
-      real top = 0;
-      for (std::uint32_t i = 0; i < st.size(); ++i)
-        if (st.role[i] == Role::material) top = std::max(top, dot(st.pos[i] - axis_origin, up));
-      const Vec3 centre = axis_origin + up * (top + r + 2 * s);
-      st.add_particles(scene_.model, material_increment(centre, opt_.dispense_volume, s, paste_mass_, paste_));
+    case Command::Kind::dispense:
+      dispense_increment(scene_, st, opt_.dispense_volume, press_axis_, {paste_mass_, paste_});
       return;
-    }
     case Command::Kind::switch_tool: {
       const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
       try {

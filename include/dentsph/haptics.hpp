@@ -89,6 +89,9 @@ struct RealtimeOptions {
   double record_capacity_s = 120;     // haptic-rate recording preallocated for this long (176 B a tick)
   std::filesystem::path out_dir;      // summary.json and the recording (empty: nothing written)
   FaultInjection faults;
+  // m^3 of the increment the device's button 1 dispenses (dispense_increment, on each press);
+  // 0: as the viewer, a sixth of the cavity (or 200 particles without a tooth).
+  double dispense_volume = 0;
   const std::atomic<bool>* stop = nullptr;  // set by the caller (a signal) to end the run
   // Called on the consumer thread with each snapshot's particle positions (scene frame) and sim
   // time; for rendering and tests.
@@ -129,6 +132,7 @@ struct SimReport {
   double realtime_factor = 0;  // simulated s per wall s
   double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;
   std::uint64_t stalls_injected = 0;
+  std::uint64_t button_dispenses = 0;  // increments dispensed by the device's button 1
 };
 
 struct ConsumerReport {

@@ -150,6 +150,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     c.velocity = velocity_;
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
+    c.buttons = sample_.buttons;
     c.valid = true;
     shared_.command.publish();
   }

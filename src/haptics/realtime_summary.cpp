@@ -40,7 +40,8 @@ std::string realtime_json(const RealtimeResult& r) {
               {"step_p50_us", r.sim.step_p50_us},
               {"step_p99_us", r.sim.step_p99_us},
               {"step_max_us", r.sim.step_max_us},
-              {"stalls_injected", r.sim.stalls_injected}};
+              {"stalls_injected", r.sim.stalls_injected},
+              {"button_dispenses", r.sim.button_dispenses}};
   j["consumer"] = {{"frames", r.consumer.frames},
                    {"rate_hz", r.consumer.rate_hz},
                    {"snapshot_age_p99_us", r.consumer.snapshot_age_p99_us}};
@@ -57,13 +58,14 @@ std::string realtime_report(const RealtimeResult& r) {
       "{} deadline misses in {} ticks\n"
       "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
-      "simulation: {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us\n"
+      "simulation: {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
+      "dispensed by the button\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
       r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
       h.watchdog_trips, h.zero_gain_ticks, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
-      r.sim.step_p50_us, r.sim.step_p99_us, r.consumer.frames, r.consumer.rate_hz);
+      r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, r.consumer.frames, r.consumer.rate_hz);
 }
 
 }  // namespace dentsph

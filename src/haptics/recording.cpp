@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "dentsph/haptics/recording.hpp"
 
@@ -87,8 +88,10 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
   }
   {
     File f(dir / "session.json");
-    fmt::print(f.f, "{{\"mode\": \"{}\", \"haptic_rate_hz\": {:.17g}, \"force_scale\": {:.17g}, \"haptic_dropped\": {}}}\n",
-               r.mode, r.haptic_rate_hz, r.force_scale, r.haptic_dropped);
+    fmt::print(f.f,
+               "{{\"mode\": \"{}\", \"haptic_rate_hz\": {:.17g}, \"force_scale\": {:.17g}, \"haptic_dropped\": {}, "
+               "\"dispense_volume\": {:.17g}}}\n",
+               r.mode, r.haptic_rate_hz, r.force_scale, r.haptic_dropped, r.dispense_volume);
   }
 }
 
@@ -118,6 +121,13 @@ Recording load_recording(const std::filesystem::path& dir) {
   }
   for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, 2))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
+  // The increment's volume of button presses (absent in older recordings: the scene's default).
+  if (std::ifstream in(dir / "session.json"); in) {
+    const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
+    if (s.is_discarded() || !s.is_object())
+      throw std::runtime_error(fmt::format("{}: not a JSON object; write the recording again", (dir / "session.json").string()));
+    r.dispense_volume = s.value("dispense_volume", 0.0);
+  }
   return r;
 }
 

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/dispense.hpp"
 #include "dentsph/haptics/recording.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
@@ -14,12 +15,17 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
   std::vector<Vec3> forces;
   forces.reserve(r.steps.size());
   std::size_t next_event = 0;
+  const real volume = r.dispense_volume > 0 ? real(r.dispense_volume) : default_increment_volume(scene);
   for (const StepSample& s : r.steps) {
     if (s.step != state.steps)
       throw std::runtime_error(fmt::format("recording: step {} follows step {}: the steps must be consecutive from 0",
                                            s.step, state.steps));
     for (; next_event < r.events.size() && r.events[next_event].step == s.step; ++next_event) {
       const std::uint32_t i = r.events[next_event].index;
+      if (i == kButtonIncrement) {
+        dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+        continue;
+      }
       if (i >= scene.events.size())
         throw std::runtime_error(fmt::format("recording: event {} does not exist in scene '{}' ({} events): "
                                              "replay into the scene that was recorded", i, scene.name, scene.events.size()));

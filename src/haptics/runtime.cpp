@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/consumer_loop.hpp"
@@ -49,6 +50,8 @@ void check_options(const RealtimeOptions& o, double force_scale) {
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
   const WatchdogParams& w = o.watchdog;
+  if (!(o.dispense_volume >= 0) || !std::isfinite(o.dispense_volume))
+    bad(fmt::format("dispense volume {} m^3: must be non-negative and finite (0: a sixth of the cavity)", o.dispense_volume));
   if (!(w.sim_timeout_s > 0 && w.pose_timeout_s > 0 && w.ramp_down_s >= 0 && w.ramp_up_s >= 0))
     bad("watchdog: timeouts must be positive, ramps non-negative");
 }
@@ -120,6 +123,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.mode = force_mode_name(opt.mode);
   res.recording.haptic_rate_hz = opt.haptic_rate_hz;
   res.recording.force_scale = force_scale;
+  res.recording.dispense_volume = opt.dispense_volume > 0 ? opt.dispense_volume : double(default_increment_volume(scene));
   res.recording.haptic_dropped = haptic.recording_dropped();
   res.recording.haptic = haptic.take_recording();
   res.recording.steps = std::move(sim.steps);

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/dispense.hpp"
+#include "dentsph/haptics/protocol.hpp"
 #include "dentsph/step.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/virtual_coupling.hpp"
@@ -45,6 +47,9 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   std::size_t next_event = 0;
   VirtualCoupling proxy(opt_.coupling);
   bool proxy_started = false;
+  bool dispense_down = false;
+  const real dispense_volume = opt_.dispense_volume > 0 ? real(opt_.dispense_volume) : default_increment_volume(scene_);
+  const IncrementPaste paste = scene_paste(scene_);
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     std::int64_t now = now_ns();
     if (should_stop(now)) {
@@ -69,6 +74,16 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
 
     // ---- the newest tool command, the events due, one step ---------------------------------------
     if (shared_.command.update()) cmd = shared_.command.front();
+    if (cmd.valid) {
+      // Button 1 dispenses one increment when it goes down (holding it does not repeat).
+      const bool down = (cmd.buttons & haptic_protocol::kButtonDispense) != 0;
+      if (down && !dispense_down) {
+        events.push_back({state_.steps, kButtonIncrement});
+        dispense_increment(scene_, state_, dispense_volume, increment_axis(scene_), paste);
+        ++rep_.button_dispenses;
+      }
+      dispense_down = down;
+    }
     while (next_event < scene_.events.size() && scene_.events[next_event].t <= state_.time + 0.5 * dt) {
       events.push_back({state_.steps, std::uint32_t(next_event)});
       apply_event(scene_, state_, scene_.events[next_event++]);

@@ -1,5 +1,6 @@
 // The simulation loop: owns the State. Takes the newest tool command, applies the procedure's
-// events at their simulated time, steps, publishes the tool force (scaled to device newtons) and,
+// events at their simulated time (and an increment of paste on each press of the device's button
+// 1), steps, publishes the tool force (scaled to device newtons) and,
 // at the snapshot rate, the particle positions. Paced to real time (never ahead of the wall
 // clock) or free-running; optionally capped at a step rate (a slow simulation).
 #pragma once

@@ -204,6 +204,7 @@ class UdpDeviceImpl final : public Device {
     s.stamp_ns = now_ns;
     s.device_time_s = double(p.header.timestamp_ns) * 1e-9;
     s.sequence = q;
+    s.buttons = p.buttons;
     s.valid = true;
     answer_pending_ = true;
     return true;

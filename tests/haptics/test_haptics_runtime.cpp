@@ -8,13 +8,16 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "client_process.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
+#include "dentsph/tools.hpp"
 #include "press_scene.hpp"
 
 namespace dentsph {
@@ -364,6 +367,126 @@ TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
   EXPECT_EQ(r.run.status, "diverged") << r.run.message;
 }
 
+// The increment (the viewer's and the button's): a ball of the scene's paste on the axis, wholly
+// above the highest material, two spacings clear of it.
+TEST(Dispense, IncrementDropsAboveTheHighestMaterial) {
+  const Scene scene = press_scene();
+  State state = make_state(scene);
+  const std::uint32_t n0 = state.size(), m0 = state.count(Role::material);
+  const real s = increment_spacing(scene);
+  real top = -1e30;
+  for (std::uint32_t i = 0; i < n0; ++i)
+    if (state.role[i] == Role::material) top = std::max(top, state.pos[i].z);
+  const IncrementPaste paste = scene_paste(scene);
+  EXPECT_EQ(paste.mass, first_particle(scene, Role::material)->mass);
+  const std::size_t added = dispense_increment(scene, state, 20 * s * s * s, increment_axis(scene), paste);
+  ASSERT_GT(added, 10u);
+  EXPECT_EQ(state.count(Role::material), m0 + added);
+  const Vec3 mid = 0.5 * (scene.model.domain_min + scene.model.domain_max);
+  for (std::uint32_t i = 0; i < state.size(); ++i) {
+    if (state.role[i] != Role::material || i < n0) continue;  // new particles are appended
+    EXPECT_GE(state.pos[i].z, top + 2 * s - 1e-9);
+    EXPECT_LE(std::hypot(state.pos[i].x - mid.x, state.pos[i].y - mid.y), std::cbrt(15 / std::numbers::pi) * s + 1e-9);
+  }
+}
+
+// A device held still, clear of the paste, whose button 1 is down during the given intervals
+// (seconds since the runtime's start); finished at `end_s`.
+class ButtonDevice final : public Device {
+ public:
+  ButtonDevice(std::vector<std::pair<double, double>> presses, double end_s)
+      : presses_(std::move(presses)), end_s_(end_s) {}
+  std::string name() const override { return "buttons"; }
+  void start(std::int64_t t0_ns) override { t0_ns_ = t0_ns; }
+  bool read(std::int64_t now_ns, DeviceSample& s) override {
+    const double t = double(now_ns - t0_ns_) * 1e-9;
+    s.pose.position = {0.03, 0, 0.02};  // the tool at (0.03, 0, 0.11): beside the increments' drop
+    s.stamp_ns = now_ns;
+    s.device_time_s = t;
+    s.sequence = ++sequence_;
+    s.buttons = 0;
+    for (const auto& [a, b] : presses_)
+      if (t >= a && t < b) s.buttons = proto::kButtonDispense | 4u;  // another button held with it
+    if (s.buttons == 0 && t >= presses_.back().second + 0.05) s.buttons = 4u;  // not the dispense button
+    s.valid = true;
+    return true;
+  }
+  void write(std::int64_t, const ForceCommand&) override {}
+  bool finished(std::int64_t now_ns) const override { return double(now_ns - t0_ns_) * 1e-9 >= end_s_; }
+
+ private:
+  std::vector<std::pair<double, double>> presses_;
+  double end_s_;
+  std::int64_t t0_ns_ = 0;
+  std::uint32_t sequence_ = 0;
+};
+
+// The device's button 1 dispenses one increment per press, on the simulation thread: held for
+// 0.25 s it does not repeat; other buttons and no press dispense nothing.
+TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
+  const Scene scene = press_scene();
+  const std::uint32_t before = make_state(scene).count(Role::material);
+  RealtimeOptions o = options(ForceMode::direct);
+  const real s = increment_spacing(scene);
+  o.dispense_volume = 20 * s * s * s;
+  const std::size_t increment = material_increment({}, real(o.dispense_volume), s, 1, Material{}).size();
+  ASSERT_GT(increment, 10u);
+
+  ButtonDevice none({{-2, -1}}, 0.3);
+  const RealtimeResult idle = run_realtime(scene, none, o);
+  EXPECT_EQ(idle.sim.button_dispenses, 0u);
+  EXPECT_EQ(idle.run.material, before);
+
+  ButtonDevice two({{0.1, 0.35}, {0.5, 0.6}}, 0.8);
+  const RealtimeResult r = run_realtime(scene, two, o);
+  print_timing(r);
+  EXPECT_EQ(r.run.status, "completed") << r.run.message;
+  EXPECT_EQ(r.sim.button_dispenses, 2u);
+  EXPECT_EQ(r.run.material, before + 2 * increment);
+  EXPECT_EQ(realtime_sections(r)["sim"]["button_dispenses"], 2);
+
+  // The increments are in the recording: a replay reproduces the tool's forces bit for bit, and
+  // they differ from a replay without them (the tool beside the drop feels the increments).
+  const auto dir = std::filesystem::temp_directory_path() / "dentsph_button_replay";
+  save_recording(dir, r.recording);
+  Recording loaded = load_recording(dir);
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(loaded.events.size(), 2u);
+  EXPECT_EQ(loaded.events[0].index, kButtonIncrement);
+  EXPECT_EQ(loaded.dispense_volume, o.dispense_volume);
+  const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
+  ASSERT_EQ(a.size(), r.recording.steps.size());
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
+  loaded.events.clear();
+  const std::vector<Vec3> without = replay_steps(scene, loaded, 1);
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) differ += !(without[k] == a[k]);
+  EXPECT_GT(differ, 0u);
+}
+
+// Over UDP: the reference client holds button 1 for 0.3 s, then presses it for 0.1 s; the bit
+// reaches the simulation loop through the UDP device and the haptic loop: two increments.
+TEST(HapticRuntime, ReferenceClientButtonDispensesOverUdp) {
+  const Scene scene = press_scene();
+  const std::uint32_t before = make_state(scene).count(Role::material);
+  RealtimeOptions o = options(ForceMode::direct);
+  o.workspace.origin = {0.03, 0, 0.11};  // the still device's tool beside the increments' drop
+  o.duration_s = 1.4;
+  const real s = increment_spacing(scene);
+  o.dispense_volume = 20 * s * s * s;
+  const std::size_t increment = material_increment({}, real(o.dispense_volume), s, 1, Material{}).size();
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  ClientProcess client(port, {"--duration", "1.2", "--motion", "still", "--press-button-at", "0.3", "0.8",
+                              "--press-button-for", "0.3"}, "button");
+  ASSERT_TRUE(client.started());
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  ASSERT_FALSE(client.wait().is_null()) << "the client failed";
+  print_timing(r);
+  EXPECT_EQ(r.sim.button_dispenses, 2u);
+  EXPECT_EQ(r.run.material, before + 2 * increment);
+}
+
 // The command line: a realtime run of a scene file writes its summary and recording, and
 // `dentsph replay` reproduces the recorded tool forces (exit code 0 only when all agree).
 TEST(HapticRuntime, CommandLineRunsAndReplays) {
@@ -400,6 +523,9 @@ TEST(HapticRuntime, RefusesImpossibleOptions) {
   EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
   o.snapshot_rate_hz = 30;
   o.force_scale = std::nan("");
+  EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
+  o.force_scale = 20;
+  o.dispense_volume = -1;
   EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
   EXPECT_THROW(make_udp_device({"not-an-address", 0}), std::invalid_argument);
 }

@@ -42,6 +42,7 @@ struct DeviceSample {
   std::int64_t stamp_ns = 0;   // runtime clock when the pose was received / measured
   double device_time_s = 0;    // the device's own clock, for velocity estimates
   std::uint32_t sequence = 0;  // increments with every new pose
+  std::uint32_t buttons = 0;   // pressed buttons, a bit mask (haptic_protocol::kButtonDispense)
   bool valid = false;          // a pose has been received at all
 };
 

@@ -30,6 +30,9 @@ enum ForceStatus : std::uint32_t {
   kNonFinite = 1u << 3,     // a non-finite force was computed and replaced by zero
 };
 
+// Bits of PosePacket::buttons (the device's buttons, pressed = 1).
+inline constexpr std::uint32_t kButtonDispense = 1u << 0;  // button 1: dispense an increment (on press)
+
 struct Header {
   Type type = Type::heartbeat;
   std::uint16_t payload_bytes = 0;  // bytes after the header
@@ -41,7 +44,7 @@ struct PosePacket {
   Header header;
   double position[3] = {0, 0, 0};            // m, device frame
   double orientation[4] = {1, 0, 0, 0};      // unit quaternion w, x, y, z
-  std::uint32_t buttons = 0;                 // bit mask
+  std::uint32_t buttons = 0;                 // bit mask (kButtonDispense)
 };
 
 struct ForcePacket {

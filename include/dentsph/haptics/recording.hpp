@@ -40,14 +40,18 @@ struct StepSample {
 
 struct EventSample {
   std::uint64_t step = 0;      // applied before this step
-  std::uint32_t index = 0;     // into Scene::events
+  std::uint32_t index = 0;     // into Scene::events, or kButtonIncrement
 };
+// EventSample::index of an increment dispensed by the device's button 1 (dispense_increment of
+// Recording::dispense_volume with the scene's paste, on the tooth's axis).
+inline constexpr std::uint32_t kButtonIncrement = 0xffffffffu;
 
 struct Recording {
   std::string mode;            // "direct" | "coupling"
   double haptic_rate_hz = 0;
   double force_scale = 1;
   std::uint64_t haptic_dropped = 0;  // ticks not recorded (capacity full)
+  double dispense_volume = 0;  // m^3 of a button increment (session.json; 0: the scene's default)
   std::vector<HapticSample> haptic;
   std::vector<StepSample> steps;
   std::vector<EventSample> events;

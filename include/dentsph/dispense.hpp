@@ -1,0 +1,36 @@
+// Increments of filling material dropped into the cavity on request (the dental procedure's
+// "dispense"): the viewer's D key and the haptic device's button 1 both place one here.
+#pragma once
+
+#include <cstddef>
+
+#include "dentsph/scene.hpp"
+#include "dentsph/state.hpp"
+
+namespace dentsph {
+
+// The first particle of `role` in the scene (its particles, then its events'), or null.
+const ParticleInit* first_particle(const Scene& scene, Role role);
+
+// The paste an increment is made of: the scene's first material particle's mass and material, or
+// a default paste on the increment's lattice when the scene has none.
+struct IncrementPaste {
+  real mass = 0;  // kg per particle
+  Material material;
+};
+IncrementPaste scene_paste(const Scene& scene);
+
+// The lattice spacing of an increment: the scene's material spacing, or half the kernel radius.
+real increment_spacing(const Scene& scene);
+// The default increment's volume (m^3): a sixth of the cavity, or 200 particles without a tooth.
+real default_increment_volume(const Scene& scene);
+// The direction increments drop along: the tooth's axis (its frame's z), or +z without a tooth.
+Vec3 increment_axis(const Scene& scene);
+
+// Adds (between steps) a ball of `volume` m^3 of `paste` on the line along `up` through the
+// tooth's origin (or the middle of the domain without a tooth), its lowest point two spacings
+// above the highest material on that axis. Returns the number of particles added.
+std::size_t dispense_increment(const Scene& scene, State& state, real volume, const Vec3& up,
+                               const IncrementPaste& paste);
+
+}  // namespace dentsph

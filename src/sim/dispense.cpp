@@ -1,0 +1,54 @@
+// Increments of material on request (dispense.hpp).
+#include "dentsph/dispense.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dentsph/tools.hpp"
+#include "dentsph/tooth.hpp"
+#include "physics/kernels.hpp"
+
+namespace dentsph {
+
+const ParticleInit* first_particle(const Scene& scene, Role role) {
+  for (const ParticleInit& p : scene.particles)
+    if (p.role == role) return &p;
+  for (const ProcedureEvent& e : scene.events)
+    for (const ParticleInit& p : e.particles)
+      if (p.role == role) return &p;
+  return nullptr;
+}
+
+real increment_spacing(const Scene& scene) {
+  return scene.material_spacing > 0 ? scene.material_spacing : 0.5 * scene.model.kernel.h;
+}
+
+IncrementPaste scene_paste(const Scene& scene) {
+  if (const ParticleInit* p = first_particle(scene, Role::material)) return {p->mass, p->material};
+  const Material m{1.0, 10, 2000, 50};
+  return {lattice_particle_mass(m.rho0, increment_spacing(scene), scene.model.kernel), m};
+}
+
+real default_increment_volume(const Scene& scene) {
+  const real s = increment_spacing(scene);
+  return scene.tooth ? scene.tooth->cavity_volume() / 6 : 200 * s * s * s;
+}
+
+Vec3 increment_axis(const Scene& scene) { return scene.tooth ? scene.tooth->frame().z : Vec3{0, 0, 1}; }
+
+std::size_t dispense_increment(const Scene& scene, State& state, real volume, const Vec3& up,
+                               const IncrementPaste& paste) {
+  const real s = increment_spacing(scene);
+  const real r = std::cbrt(3 * volume / (4 * kernels::pi));
+  const Vec3 axis_origin =
+      scene.tooth ? scene.tooth->frame().origin : 0.5 * (scene.model.domain_min + scene.model.domain_max);
+  real top = 0;
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (state.role[i] == Role::material) top = std::max(top, dot(state.pos[i] - axis_origin, up));
+  const Vec3 centre = axis_origin + up * (top + r + 2 * s);
+  const std::vector<ParticleInit> ps = material_increment(centre, volume, s, paste.mass, paste.material);
+  state.add_particles(scene.model, ps);
+  return ps.size();
+}
+
+}  // namespace dentsph
