@@ -120,7 +120,7 @@ bool SimSession::latest(Snapshot& out) const {
 }
 
 Vec3 SimSession::tool_tip_goal() const {
-  const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
+  const real s = increment_spacing(scene_);
   return pressed_ ? target_ - press_axis_ * (opt_.press_depth_spacings * s) : target_;
 }
 
@@ -137,14 +137,22 @@ void SimSession::apply(const Command& c, State& st) {
       if (c.kind == Command::Kind::single_step) single_ = true;
       paused_ = c.kind != Command::Kind::resume;
       return;
-    case Command::Kind::reset: reset_state(st); return;
+    case Command::Kind::reset:
+      if (device_) {
+        // The runtime's clock, its procedure events and its recording all run on from the state's
+        // time: a state set back to t = 0 would break the pacing and the replay.
+        message_ = "the haptic runtime does not reset: close the window and start again";
+        return;
+      }
+      reset_state(st);
+      return;
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
     case Command::Kind::dispense:
       dispense_increment(scene_, st, opt_.dispense_volume, press_axis_, {paste_mass_, paste_});
       return;
     case Command::Kind::switch_tool: {
-      const real s = scene_.material_spacing > 0 ? scene_.material_spacing : 0.5 * scene_.model.kernel.h;
+      const real s = increment_spacing(scene_);
       try {
         switch_tool(st, scene_.model, tool_by_name(c.tool, s), paste_mass_, tool_material_);
         tool_name_ = c.tool;
@@ -360,6 +368,7 @@ void SimSession::run_device() {
   RealtimeOptions o = rt_options_;
   o.stop = &rt_stop_;
   o.live = &live_;
+  o.snapshot_rate_hz = 0;  // the viewer publishes its own snapshots from between_steps
   o.between_steps = [this](const Scene&, State& st) { between_steps(st); };
   live_t0_ = rate_t0_ = last_publish_ = last_assess_ = clock_type::now();
   try {

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "dentsph/dispense.hpp"
 #include "camera.hpp"
 #include "colour_map.hpp"
 #include "panels.hpp"
@@ -128,7 +129,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   ui.colour_by = colour_by_from_name(opt.colour_by);
   ui.cut = opt.cut;
   const std::vector<std::string> tools = session.tools();
-  const real spacing = sc.material_spacing > 0 ? sc.material_spacing : 0.5 * sc.model.kernel.h;
+  const real spacing = increment_spacing(sc);
 
   Input input;
   g_input = &input;

@@ -223,6 +223,12 @@ TEST(SimSession, UnderTheHapticRuntimeAppliesCommandsBetweenItsStepsAndShowsTheH
   EXPECT_EQ(s.haptic->device, "scripted");
   EXPECT_NE(s.message.find("does not pause"), std::string::npos) << s.message;
   EXPECT_LE(norm(s.haptic->force_N), 9.0);
+  // Nor does it reset: the runtime's clock, events and recording run on from the state's time.
+  const std::uint64_t steps_before = s.steps;
+  session.post(Command{Command::Kind::reset});
+  s = wait_for(session, [](const Snapshot& x) { return x.message.find("does not reset") != std::string::npos; });
+  EXPECT_GT(s.steps, steps_before) << "the state was not set back";
+  EXPECT_GT(count(s, Role::material), 48u) << "the dispensed paste is still there";
   s = wait_for(session, [](const Snapshot& x) { return x.message.find("session ended") != std::string::npos; });
   session.stop();
   ASSERT_TRUE(session.realtime_result());
