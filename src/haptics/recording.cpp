@@ -121,11 +121,16 @@ Recording load_recording(const std::filesystem::path& dir) {
   }
   for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, 2))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
-  // The increment's volume of button presses (absent in older recordings: the scene's default).
+  // The session's settings, as save_recording writes them (dispense_volume is absent in older
+  // recordings: the scene's default).
   if (std::ifstream in(dir / "session.json"); in) {
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
     if (s.is_discarded() || !s.is_object())
       throw std::runtime_error(fmt::format("{}: not a JSON object; write the recording again", (dir / "session.json").string()));
+    r.mode = s.value("mode", r.mode);
+    r.haptic_rate_hz = s.value("haptic_rate_hz", r.haptic_rate_hz);
+    r.force_scale = s.value("force_scale", r.force_scale);
+    r.haptic_dropped = s.value("haptic_dropped", r.haptic_dropped);
     r.dispense_volume = s.value("dispense_volume", 0.0);
   }
   return r;

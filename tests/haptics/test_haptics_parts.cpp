@@ -409,9 +409,18 @@ TEST(Recording, SavesAndLoadsExactly) {
     r.steps.push_back(s);
   }
   r.events.push_back({3, 1});
+  r.haptic_rate_hz = 1000.0 / 3;
+  r.force_scale = 1.5e4;
+  r.haptic_dropped = 7;
+  r.dispense_volume = 1e-9 / 3;
   const auto dir = std::filesystem::temp_directory_path() / "dentsph_recording_test";
   save_recording(dir, r);
   const Recording q = load_recording(dir);
+  EXPECT_EQ(q.mode, r.mode);
+  EXPECT_EQ(q.haptic_rate_hz, r.haptic_rate_hz);
+  EXPECT_EQ(q.force_scale, r.force_scale);
+  EXPECT_EQ(q.haptic_dropped, r.haptic_dropped);
+  EXPECT_EQ(q.dispense_volume, r.dispense_volume);
   ASSERT_EQ(q.haptic.size(), 5u);
   ASSERT_EQ(q.steps.size(), 5u);
   ASSERT_EQ(q.events.size(), 1u);
