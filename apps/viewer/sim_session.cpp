@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/dispense.hpp"
+#include "dentsph/step.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/tools.hpp"
 
@@ -17,10 +18,6 @@ namespace dentsph::viewer {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
-
-// Material runs faster than ten times its sound speed only when the simulation has exploded
-// (the offline runner uses the same test).
-constexpr real kExplosionSpeedFactor = 10;
 
 }  // namespace
 
@@ -317,12 +314,11 @@ void SimSession::run() {
       step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
       forces_.add(state_.tool_wrench.force, scene_.model.dt);
       steps_.store(state_.steps, std::memory_order_release);
-      if (state_.diagnostics.non_finite > 0 ||
-          state_.diagnostics.max_speed > kExplosionSpeedFactor * sound_speed_) {
+      if (exploded(state_.diagnostics, sound_speed_)) {
         diverged_ = true;
         message_ = fmt::format("the simulation diverged at t = {:.4g} s (material faster than {} times the sound "
                                "speed, or non-finite): reset it (R) and soften the paste",
-                               state_.time, kExplosionSpeedFactor);
+                               state_.time, explosion_speed_factor);
       }
     }
     const auto now = clock_type::now();

@@ -49,5 +49,12 @@ struct StabilityLimits {
 StabilityLimits stability_limits(const Model& model, const State& state);
 // The force limit alone, from the last step's largest acceleration (infinite before any).
 real force_time_step_limit(const Model& model, const StepDiagnostics& diagnostics);
+// Weakly compressible SPH keeps material far slower than its sound speed: material at
+// `explosion_speed_factor` times it, or non-finite, has exploded (the offline run, the haptic
+// runtime and the viewer stop on it).
+inline constexpr real explosion_speed_factor = 10;
+inline bool exploded(const StepDiagnostics& d, real sound_speed) {
+  return d.non_finite > 0 || d.max_speed > explosion_speed_factor * sound_speed;
+}
 
 }  // namespace dentsph

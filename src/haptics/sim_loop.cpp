@@ -14,10 +14,6 @@
 
 namespace dentsph::haptics {
 
-namespace {
-constexpr real kExplosionSpeedFactor = 10;  // as run_offline: material at 10 c has exploded
-}
-
 SimLoop::SimLoop(const Scene& scene, State& state, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
     : scene_(scene), state_(state), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
   steps.reserve(1 << 16);
@@ -27,7 +23,7 @@ SimLoop::SimLoop(const Scene& scene, State& state, const RealtimeOptions& o, dou
 
 bool SimLoop::diverged() {
   const StepDiagnostics& d = state_.diagnostics;
-  if (d.non_finite == 0 && !(d.max_speed > kExplosionSpeedFactor * summary.limits.sound_speed)) return false;
+  if (!exploded(d, summary.limits.sound_speed)) return false;
   summary.status = "diverged";
   summary.message = fmt::format("at t = {:.6g} s (step {}): {}; lower simulation.dt or the stiffness", state_.time,
                                 state_.steps,

@@ -11,6 +11,7 @@
 #include "dentsph/assess.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
+#include "dentsph/step.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
@@ -34,8 +35,6 @@ StabilityLimits check_time_step(const Scene& scene, const State& state, bool all
 }
 
 namespace {
-
-constexpr real kExplosionSpeedFactor = 10;
 
 // Particle snapshots every `interval` s of simulated time, indexed by a .pvd file.
 class SnapshotWriter {
@@ -129,17 +128,16 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     if (sum.dt > force_limit) {
       if (sum.force_violation_steps++ == 0) sum.first_force_violation_t = t_forces;
     }
-    // Weakly compressible SPH keeps material far slower than its sound speed; material at ten
-    // times c (or non-finite) has exploded, and the run says so instead of writing garbage.
-    const bool non_finite = state.diagnostics.non_finite > 0;
-    if (non_finite || state.diagnostics.max_speed > kExplosionSpeedFactor * sum.limits.sound_speed) {
+    // Exploded material: the run says so instead of writing garbage.
+    if (exploded(state.diagnostics, sum.limits.sound_speed)) {
+      const bool non_finite = state.diagnostics.non_finite > 0;
       sum.status = "diverged";
       sum.message = fmt::format(
           "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
           "simulation.dt or the stiffness",
           non_finite ? fmt::format("{} material particles became non-finite", state.diagnostics.non_finite)
                      : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
-                                   state.diagnostics.max_speed, kExplosionSpeedFactor, sum.limits.sound_speed),
+                                   state.diagnostics.max_speed, explosion_speed_factor, sum.limits.sound_speed),
           state.time, state.steps, sum.limits.force, sum.dt);
       break;
     }
