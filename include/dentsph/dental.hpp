@@ -109,6 +109,8 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
 // The same from a file.
 Scene load_dental_procedure(const ToothScene& tooth, const std::filesystem::path& file,
                             const DentalSceneParams& params = {});
+// The procedure file on a lined tooth; an empty path: the built-in procedure.
+Scene procedure_or_built_in(const ToothScene& tooth, const std::filesystem::path& file);
 // The built-in procedure on the built-in crown: what `dentsph run` runs.
 Scene default_dental_procedure(const DentalSceneParams& params = {});
 // What `dentsph run` runs without a scene file: the procedure file (empty: the built-in one) on

@@ -101,9 +101,7 @@ Scene parse_dental_scene(const Reader& root) {
   } catch (const std::invalid_argument& e) {
     root.fail("tooth", e.what(), "give the tooth's axes in the mesh's coordinates, or leave them out");
   }
-  Scene sc = procedure.empty()
-                 ? dental_procedure(*tooth, std::string(default_procedure_json()), "built-in default_procedure")
-                 : load_dental_procedure(*tooth, procedure);
+  Scene sc = procedure_or_built_in(*tooth, procedure);
   sc.name = name;
   sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
   read_haptics(root, sc);
