@@ -1,4 +1,5 @@
-// Google Benchmark: one step of a block of material in a container (the `dentsph bench` sweep's
+// Google Benchmark: one step of the built-in dental scene (the paper's counts, the tool moving
+// along its procedure), and of a block of material in a container (the `dentsph bench` sweep's
 // scenes), grid step against the all-pairs reference, for growing particle counts and threads.
 #include <benchmark/benchmark.h>
 
@@ -22,6 +23,21 @@ void run(benchmark::State& bs, bool all_pairs) {
   bs.counters["particles"] = st.size();
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
 }
+
+void BM_DentalStep(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const StepOptions opt{int(bs.range(0)), nullptr};
+  auto one = [&] {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, opt);
+  };
+  for (int k = 0; k < 10; ++k) one();
+  for (auto _ : bs) one();
+  bs.counters["particles"] = st.size();
+  bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DentalStep)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void BM_GridStep(benchmark::State& bs) { run(bs, false); }
 BENCHMARK(BM_GridStep)->ArgsProduct({{8, 12, 16, 24, 32}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
