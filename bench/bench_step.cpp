@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "dentsph/bench.hpp"
+#include "step/stages.hpp"
 
 namespace {
 
@@ -38,6 +39,29 @@ void BM_DentalStep(benchmark::State& bs) {
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DentalStep)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// One stage of the dental scene's step, repeated on the state after 200 steps (the paste pressed in,
+// bonds formed): the density pass over the kept lists (with each particle's pressure), and the
+// force pass (its bond updates find nothing to change on a repeat).
+template <class Stage>
+void dental_stage(benchmark::State& bs, Stage&& stage) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const StepOptions opt{int(bs.range(0)), nullptr};
+  for (int k = 0; k < 200; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, opt);
+  }
+  for (auto _ : bs) stage(sc.model, st, opt.threads);
+}
+void BM_DentalDensity(benchmark::State& bs) {
+  dental_stage(bs, [](const Model& m, State& st, int t) { stages::compute_density(m, st, t, false); });
+}
+BENCHMARK(BM_DentalDensity)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+void BM_DentalForces(benchmark::State& bs) {
+  dental_stage(bs, [](const Model& m, State& st, int t) { stages::compute_forces(m, st, t); });
+}
+BENCHMARK(BM_DentalForces)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void BM_GridStep(benchmark::State& bs) { run(bs, false); }
 BENCHMARK(BM_GridStep)->ArgsProduct({{8, 12, 16, 24, 32}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
