@@ -70,55 +70,82 @@ grid::Visit listed(const State& s, std::int64_t i) {
   return s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
 }
 
+// Sum of m_j w_q^3 over the entries q of a list, w_q = max(0, h^2 - r^2) from `w_at(q, j)`, in
+// four running sums (entry q into sum q mod 4) so that successive additions do not wait for one
+// another; the same order whichever thread takes the particle. `keep(j, w)` sees every entry.
+template <class W, class Keep>
+real list_sum(const std::uint32_t* list, std::uint32_t count, const real* m, W&& w_at, Keep&& keep) {
+  real part[4] = {0, 0, 0, 0};
+  std::uint32_t q = 0;
+  for (; q + 4 <= count; q += 4)
+    for (std::uint32_t l = 0; l < 4; ++l) {
+      const std::uint32_t j = list[q + l];
+      const real w = w_at(q + l, j);
+      part[l] += m[j] * w * w * w;
+      keep(j, w);
+    }
+  for (; q < count; ++q) {
+    const std::uint32_t j = list[q];
+    const real w = w_at(q, j);
+    part[0] += m[j] * w * w * w;
+    keep(j, w);
+  }
+  return (part[0] + part[1]) + (part[2] + part[3]);
+}
+
 // Density of particle i over its neighbour list (pairs beyond h add nothing), and its own part:
-// itself for a moving particle, the static boundary around it for a boundary particle. With a
-// skin, a moving particle also keeps the entries within h, in list order, for the force pass
-// (without one, every entry is within h and the force pass reads the list itself).
-real density_from_list(const Model& model, State& s, std::int64_t i, Coords coords) {
+// itself for a moving particle, the static boundary around it for a boundary particle; w_at(q, j)
+// gives entry q's max(0, h^2 - r^2). With a skin, a moving particle also keeps the entries within
+// h, in list order, for the force pass (without one, every entry is within h and the force pass
+// reads the list itself).
+template <class W>
+real density_over_list(const Model& model, State& s, std::int64_t i, W&& w_at) {
   GridIndex& g = s.grid;
   const bool boundary = s.role[i] == Role::boundary;
-  const real own = boundary ? s.rho_static[s.id[i]] : 0;
-  if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) return own + density_sum(model, s, i, listed(s, i), coords);
-  const Arrays a(model, s, i);
+  const real h2 = model.kernel.h2;
   const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   const std::uint32_t count = g.neighbour_count[i];
-  // (h^2 - r^2), clamped at 0 beyond h; it is > 0 exactly when r^2 < h^2.
-  const Vec3* pos = s.pos.data();
-  auto w_of = [&](std::uint32_t j) {
-    const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
-    return clamp_at_zero(a.h2 - (dx * dx + dy * dy + dz * dz));
-  };
-  real sum = boundary ? 0 : a.m[i] * a.h2 * a.h2 * a.h2;
+  const real* m = s.mass.data();
+  real sum = boundary ? 0 : m[i] * h2 * h2 * h2;
   if (boundary || !g.keep_lists) {
-    for (std::uint32_t q = 0; q < count; ++q) {
-      const std::uint32_t j = list[q];
-      const real w = w_of(j);
-      sum += a.m[j] * w * w * w;
-    }
+    sum += list_sum(list, count, m, w_at, [](std::uint32_t, real) {});
   } else {
     // Branch-free: every entry is written, the count advances for those within h.
     std::uint32_t* within = g.within.data() + std::size_t(i) * GridIndex::kNeighbourStride;
     std::uint32_t kept = 0;
-    for (std::uint32_t q = 0; q < count; ++q) {
-      const std::uint32_t j = list[q];
-      const real w = w_of(j);
-      sum += a.m[j] * w * w * w;
+    sum += list_sum(list, count, m, w_at, [&](std::uint32_t j, real w) {
       within[kept] = j;
       kept += w > 0 ? 1 : 0;
-    }
+    });
     g.within_count[i] = std::uint16_t(kept);
   }
-  return own + model.kernel.poly6 * sum;
+  return (boundary ? s.rho_static[s.id[i]] : 0) + model.kernel.poly6 * sum;
+}
+
+// The density of particle i over the list it keeps between rebuilds, at the current positions.
+real density_from_list(const Model& model, State& s, std::int64_t i) {
+  if (s.grid.neighbour_count[i] > GridIndex::kNeighbourCapacity) {
+    const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
+    return own + density_sum(model, s, i, listed(s, i), Coords::moved);
+  }
+  const Arrays a(model, s, i);
+  const Vec3* pos = s.pos.data();
+  return density_over_list(model, s, i, [&](std::uint32_t, std::uint32_t j) {
+    const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
+    return clamp_at_zero(a.h2 - (dx * dx + dy * dy + dz * dz));
+  });
 }
 
 // The density of particle i, over its cells, and its list of neighbours within h + skin (self
-// excluded) for the force pass and the steps until the next rebuild.
+// excluded) for the force pass and the steps until the next rebuild. The search keeps each listed
+// entry's r^2 for the density sum.
 real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   GridIndex& g = s.grid;
   const Arrays a(model, s, i);
   const real reach = model.kernel.h + model.neighbour_skin, reach2 = reach * reach;
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  real r2_at[cap + 1];
   std::uint32_t count = 0;
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
     // Branch-free filter: every candidate is written, at the count (at slot `cap`, scratch, once
@@ -126,13 +153,20 @@ real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
     // marks the overflow.
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
-      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != std::uint32_t(i));
-      list[count < cap ? count : cap] = j;
+      const real r2 = dx * dx + dy * dy + dz * dz;
+      const std::uint32_t within = (r2 < reach2) & (j != std::uint32_t(i));
+      const std::uint32_t slot = count < cap ? count : cap;
+      list[slot] = j;
+      r2_at[slot] = r2;
       count += within;
     }
   });
   g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
-  return density_from_list(model, s, i, Coords::sorted);
+  if (count > cap) {
+    const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
+    return own + density_sum(model, s, i, listed(s, i), Coords::sorted);
+  }
+  return density_over_list(model, s, i, [&](std::uint32_t q, std::uint32_t) { return clamp_at_zero(a.h2 - r2_at[q]); });
 }
 
 }  // namespace
@@ -156,7 +190,7 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
     if (s.role[i] == Role::boundary && !s.grid.keep_lists)
       s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving, Coords::sorted);
     else
-      s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i, Coords::moved);
+      s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
     pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs
     s.grid.pair_data[i] = {s.pos[i], s.vel[i], s.volume[i], s.pressure[i], s.mu[i], s.Ka[i]};
   }
