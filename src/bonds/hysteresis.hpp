@@ -40,10 +40,16 @@ inline void break_stretched(const Model& model, State& s, std::uint32_t i, Event
   }
 }
 
+// Whether particles i and j may bond at all (bonded already or not): pair::can_bond of their roles
+// and strengths.
+inline bool can_bond(const State& s, std::uint32_t i, std::uint32_t j) {
+  return pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j]);
+}
+
 // Whether moving particle i may bond to j, whose squared distance is r2: closer than A, and a
 // pair that may bond at all (bonded already or not).
 inline bool may_form(const Model& model, const State& s, std::uint32_t i, std::uint32_t j, real r2) {
-  return j != i && r2 < model.adhesion.A * model.adhesion.A && pair::can_bond(s.role[i], s.role[j], s.Ka[i], s.Ka[j]);
+  return j != i && r2 < model.adhesion.A * model.adhesion.A && can_bond(s, i, j);
 }
 
 // Bonds moving particle i to j, known not to be bonded yet (counts the overflow of a full list).

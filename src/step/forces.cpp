@@ -44,13 +44,12 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::
   return f;
 }
 
-// Bonds moving particle i to those of the n close pairs (j, r^2 < A^2) that may bond and are not
-// bonded yet, in the order given (as bonds::try_form of the all-pairs step one by one would): the
+// Bonds moving particle i to those of the n close pairs (j != i, r^2 < A^2, as the callers filter
+// them) that may bond and are not bonded yet, in the order given (as bonds::try_form of the all-pairs step one by one would): the
 // grid step's one way of forming bonds, from its lists and from its search of overflowed ones.
 // Which are bonded already is found in one pass over i's bond list per chunk, with loops of fixed
 // length: a search per pair that stops at its partner mispredicted about once per pair.
-void form_bonds(const Model& model, State& s, std::uint32_t i, const std::uint32_t* close, const real* close_r2,
-                std::uint32_t n, bonds::Events& ev) {
+void form_bonds(State& s, std::uint32_t i, const std::uint32_t* close, std::uint32_t n, bonds::Events& ev) {
   constexpr std::uint32_t chunk = GridIndex::kNeighbourStride;
   const std::uint32_t id = s.id[i];
   for (std::uint32_t c0 = 0; c0 < n; c0 += chunk) {
@@ -66,8 +65,7 @@ void form_bonds(const Model& model, State& s, std::uint32_t i, const std::uint32
       for (std::uint32_t c = 0; c < m; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
     }
     for (std::uint32_t c = 0; c < m; ++c)
-      if (!bonded[c] && bonds::may_form(model, s, i, close[c0 + c], close_r2[c0 + c]))
-        bonds::form(s, i, close[c0 + c], ev);
+      if (!bonded[c] && bonds::can_bond(s, i, close[c0 + c])) bonds::form(s, i, close[c0 + c], ev);
   }
 }
 
@@ -90,7 +88,6 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
     const std::uint32_t* list = (kept ? g.within : g.neighbours).data() + std::size_t(i) * GridIndex::kNeighbourStride;
     const std::uint32_t count = kept ? g.within_count[i] : g.neighbour_count[i];
     std::uint32_t close[GridIndex::kNeighbourStride];
-    real close_r2[GridIndex::kNeighbourStride];
     std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < count; ++q) {
       const std::uint32_t j = list[q];
@@ -98,10 +95,9 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       const real r2 = norm2(d);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
       close[n_close] = j;
-      close_r2[n_close] = r2;
       n_close += r2 < A2 ? 1 : 0;
     }
-    form_bonds(model, s, i, close, close_r2, n_close, ev);
+    form_bonds(s, i, close, n_close, ev);
     return f;
   }
   // Otherwise search the grid (over the positions themselves: the coordinate arrays are as old as
@@ -110,7 +106,6 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   NeighbourBuffer nb;
   auto flush = [&] {
     std::uint32_t close[NeighbourBuffer::capacity];
-    real close_r2[NeighbourBuffer::capacity];
     std::uint32_t n_close = 0;
     for (std::uint32_t q = 0; q < nb.n; ++q) {
       const std::uint32_t j = nb.j[q];
@@ -118,10 +113,9 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       const Vec3 d = si.pos - sides.pos(j);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(nb.r2[q]), k);
       close[n_close] = j;
-      close_r2[n_close] = nb.r2[q];
       n_close += nb.r2[q] < A2 ? 1 : 0;
     }
-    form_bonds(model, s, i, close, close_r2, n_close, ev);
+    form_bonds(s, i, close, n_close, ev);
     nb.n = 0;
   };
   grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {

@@ -9,8 +9,9 @@
 namespace dentsph::stages {
 
 bool lists_need_rebuild(const Model& model, const State& s, int threads) {
+  // keep_lists: the state was made with a skin (State::keep_lists is model.neighbour_skin > 0).
   const real skin = model.neighbour_skin;
-  if (skin <= 0 || !s.grid.keep_lists || !s.grid.lists_valid) return true;
+  if (!s.grid.keep_lists || !s.grid.lists_valid) return true;
   const real limit2 = 0.25 * skin * skin;
   const std::int64_t n = s.size();
   const Vec3* pos = s.pos.data();
