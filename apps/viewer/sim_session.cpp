@@ -35,7 +35,7 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
     ap.spacing = s;
     assessor_.emplace(*scene_.tooth, ap);
   }
-  if (opt_.dispense_volume <= 0) opt_.dispense_volume = default_increment_volume(scene_);
+  opt_.dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   paused_ = opt_.start_paused;
   reset_state(state_);
   publish(state_, true, 0);

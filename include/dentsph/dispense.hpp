@@ -24,6 +24,10 @@ IncrementPaste scene_paste(const Scene& scene);
 real increment_spacing(const Scene& scene);
 // The default increment's volume (m^3): a sixth of the cavity, or 200 particles without a tooth.
 real default_increment_volume(const Scene& scene);
+// The increment volume a session asks for (m^3), or the default one when it asks for 0 (or less):
+// the one reading of "0 means the scene's default" for the runtime, its recording, replay and the
+// viewer.
+real increment_volume_or_default(const Scene& scene, real requested);
 // The direction increments drop along: the tooth's axis (its frame's z), or +z without a tooth.
 Vec3 increment_axis(const Scene& scene);
 

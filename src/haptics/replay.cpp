@@ -15,7 +15,7 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
   std::vector<Vec3> forces;
   forces.reserve(r.steps.size());
   std::size_t next_event = 0;
-  const real volume = r.dispense_volume > 0 ? real(r.dispense_volume) : default_increment_volume(scene);
+  const real volume = increment_volume_or_default(scene, r.dispense_volume);
   for (const StepSample& s : r.steps) {
     if (s.step != state.steps)
       throw std::runtime_error(fmt::format("recording: step {} follows step {}: the steps must be consecutive from 0",

@@ -34,6 +34,10 @@ real default_increment_volume(const Scene& scene) {
   return scene.tooth ? scene.tooth->cavity_volume() / 6 : 200 * s * s * s;
 }
 
+real increment_volume_or_default(const Scene& scene, real requested) {
+  return requested > 0 ? requested : default_increment_volume(scene);
+}
+
 Vec3 increment_axis(const Scene& scene) { return scene.tooth ? scene.tooth->frame().z : Vec3{0, 0, 1}; }
 
 std::size_t dispense_increment(const Scene& scene, State& state, real volume, const Vec3& up,
