@@ -96,7 +96,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       }
       state_.tool_pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
     }
-    if (opt_.between_steps) opt_.between_steps(scene_, state_);
+    if (opt_.between_steps) opt_.between_steps(scene_, state_, events);
     StepSample sample;
     sample.step = state_.steps;
     sample.wall_t = double(now - t0_ns) * 1e-9;
