@@ -70,19 +70,17 @@ ToothSpec DentalOptions::tooth() const {
   for (std::size_t i = 0; i < cavity_fields().size(); ++i) {
     const CavityField& f = cavity_fields()[i];
     if (!given(f.option)) continue;
-    if (f.class_2_only && !class_2)
+    const CavityValueCheck set = set_cavity_value(spec.cavity, f, values_[i]);
+    if (set.outcome == CavityValueCheck::Outcome::needs_class_2)
       throw std::invalid_argument(
           fmt::format("{} {}: a Class I cavity has no proximal box; add --cavity class2", f.option, values_[i]));
-    if (const std::string problem = check_cavity_field(f, values_[i]); !problem.empty())
-      throw std::invalid_argument(fmt::format("{} {}: {}; give {}", f.option, values_[i], problem, f.hint));
-    spec.cavity.*f.member = values_[i] * f.scale;
+    if (set.outcome == CavityValueCheck::Outcome::refused)
+      throw std::invalid_argument(fmt::format("{} {}: {}; {}", f.option, values_[i], set.problem, set.fix));
   }
+  // The axes are checked where the tooth is prepared (prepare_tooth); with_cavity_options names
+  // the options in its refusal.
   if (!long_axis_.empty()) spec.long_axis = direction(long_axis_);
   if (!mesial_.empty()) spec.mesial = direction(mesial_);
-  for (const auto& [name, v] : {std::pair{"--long-axis", spec.long_axis}, std::pair{"--mesial", spec.mesial}})
-    if (v && (!is_finite(*v) || norm(*v) == 0))
-      throw std::invalid_argument(
-          fmt::format("{} {} {} {}: not a direction; give three numbers, not all zero, e.g. 0 0 1", name, v->x, v->y, v->z));
   return spec;
 }
 

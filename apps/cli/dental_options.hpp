@@ -22,7 +22,9 @@ class DentalOptions {
 
   // The tooth the options describe. Throws std::invalid_argument naming the option and the fix
   // for an impossible value (a negative width, a taper of 40 degrees, a proximal box's option
-  // without --cavity class2, a zero axis).
+  // without --cavity class2). The axes are checked when the tooth is prepared: a zero or
+  // non-finite axis, or a mesial direction along the long axis, is refused by the scenes below,
+  // the library's reason after the options' names.
   ToothSpec tooth() const;
   const std::string& procedure() const { return procedure_; }
 

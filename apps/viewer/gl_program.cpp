@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -13,10 +14,14 @@ namespace dentsph::viewer {
 
 namespace {
 
-// The info log of a shader or a program, read by its pair of queries (glGetShaderiv and
-// glGetShaderInfoLog, or glGetProgramiv and glGetProgramInfoLog), whole.
+// Nothing when the `status` query (GL_COMPILE_STATUS, GL_LINK_STATUS) of a shader or a program
+// says it succeeded, else its info log, whole; read by its pair of queries (glGetShaderiv and
+// glGetShaderInfoLog, or glGetProgramiv and glGetProgramInfoLog).
 template <class GetIv, class GetLog>
-std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
+std::optional<std::string> failure_log(GLuint id, GLenum status, GetIv get_iv, GetLog get_log) {
+  GLint ok = 0;
+  get_iv(id, status, &ok);
+  if (ok) return std::nullopt;
   GLint length = 0;
   get_iv(id, GL_INFO_LOG_LENGTH, &length);
   std::string log(std::size_t(std::max(length, 1)), '\0');
@@ -29,13 +34,10 @@ GLuint compile(const char* name, GLenum type, const char* src) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &src, nullptr);
   glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    const std::string log = info_log(s, glGetShaderiv, glGetShaderInfoLog);
+  if (const auto log = failure_log(s, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog)) {
     glDeleteShader(s);
     throw std::runtime_error(fmt::format("{} {} shader does not compile: {}", name,
-                                         type == GL_VERTEX_SHADER ? "vertex" : "fragment", log));
+                                         type == GL_VERTEX_SHADER ? "vertex" : "fragment", *log));
   }
   return s;
 }
@@ -51,12 +53,9 @@ GlProgram::GlProgram(const char* name, const char* vertex_src, const char* fragm
   glLinkProgram(id_);
   glDeleteShader(vs);
   glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
+  if (const auto log = failure_log(id_, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog)) {
     glDeleteProgram(id_);
-    throw std::runtime_error(fmt::format("{} shader program does not link: {}", name, log));
+    throw std::runtime_error(fmt::format("{} shader program does not link: {}", name, *log));
   }
 }
 

@@ -23,19 +23,18 @@ using clock_type = std::chrono::steady_clock;
 
 SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(scene)), opt_(options) {
   force_scale_ = scene_.force_scale;
-  const ParticleInit* tool = first_particle(scene_, Role::tool);
   const real s = increment_spacing(scene_);
   const IncrementPaste paste = scene_paste(scene_);
   paste_ = paste.material;
   paste_mass_ = paste.mass;
-  tool_material_ = tool ? tool->material : Material{1.0, 15, 2000, 0};
+  tool_material_ = scene_tool_material(scene_);
   press_axis_ = increment_axis(scene_);
   if (scene_.tooth) {
     AssessParams ap;
     ap.spacing = s;
     assessor_.emplace(*scene_.tooth, ap);
   }
-  if (opt_.dispense_volume <= 0) opt_.dispense_volume = default_increment_volume(scene_);
+  opt_.dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   paused_ = opt_.start_paused;
   reset_state(state_);
   publish(state_, true, 0);
@@ -64,12 +63,14 @@ void SimSession::apply_paste(State& st) {
   sound_speed_ = stability_limits(scene_.model, st).sound_speed;
 }
 
-std::vector<std::string> SimSession::tools() const { return {"ball_burnisher", "flat_plugger", "condenser"}; }
+std::vector<std::string> SimSession::tools() const { return instrument_names(); }
 
 void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions options) {
   if (running_.load()) throw std::logic_error("SimSession::use_device after start()");
   device_ = std::move(device);
   rt_options_ = std::move(options);
+  // One increment for the D key and the device's button, the one the recording replays.
+  rt_options_.dispense_volume = opt_.dispense_volume;
   force_scale_ = rt_options_.force_scale.value_or(scene_.force_scale);
 }
 
@@ -121,7 +122,7 @@ Vec3 SimSession::tool_tip_goal() const {
   return pressed_ ? target_ - press_axis_ * (opt_.press_depth_spacings * s) : target_;
 }
 
-void SimSession::apply(const Command& c, State& st) {
+void SimSession::apply(const Command& c, State& st, std::vector<EventSample>* recorded) {
   message_.clear();
   switch (c.kind) {
     case Command::Kind::pause:
@@ -146,18 +147,19 @@ void SimSession::apply(const Command& c, State& st) {
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
     case Command::Kind::dispense:
+      if (recorded) recorded->push_back({st.steps, kButtonIncrement});
       dispense_increment(scene_, st, opt_.dispense_volume, press_axis_, {paste_mass_, paste_});
       return;
-    case Command::Kind::switch_tool: {
-      const real s = increment_spacing(scene_);
+    case Command::Kind::switch_tool:
       try {
-        switch_tool(st, scene_.model, tool_by_name(c.tool, s), paste_mass_, tool_material_);
+        const EventSample event = tool_switch_event(st.steps, c.tool);  // refuses an unknown tool first
+        switch_instrument(scene_, st, c.tool);
+        if (recorded) recorded->push_back(event);
         tool_name_ = c.tool;
       } catch (const std::exception& e) {
         message_ = e.what();
       }
       return;
-    }
     case Command::Kind::set_material: {
       const MaterialEdit& m = c.material;
       if (!(m.Kp > 0) || !(m.mu >= 0) || !(m.Ka >= 0)) {
@@ -337,9 +339,9 @@ void SimSession::run() {
   publish(state_, true, rate);
 }
 
-void SimSession::between_steps(State& st) {
+void SimSession::between_steps(State& st, std::vector<EventSample>& recorded) {
   take_due(st);
-  for (const Command& c : due_) apply(c, st);
+  for (const Command& c : due_) apply(c, st, &recorded);
   // The runtime's step that follows adds its force; the assessment reads the forces so far.
   forces_.add(st.tool_wrench.force, scene_.model.dt);
   steps_.store(st.steps, std::memory_order_release);
@@ -365,7 +367,7 @@ void SimSession::run_device() {
   o.stop = &rt_stop_;
   o.live = &live_;
   o.snapshot_rate_hz = 0;  // the viewer publishes its own snapshots from between_steps
-  o.between_steps = [this](const Scene&, State& st) { between_steps(st); };
+  o.between_steps = [this](const Scene&, State& st, std::vector<EventSample>& recorded) { between_steps(st, recorded); };
   live_t0_ = rate_t0_ = last_publish_ = last_assess_ = clock_type::now();
   try {
     realtime_result_ = run_realtime(scene_, *device_, o);

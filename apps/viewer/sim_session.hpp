@@ -118,10 +118,13 @@ class SimSession {
  private:
   void run();
   void run_device();
-  void between_steps(State& st);  // the runtime's hook (device mode)
+  // The runtime's hook (device mode): applies the commands due, recording the dispenses and tool
+  // switches for the replay.
+  void between_steps(State& st, std::vector<EventSample>& recorded);
   // Moves the commands due at `st.steps` off the queues into due_ (under the lock).
   void take_due(const State& st);
-  void apply(const Command& c, State& st);
+  // Applies `c` to `st`; with `recorded` (device mode), appends what a replay must repeat.
+  void apply(const Command& c, State& st, std::vector<EventSample>* recorded = nullptr);
   void publish(const State& st, bool with_assessment, double steps_per_second);
   void reset_state(State& st);
   void apply_paste(State& st);  // paste_ onto every material particle

@@ -47,24 +47,7 @@ Scene dental_scene_from_mesh(const std::filesystem::path& mesh_file, const Denta
 
 // ---- the tooth and its cavity as a user chooses them (the command line, dental scene files) -----
 
-// Which tooth, how it is oriented and which cavity is carved into it.
-struct ToothSpec {
-  std::filesystem::path mesh;     // STL, OBJ or PLY in mm; empty: the built-in crown
-  CavityParams cavity;            // the preparation; default: the built-in Class I
-  std::optional<Vec3> long_axis;  // towards the crown, in the mesh's coordinates; none: found
-                                  // from the mesh (the built-in crown: its own, +z)
-  std::optional<Vec3> mesial;     // towards mesial (the Class II side "mesial"), made orthogonal
-                                  // to the axis; none: the found frame's mesio-distal axis
-};
-
-// "the built-in crown" or the mesh file's name.
-std::string tooth_name(const ToothSpec& spec);
-
-// The tooth of `spec` loaded (or built), its frame found or made from the given axes, the cavity
-// carved and lined at default_tooth_spacing (a Class II with its matrix band). Throws MeshError,
-// CavityError (its reason after the tooth's name) and std::invalid_argument (an axis that is
-// zero or not finite, a mesial direction along the long axis).
-ToothScene prepare_tooth(const ToothSpec& spec);
+// ToothSpec (which tooth, its axes, its cavity) and prepare_tooth() are in dentsph/tooth.hpp.
 
 // One number of CavityParams as a dental scene file ("cavity": {key: ...}) and the command line
 // (option) name it, in the unit people use (mm or degrees). The one table both read.
@@ -81,8 +64,21 @@ struct CavityField {
   const char* hint;             // what it is and a typical value, for the fix of a message
 };
 const std::vector<CavityField>& cavity_fields();
-// Empty when `value` (in the field's unit) is accepted, else what is wrong ("must be > 0 mm").
-std::string check_cavity_field(const CavityField& field, real value);
+// A cavity number given by a user (a scene file's field, a command-line option), checked and
+// set by set_cavity_value: the one validation both read.
+struct CavityValueCheck {
+  enum class Outcome {
+    set,            // accepted and set
+    needs_class_2,  // a proximal box's number on a Class I cavity: the fix (choose class2) is the
+                    // caller's to word, in its own syntax
+    refused,        // not accepted: `problem` ("must be > 0 mm, got -1") and `fix` ("give ...")
+  };
+  Outcome outcome = Outcome::set;
+  std::string problem, fix;
+};
+// Sets `field` of `params` to `value` (in the field's unit) unless it is refused; a proximal box's
+// number needs params.kind class_2 already chosen.
+CavityValueCheck set_cavity_value(CavityParams& params, const CavityField& field, real value);
 
 // Names as the command line and scene files write them: "class1", "class2"; "mesial", "distal".
 const char* cavity_class_name(CavityClass kind);

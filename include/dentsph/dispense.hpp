@@ -1,8 +1,11 @@
-// Increments of filling material dropped into the cavity on request (the dental procedure's
-// "dispense"): the viewer's D key and the haptic device's button 1 both place one here.
+// What a user asks for between steps: increments of filling material dropped into the cavity
+// (the dental procedure's "dispense": the viewer's D key and the haptic device's button 1 both
+// place one here) and a switch of instrument (the viewer's tool menu), each as a recorded
+// session's replay repeats it.
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "dentsph/scene.hpp"
 #include "dentsph/state.hpp"
@@ -20,10 +23,22 @@ struct IncrementPaste {
 };
 IncrementPaste scene_paste(const Scene& scene);
 
+// The material of the scene's tool particles: its first tool particle's, or a default wall.
+Material scene_tool_material(const Scene& scene);
+
+// Replaces the tool by the instrument `name` (tool_by_name at the increment spacing, with the
+// paste's particle mass and the scene's tool material), at the tool's applied pose. Throws
+// std::invalid_argument for an unknown name.
+void switch_instrument(const Scene& scene, State& state, const std::string& name);
+
 // The lattice spacing of an increment: the scene's material spacing, or half the kernel radius.
 real increment_spacing(const Scene& scene);
 // The default increment's volume (m^3): a sixth of the cavity, or 200 particles without a tooth.
 real default_increment_volume(const Scene& scene);
+// The increment volume a session asks for (m^3), or the default one when it asks for 0 (or less):
+// the one reading of "0 means the scene's default" for the runtime, its recording, replay and the
+// viewer.
+real increment_volume_or_default(const Scene& scene, real requested);
 // The direction increments drop along: the tooth's axis (its frame's z), or +z without a tooth.
 Vec3 increment_axis(const Scene& scene);
 

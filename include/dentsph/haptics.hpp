@@ -100,8 +100,11 @@ struct RealtimeOptions {
   HapticLive* live = nullptr;
   // Called on the simulation thread before every step, after the procedure's events, never on the
   // haptic thread: a viewer applies its edits (dispense, switch tool, paste parameters) and takes
-  // its snapshots here. It may add or remove particles; it must not take long.
-  std::function<void(const Scene& scene, State& state)> between_steps;
+  // its snapshots here. It may add or remove particles; it must not take long. It appends to
+  // `recorded` what a replay must repeat (RealtimeResult::recording's events, at state.steps): an
+  // increment dispensed (kButtonIncrement, dispense_increment of the session's dispense_volume),
+  // a tool switched (tool_switch_event).
+  std::function<void(const Scene& scene, State& state, std::vector<EventSample>& recorded)> between_steps;
 };
 
 // Rate and period jitter of a loop.

@@ -25,6 +25,9 @@ ToolShape flat_plugger(real diameter, real length, real spacing);
 // A condenser: a plugger whose face is serrated (alternate rows of the face set back by a third
 // of a spacing) to grip the paste.
 ToolShape condenser(real diameter, real length, real spacing);
+// The names tool_by_name knows, in a fixed order (a recording names a switched tool by its
+// position here: new instruments go at the end).
+const std::vector<std::string>& instrument_names();
 // A tool by name ("ball_burnisher", "flat_plugger", "condenser") with its default size for a
 // material spacing; throws std::invalid_argument naming the known tools otherwise.
 ToolShape tool_by_name(const std::string& name, real spacing);

@@ -285,20 +285,41 @@ MolarCrown molar_crown(const MolarCrownParams& params = {});
 // cavity, about 1400 boundary particles line it).
 inline constexpr real default_tooth_spacing = 0.3e-3;  // m
 
-// The built-in scene's geometry, needing no file: molar_crown() with the default Class I
-// cavity, lined at default_tooth_spacing.
+// A prepared tooth and the boundary particles that line it.
 struct ToothScene {
   PreparedTooth tooth;
   BoundarySamples boundary;
 };
+// The built-in scene's geometry, needing no file: molar_crown() with the default Class I
+// cavity, lined at default_tooth_spacing (prepare_tooth() of the default ToothSpec).
 ToothScene default_tooth_scene();
 
 // A carved tooth lined at `spacing` (sample_boundary() with two layers; a Class II with its
 // matrix_band() too).
 ToothScene line_tooth(PreparedTooth tooth, real spacing = default_tooth_spacing);
 
-// A scanned tooth's scene: the mesh (mm) loaded, checked and repaired, its frame found, the
-// cavity carved and lined at default_tooth_spacing (a Class II with its matrix band). Throws
+// Which tooth, how it is oriented and which cavity is carved into it (the command line's and
+// dental scene files' choice, include/dentsph/dental.hpp).
+struct ToothSpec {
+  std::filesystem::path mesh;     // STL, OBJ or PLY in mm; empty: the built-in crown
+  CavityParams cavity;            // the preparation; default: the built-in Class I
+  std::optional<Vec3> long_axis;  // towards the crown, in the mesh's coordinates; none: found
+                                  // from the mesh (the built-in crown: its own, +z)
+  std::optional<Vec3> mesial;     // towards mesial (the Class II side "mesial"), made orthogonal
+                                  // to the axis; none: the found frame's mesio-distal axis
+};
+
+// "the built-in crown" or the mesh file's name.
+std::string tooth_name(const ToothSpec& spec);
+
+// The tooth of `spec` loaded (or built), its frame found or made from the given axes, the cavity
+// carved and lined at default_tooth_spacing (a Class II with its matrix band): the one path every
+// lined tooth takes. Throws MeshError, CavityError (its reason after the tooth's name) and
+// std::invalid_argument (an axis that is zero or not finite, a mesial direction along the long
+// axis).
+ToothScene prepare_tooth(const ToothSpec& spec);
+
+// A scanned tooth's scene: prepare_tooth() of the mesh (mm) with its frame found. Throws
 // MeshError or CavityError with the reason.
 ToothScene tooth_scene_from_mesh(const std::filesystem::path& mesh_file, const CavityParams& cavity = {});
 

@@ -1,21 +1,34 @@
 // Deterministic replay: the recorded tool pose of every step, keyed by step, not wall time.
+#include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/recording.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
+#include "dentsph/tools.hpp"
 
 namespace dentsph {
+
+EventSample tool_switch_event(std::uint64_t step, const std::string& name) {
+  const std::vector<std::string>& names = instrument_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw std::invalid_argument(fmt::format("unknown tool \"{}\"; known: {}", name, fmt::join(names, ", ")));
+  return {step, kToolSwitch + std::uint32_t(it - names.begin())};
+}
 
 std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads) {
   State state = make_state(scene);
   std::vector<Vec3> forces;
   forces.reserve(r.steps.size());
   std::size_t next_event = 0;
-  const real volume = r.dispense_volume > 0 ? real(r.dispense_volume) : default_increment_volume(scene);
+  const real volume = increment_volume_or_default(scene, r.dispense_volume);
   for (const StepSample& s : r.steps) {
     if (s.step != state.steps)
       throw std::runtime_error(fmt::format("recording: step {} follows step {}: the steps must be consecutive from 0",
@@ -24,6 +37,14 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
       const std::uint32_t i = r.events[next_event].index;
       if (i == kButtonIncrement) {
         dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+        continue;
+      }
+      if (i >= kToolSwitch) {
+        const std::vector<std::string>& names = instrument_names();
+        if (i - kToolSwitch >= names.size())
+          throw std::runtime_error(fmt::format("recording: event {} switches to instrument {}, but there are {}: "
+                                               "replay with the version that recorded it", i, i - kToolSwitch, names.size()));
+        switch_instrument(scene, state, names[i - kToolSwitch]);
         continue;
       }
       if (i >= scene.events.size())

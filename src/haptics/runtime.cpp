@@ -123,7 +123,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.mode = force_mode_name(opt.mode);
   res.recording.haptic_rate_hz = opt.haptic_rate_hz;
   res.recording.force_scale = force_scale;
-  res.recording.dispense_volume = opt.dispense_volume > 0 ? opt.dispense_volume : double(default_increment_volume(scene));
+  res.recording.dispense_volume = increment_volume_or_default(scene, opt.dispense_volume);
   res.recording.haptic_dropped = haptic.recording_dropped();
   res.recording.haptic = haptic.take_recording();
   res.recording.steps = std::move(sim.steps);

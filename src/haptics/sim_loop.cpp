@@ -44,7 +44,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   VirtualCoupling proxy(opt_.coupling);
   bool proxy_started = false;
   bool dispense_down = false;
-  const real dispense_volume = opt_.dispense_volume > 0 ? real(opt_.dispense_volume) : default_increment_volume(scene_);
+  const real dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   const IncrementPaste paste = scene_paste(scene_);
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     std::int64_t now = now_ns();
@@ -96,7 +96,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       }
       state_.tool_pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
     }
-    if (opt_.between_steps) opt_.between_steps(scene_, state_);
+    if (opt_.between_steps) opt_.between_steps(scene_, state_, events);
     StepSample sample;
     sample.step = state_.steps;
     sample.wall_t = double(now - t0_ns) * 1e-9;

@@ -58,12 +58,10 @@ CavityParams read_cavity(const Reader& c) {
   }
   for (const CavityField& f : cavity_fields()) {
     if (!c.has(f.key)) continue;
-    if (f.class_2_only && !class_2)
+    const CavityValueCheck set = set_cavity_value(p, f, c.number(f.key, f.hint));
+    if (set.outcome == CavityValueCheck::Outcome::needs_class_2)
       c.fail(f.key, "is a proximal box's parameter, but the cavity is class1", "add \"class\": \"class2\" or leave it out");
-    const real v = c.number(f.key, f.hint);
-    if (const std::string problem = check_cavity_field(f, v); !problem.empty())
-      c.fail(f.key, problem, fmt::format("give {}", f.hint));
-    p.*f.member = v * f.scale;
+    if (set.outcome == CavityValueCheck::Outcome::refused) c.fail(f.key, set.problem, set.fix);
   }
   return p;
 }

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "physics/kernels.hpp"
 
 namespace dentsph {
@@ -50,12 +53,17 @@ ToolShape condenser(real diameter, real length, real spacing) {
   return cylinder("condenser", diameter, length, spacing, [&](int i) { return (i % 2 ? spacing / 3 : real(0)); });
 }
 
+const std::vector<std::string>& instrument_names() {
+  static const std::vector<std::string> names = {"ball_burnisher", "flat_plugger", "condenser"};
+  return names;
+}
+
 ToolShape tool_by_name(const std::string& name, real spacing) {
   // Default sizes in spacings: the paper's 42-particle ball at 0.3 mm is 1.1 mm across.
   if (name == "ball_burnisher") return ball_burnisher(3.65 * spacing, spacing);
   if (name == "flat_plugger") return flat_plugger(5 * spacing, 3 * spacing, spacing);
   if (name == "condenser") return condenser(3 * spacing, 3 * spacing, spacing);
-  throw std::invalid_argument("unknown tool \"" + name + "\"; known: ball_burnisher, flat_plugger, condenser");
+  throw std::invalid_argument(fmt::format("unknown tool \"{}\"; known: {}", name, fmt::join(instrument_names(), ", ")));
 }
 
 std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material) {

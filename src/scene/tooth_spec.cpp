@@ -1,7 +1,7 @@
-// A tooth and its cavity as a user chooses them (include/dentsph/dental.hpp, ToothSpec): the
-// mesh or the built-in crown, the frame found or given, the cavity carved and lined; the table of
-// cavity parameters that the command line and dental scene files share; the cavity's description
-// for people and for the run summary.
+// The cavity as a user chooses it (include/dentsph/dental.hpp): the table of cavity parameters
+// that the command line and dental scene files share, the names of classes and sides, the
+// cavity's description for people and for the run summary. The tooth itself is prepared by
+// prepare_tooth() (src/tooth/default_scene.cpp).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -19,56 +19,7 @@ namespace {
 constexpr real mm = 1e-3;
 constexpr real no_max = std::numeric_limits<real>::infinity();
 
-Vec3 checked_direction(const Vec3& v, const char* what) {
-  if (!is_finite(v) || norm(v) == 0)
-    throw std::invalid_argument(fmt::format("{} ({}, {}, {}) must be a finite, non-zero direction", what, v.x, v.y,
-                                            v.z));
-  return v / norm(v);
-}
-
-// The frame `found` turned to the given long axis and mesial direction (either may be absent).
-ToothFrame given_frame(const ToothFrame& found, const ToothSpec& spec) {
-  if (!spec.long_axis && !spec.mesial) return found;
-  const Vec3 z = spec.long_axis ? checked_direction(*spec.long_axis, "the long axis") : found.z;
-  Vec3 hint = spec.mesial ? checked_direction(*spec.mesial, "the mesial direction") : found.x;
-  const real off_axis = norm(hint - z * dot(hint, z));
-  if (off_axis < std::sin(10.0 * M_PI / 180)) {
-    if (spec.mesial)
-      throw std::invalid_argument(fmt::format(
-          "the mesial direction ({}, {}, {}) lies within 10 degrees of the long axis; give a direction across "
-          "the tooth, towards its mesial surface",
-          spec.mesial->x, spec.mesial->y, spec.mesial->z));
-    hint = found.y;  // the found mesio-distal axis lies along the given long axis: take the other one
-  }
-  return make_tooth_frame(found.origin, z, hint);
-}
-
 }  // namespace
-
-std::string tooth_name(const ToothSpec& spec) {
-  return spec.mesh.empty() ? std::string("the built-in crown") : spec.mesh.string();
-}
-
-ToothScene prepare_tooth(const ToothSpec& spec) {
-  TriMesh mesh;
-  ToothFrame found;
-  if (spec.mesh.empty()) {
-    MolarCrown crown = molar_crown();
-    mesh = std::move(crown.mesh);
-    found = crown.frame;
-  } else {
-    mesh = load_mesh(spec.mesh).mesh;
-    found = find_tooth_frame(mesh);
-  }
-  const ToothFrame frame = given_frame(found, spec);
-  std::optional<PreparedTooth> carved;
-  try {
-    carved = carve_cavity(MeshDistance(std::move(mesh)), frame, spec.cavity);
-  } catch (const CavityError& e) {
-    throw CavityError(fmt::format("{}: {}", tooth_name(spec), e.what()));  // which tooth
-  }
-  return line_tooth(std::move(*carved));
-}
 
 const std::vector<CavityField>& cavity_fields() {
   static const std::vector<CavityField> fields = {
@@ -92,7 +43,10 @@ const std::vector<CavityField>& cavity_fields() {
   return fields;
 }
 
-std::string check_cavity_field(const CavityField& f, real v) {
+namespace {
+
+// Empty when `v` (in the field's unit) is within the field's range, else what is wrong.
+std::string out_of_range(const CavityField& f, real v) {
   if (!std::isfinite(v)) return fmt::format("must be a finite number of {}", f.unit);
   const bool low = f.min_inclusive ? v < f.min : v <= f.min;
   if (low || v >= f.max) {
@@ -100,6 +54,16 @@ std::string check_cavity_field(const CavityField& f, real v) {
     return std::isfinite(f.max) ? fmt::format("must be {} and < {} {}, got {}", lower, f.max, f.unit, v)
                                 : fmt::format("must be {}, got {}", lower, v);
   }
+  return {};
+}
+
+}  // namespace
+
+CavityValueCheck set_cavity_value(CavityParams& params, const CavityField& f, real v) {
+  if (f.class_2_only && params.kind != CavityClass::class_2) return {CavityValueCheck::Outcome::needs_class_2, {}, {}};
+  if (std::string problem = out_of_range(f, v); !problem.empty())
+    return {CavityValueCheck::Outcome::refused, std::move(problem), fmt::format("give {}", f.hint)};
+  params.*f.member = v * f.scale;
   return {};
 }
 

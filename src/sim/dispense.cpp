@@ -29,9 +29,23 @@ IncrementPaste scene_paste(const Scene& scene) {
   return {lattice_particle_mass(m.rho0, increment_spacing(scene), scene.model.kernel), m};
 }
 
+Material scene_tool_material(const Scene& scene) {
+  const ParticleInit* tool = first_particle(scene, Role::tool);
+  return tool ? tool->material : Material{1.0, 15, 2000, 0};
+}
+
+void switch_instrument(const Scene& scene, State& state, const std::string& name) {
+  switch_tool(state, scene.model, tool_by_name(name, increment_spacing(scene)), scene_paste(scene).mass,
+              scene_tool_material(scene));
+}
+
 real default_increment_volume(const Scene& scene) {
   const real s = increment_spacing(scene);
   return scene.tooth ? scene.tooth->cavity_volume() / 6 : 200 * s * s * s;
+}
+
+real increment_volume_or_default(const Scene& scene, real requested) {
+  return requested > 0 ? requested : default_increment_volume(scene);
 }
 
 Vec3 increment_axis(const Scene& scene) { return scene.tooth ? scene.tooth->frame().z : Vec3{0, 0, 1}; }

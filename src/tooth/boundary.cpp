@@ -19,9 +19,9 @@
 #include <functional>
 #include <cmath>
 #include <tuple>
-#include <unordered_map>
 
 #include "dentsph/tooth.hpp"
+#include "tooth/disk_set.hpp"
 #include "tooth/geometry.hpp"
 
 namespace dentsph {
@@ -40,46 +40,6 @@ constexpr real hole = 0.7;
 constexpr real closing_depth = 0.75;
 constexpr int newton_steps = 6;
 constexpr real on_surface = 1e-6;  // projection tolerance, in spacings
-
-struct CellKey {
-  std::int64_t i, j, k;
-  bool operator==(const CellKey&) const = default;
-};
-struct CellHash {
-  std::size_t operator()(const CellKey& c) const {
-    // Unsigned: the products wrap instead of overflowing.
-    return std::size_t(std::uint64_t(c.i) * 73856093u ^ std::uint64_t(c.j) * 19349663u ^
-                       std::uint64_t(c.k) * 83492791u);
-  }
-};
-
-// Accepts points that keep `radius` from every accepted one (hash grid of cell `radius`).
-class DiskSet {
- public:
-  explicit DiskSet(real radius) : r_(radius) {}
-  bool try_add(const Vec3& p) {
-    const CellKey c = key(p);
-    for (std::int64_t di = -1; di <= 1; ++di)
-      for (std::int64_t dj = -1; dj <= 1; ++dj)
-        for (std::int64_t dk = -1; dk <= 1; ++dk) {
-          auto it = cells_.find({c.i + di, c.j + dj, c.k + dk});
-          if (it == cells_.end()) continue;
-          for (const Vec3& q : it->second)
-            if (norm2(p - q) < r_ * r_) return false;
-        }
-    cells_[c].push_back(p);
-    return true;
-  }
-  void add(const Vec3& p) { cells_[key(p)].push_back(p); }
-
- private:
-  CellKey key(const Vec3& p) const {
-    return {std::int64_t(std::floor(p.x / r_)), std::int64_t(std::floor(p.y / r_)),
-            std::int64_t(std::floor(p.z / r_))};
-  }
-  real r_;
-  std::unordered_map<CellKey, std::vector<Vec3>, CellHash> cells_;
-};
 
 // The layers' source: a 1-Lipschitz signed distance whose level sets k * step (k = 0 .. layers
 // - 1) are the layers, and a 1-Lipschitz region distance: layer k keeps the points where it is

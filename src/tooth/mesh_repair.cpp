@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "dentsph/tooth.hpp"
+#include "tooth/disk_set.hpp"
 #include "tooth/geometry.hpp"
 
 namespace dentsph {
@@ -47,24 +48,12 @@ struct DisjointSets {
 
 // Maps every vertex to the first vertex within `tol` (hash grid of cell `tol`, 27 cells).
 std::vector<std::uint32_t> merge_vertices(const std::vector<Vec3>& v, real tol) {
-  struct Key {
-    std::int64_t i, j, k;
-    bool operator==(const Key&) const = default;
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      // Unsigned: the products wrap instead of overflowing.
-      return std::size_t(std::uint64_t(k.i) * 73856093u ^ std::uint64_t(k.j) * 19349663u ^
-                         std::uint64_t(k.k) * 83492791u);
-    }
-  };
-  std::unordered_map<Key, std::vector<std::uint32_t>, Hash> cells;
+  std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> cells;
   cells.reserve(v.size());
   std::vector<std::uint32_t> rep(v.size());
   const real tol2 = tol * tol;
   for (std::uint32_t a = 0; a < v.size(); ++a) {
-    const Key key{std::int64_t(std::floor(v[a].x / tol)), std::int64_t(std::floor(v[a].y / tol)),
-                  std::int64_t(std::floor(v[a].z / tol))};
+    const CellKey key = cell_of(v[a], tol);
     rep[a] = a;
     for (std::int64_t di = -1; di <= 1 && rep[a] == a; ++di)
       for (std::int64_t dj = -1; dj <= 1 && rep[a] == a; ++dj)

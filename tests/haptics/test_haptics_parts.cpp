@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
 #include <thread>
 
 #include "dentsph/haptics.hpp"
@@ -409,6 +410,10 @@ TEST(Recording, SavesAndLoadsExactly) {
     r.steps.push_back(s);
   }
   r.events.push_back({3, 1});
+  r.events.push_back({3, kButtonIncrement});
+  r.events.push_back(tool_switch_event(4, "condenser"));
+  EXPECT_EQ(r.events.back().index, kToolSwitch + 2);
+  EXPECT_THROW(tool_switch_event(4, "drill"), std::invalid_argument);
   r.haptic_rate_hz = 1000.0 / 3;
   r.force_scale = 1.5e4;
   r.haptic_dropped = 7;
@@ -423,7 +428,7 @@ TEST(Recording, SavesAndLoadsExactly) {
   EXPECT_EQ(q.dispense_volume, r.dispense_volume);
   ASSERT_EQ(q.haptic.size(), 5u);
   ASSERT_EQ(q.steps.size(), 5u);
-  ASSERT_EQ(q.events.size(), 1u);
+  ASSERT_EQ(q.events.size(), 3u);
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(q.haptic[i].t, r.haptic[i].t);
     EXPECT_EQ(q.haptic[i].device_position, r.haptic[i].device_position);
@@ -434,6 +439,8 @@ TEST(Recording, SavesAndLoadsExactly) {
     EXPECT_EQ(q.steps[i].tool_force, r.steps[i].tool_force);
   }
   EXPECT_EQ(q.events[0].step, 3u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(q.events[k].index, r.events[k].index) << k;
+  EXPECT_EQ(q.events[2].step, 4u);
   // A broken file is named with its line.
   { std::ofstream(dir / "steps.csv") << "step,wall_t,x,y,z,qw,qx,qy,qz,fx,fy,fz\n1,2,3\n"; }
   try {

@@ -390,6 +390,16 @@ TEST(Dispense, IncrementDropsAboveTheHighestMaterial) {
   }
 }
 
+// A session's increment volume: the one it asks for, or the scene's default when it asks for 0.
+TEST(Dispense, VolumeZeroMeansTheScenesDefault) {
+  const Scene scene = press_scene();
+  const real d = default_increment_volume(scene);
+  ASSERT_GT(d, 0);
+  EXPECT_EQ(increment_volume_or_default(scene, 0), d);
+  EXPECT_EQ(increment_volume_or_default(scene, -1), d);
+  EXPECT_EQ(increment_volume_or_default(scene, 0.5 * d), 0.5 * d);
+}
+
 // A device held still, clear of the paste, whose button 1 is down during the given intervals
 // (seconds since the runtime's start); finished at `end_s`.
 class ButtonDevice final : public Device {

@@ -3,7 +3,9 @@
 // file, the field and the fix named.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -81,6 +83,35 @@ TEST(DentalSceneFile, MeshAndProcedurePathsAreRelativeToTheSceneFile) {
   EXPECT_NEAR(f.z.z, 1, 1e-12);   // the given axis
   EXPECT_NEAR(f.x.x, -1, 1e-12);  // the given mesial direction
   EXPECT_NEAR(sc.tooth->report().occlusal_point.z, 12 * mm, 1e-6);  // the block's top
+}
+
+// The one check of a cavity number that scene files and the command line share: the value set in
+// metres (or degrees), a proximal box's number refused on a Class I, an impossible value refused
+// with its fix, and nothing set when refused.
+TEST(DentalSceneFile, CavityValuesAreCheckedAndSetInOnePlace) {
+  auto field = [](std::string_view key) {
+    for (const CavityField& f : cavity_fields())
+      if (key == f.key) return f;
+    throw std::logic_error("no such cavity field");
+  };
+  CavityParams p;
+  EXPECT_EQ(set_cavity_value(p, field("width"), 2.5).outcome, CavityValueCheck::Outcome::set);
+  EXPECT_DOUBLE_EQ(p.width, 2.5 * mm);
+  EXPECT_EQ(set_cavity_value(p, field("taper_deg"), 0).outcome, CavityValueCheck::Outcome::set);
+  EXPECT_EQ(p.taper_deg, 0);
+  const real box = p.box_width;
+  EXPECT_EQ(set_cavity_value(p, field("box_width"), 2).outcome, CavityValueCheck::Outcome::needs_class_2);
+  EXPECT_EQ(p.box_width, box);
+  const CavityValueCheck bad = set_cavity_value(p, field("depth"), -1);
+  EXPECT_EQ(bad.outcome, CavityValueCheck::Outcome::refused);
+  EXPECT_NE(bad.problem.find("must be > 0 mm"), std::string::npos) << bad.problem;
+  EXPECT_NE(bad.fix.find("pulpal floor"), std::string::npos) << bad.fix;
+  EXPECT_EQ(p.depth, CavityParams{}.depth);
+  EXPECT_EQ(set_cavity_value(p, field("taper_deg"), 30).outcome, CavityValueCheck::Outcome::refused);
+  EXPECT_EQ(set_cavity_value(p, field("length"), std::nan("")).outcome, CavityValueCheck::Outcome::refused);
+  p.kind = CavityClass::class_2;
+  EXPECT_EQ(set_cavity_value(p, field("box_width"), 2).outcome, CavityValueCheck::Outcome::set);
+  EXPECT_DOUBLE_EQ(p.box_width, 2 * mm);
 }
 
 TEST(DentalSceneFile, ErrorsNameTheFileTheFieldAndTheFix) {

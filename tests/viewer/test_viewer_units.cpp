@@ -236,5 +236,44 @@ TEST(SimSession, UnderTheHapticRuntimeAppliesCommandsBetweenItsStepsAndShowsTheH
   EXPECT_EQ(session.realtime_result()->run.status, "completed");
 }
 
+// Under the runtime, the D key's increments and the tool menu's switches go into the runtime's
+// recording, as the device button's increments do: a replay of the session gives its tool forces
+// bit for bit, and without those events it does not (the increment lands on the tool).
+TEST(SimSession, UnderTheHapticRuntimeRecordsDispensesAndToolSwitchesForTheReplay) {
+  const Scene sc = small_scene();
+  RealtimeOptions ro;
+  ro.duration_s = 0.6;
+  ro.workspace.origin = sc.tool.keyframes.front().pose.position;
+  SimSession session(sc, SessionOptions{});
+  session.use_device(make_scripted_device(sc, ro.workspace, 0.6), ro);
+  session.start();
+  wait_for(session, [](const Snapshot& x) { return x.steps > 20; });
+  session.post(Command{Command::Kind::dispense});
+  Command t{Command::Kind::switch_tool};
+  t.tool = "drill";  // refused: nothing recorded
+  session.post(t);
+  t.tool = "flat_plugger";
+  session.post(t);
+  wait_for(session, [](const Snapshot& x) { return x.tool_name == "flat_plugger" && count(x, Role::material) > 48; });
+  wait_for(session, [](const Snapshot& x) { return x.message.find("session ended") != std::string::npos; });
+  session.stop();
+  ASSERT_TRUE(session.realtime_result());
+  const Recording& rec = session.realtime_result()->recording;
+  ASSERT_EQ(rec.events.size(), 2u);
+  EXPECT_EQ(rec.events[0].index, kButtonIncrement);
+  EXPECT_EQ(rec.events[1].index, kToolSwitch + 1);  // instrument_names()[1]
+  EXPECT_EQ(rec.events[1].step, rec.events[0].step);
+  EXPECT_EQ(rec.dispense_volume, session.options().dispense_volume);
+  const std::vector<Vec3> replayed = replay_steps(sc, rec, 1);
+  ASSERT_EQ(replayed.size(), rec.steps.size());
+  for (std::size_t k = 0; k < replayed.size(); ++k) ASSERT_EQ(replayed[k], rec.steps[k].tool_force) << "step " << k;
+  Recording without = rec;
+  without.events.clear();
+  const std::vector<Vec3> bare = replay_steps(sc, without, 1);
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < bare.size(); ++k) differ += !(bare[k] == rec.steps[k].tool_force);
+  EXPECT_GT(differ, 0u);
+}
+
 }  // namespace
 }  // namespace dentsph::viewer

@@ -40,11 +40,18 @@ struct StepSample {
 
 struct EventSample {
   std::uint64_t step = 0;      // applied before this step
-  std::uint32_t index = 0;     // into Scene::events, or kButtonIncrement
+  std::uint32_t index = 0;     // into Scene::events, kButtonIncrement or kToolSwitch + k
 };
-// EventSample::index of an increment dispensed by the device's button 1 (dispense_increment of
-// Recording::dispense_volume with the scene's paste, on the tooth's axis).
+// EventSample::index of an increment dispensed on request: the device's button 1 or the viewer's
+// D key (dispense_increment of Recording::dispense_volume with the scene's paste, on the tooth's
+// axis).
 inline constexpr std::uint32_t kButtonIncrement = 0xffffffffu;
+// EventSample::index of a switch to instrument k of instrument_names() (the viewer's tool menu;
+// switch_instrument): kToolSwitch + k.
+inline constexpr std::uint32_t kToolSwitch = 0xffffff00u;
+// The event of a switch to the instrument `name` before `step`; throws std::invalid_argument for
+// a name instrument_names() does not hold.
+EventSample tool_switch_event(std::uint64_t step, const std::string& name);
 
 struct Recording {
   std::string mode;            // "direct" | "coupling"

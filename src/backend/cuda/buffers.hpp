@@ -10,6 +10,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "backend/cuda/view.hpp"
@@ -77,29 +78,16 @@ class Buffers {
     const int cap = model.max_bonds_per_particle;
     v_.n = n;
     v_.buckets = std::uint32_t(buckets);
-    for (ParticleArrays& a : sets_) {
-      a.id = alloc<std::uint32_t>(n);
-      a.role = alloc<Role>(n);
-      a.pos = alloc<Vec3>(n);
-      a.vel = alloc<Vec3>(n);
-      a.anchor = alloc<Vec3>(n);
-      a.mass = alloc<real>(n);
-      a.mu = alloc<real>(n);
-      a.Kp = alloc<real>(n);
-      a.rho0 = alloc<real>(n);
-      a.Ka = alloc<real>(n);
-    }
+    // n of each array a State has too, in both sets and for the step's results.
+    auto per_particle = [&](auto*& d, const auto& h) { d = alloc<typename std::decay_t<decltype(h)>::value_type>(n); };
+    for (ParticleArrays& a : sets_) each_set_array(a, s, per_particle);
+    each_result_array(v_, s, per_particle);
     v_.key = alloc<std::uint32_t>(n);
     v_.key_sorted = alloc<std::uint32_t>(n);
     v_.iota = alloc<std::uint32_t>(n);
     v_.order = alloc<std::uint32_t>(n);
     v_.bucket_begin = alloc<std::uint32_t>(2 * buckets);  // begin and end in one block: one clear
     v_.bucket_end = v_.bucket_begin + buckets;
-    v_.index_of_id = alloc<std::uint32_t>(n);
-    v_.rho = alloc<real>(n);
-    v_.pressure = alloc<real>(n);
-    v_.volume = alloc<real>(n);
-    v_.force = alloc<Vec3>(n);
     v_.rho_static = alloc<real>(n);
     v_.bond_count = alloc<std::uint32_t>(n);
     v_.bond_partner = alloc<std::uint32_t>(std::size_t(n) * cap);
@@ -179,10 +167,11 @@ class Buffers {
   }
 
  private:
-  // Calls fn(device array, state vector) for every per-particle array of a set and of the step
-  // results that a State holds in the same order (rho_static, by id, and the bonds apart).
-  template <class S, class Fn>
-  void each_array(const ParticleArrays& a, S& s, Fn&& fn) const {
+  // Call fn(device array, state vector) for every per-particle array of a set (`a`), and of the
+  // step's results (`v`), that a State holds in the same order (rho_static, by id, and the bonds
+  // apart). The arrays are passed as lvalues: fn may set them (the allocation) or read them.
+  template <class A, class S, class Fn>
+  static void each_set_array(A& a, S& s, Fn&& fn) {
     fn(a.id, s.id);
     fn(a.role, s.role);
     fn(a.pos, s.pos);
@@ -193,11 +182,19 @@ class Buffers {
     fn(a.Kp, s.Kp);
     fn(a.rho0, s.rho0);
     fn(a.Ka, s.Ka);
-    fn(v_.index_of_id, s.index_of_id);
-    fn(v_.rho, s.rho);
-    fn(v_.pressure, s.pressure);
-    fn(v_.volume, s.volume);
-    fn(v_.force, s.force);
+  }
+  template <class V, class S, class Fn>
+  static void each_result_array(V& v, S& s, Fn&& fn) {
+    fn(v.index_of_id, s.index_of_id);
+    fn(v.rho, s.rho);
+    fn(v.pressure, s.pressure);
+    fn(v.volume, s.volume);
+    fn(v.force, s.force);
+  }
+  template <class S, class Fn>
+  void each_array(const ParticleArrays& a, S& s, Fn&& fn) const {
+    each_set_array(a, s, fn);
+    each_result_array(v_, s, fn);
   }
 
   template <class T>
