@@ -3,6 +3,7 @@
 #pragma once
 
 #include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <filesystem>
@@ -19,7 +20,7 @@ namespace dentsph::testing {
 class ClientProcess {
  public:
   ClientProcess(std::uint16_t port, std::vector<std::string> args, const std::string& tag) {
-    report_ = std::filesystem::temp_directory_path() / ("dentsph_client_" + tag + ".json");
+    report_ = std::filesystem::temp_directory_path() / ("dentsph_client_" + tag + "_" + std::to_string(::getpid()) + ".json");
     std::filesystem::remove(report_);
     args.insert(args.begin(), {DENTSPH_HAPTIC_CLIENT, "--port", std::to_string(port), "--report", report_.string()});
     std::vector<char*> argv;

@@ -2,6 +2,7 @@
 // the watchdog, the interpolator, the virtual coupling, the timing histogram, the recording and
 // the passivity measure.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -296,7 +297,7 @@ TEST(ReplayDevice, InterpolatesPositionAndOrientationBetweenSamples) {
     h.device_orientation = i == 0 ? q0 : q1;
     r.haptic.push_back(h);
   }
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_replay_slerp_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_replay_slerp_test_" + std::to_string(::getpid()));
   save_recording(dir, r);
   const std::unique_ptr<Device> dev = make_replay_device(dir);
   dev->start(0);
@@ -418,7 +419,7 @@ TEST(Recording, SavesAndLoadsExactly) {
   r.force_scale = 1.5e4;
   r.haptic_dropped = 7;
   r.dispense_volume = 1e-9 / 3;
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_recording_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_recording_test_" + std::to_string(::getpid()));
   save_recording(dir, r);
   const Recording q = load_recording(dir);
   EXPECT_EQ(q.mode, r.mode);

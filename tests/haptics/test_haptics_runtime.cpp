@@ -3,6 +3,7 @@
 // assertion is a safety or consistency property: timing is measured and reported, never
 // asserted (the machine is shared).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -295,7 +296,7 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   auto device = make_scripted_device(scene, o.workspace);
   const RealtimeResult r = run_realtime(scene, *device, o);
   ASSERT_GT(r.recording.steps.size(), 100u);
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_replay_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_replay_test_" + std::to_string(::getpid()));
   save_recording(dir, r.recording);
   const Recording loaded = load_recording(dir);
   const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
@@ -457,7 +458,7 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
 
   // The increments are in the recording: a replay reproduces the tool's forces bit for bit, and
   // they differ from a replay without them (the tool beside the drop feels the increments).
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_button_replay";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_button_replay_" + std::to_string(::getpid()));
   save_recording(dir, r.recording);
   Recording loaded = load_recording(dir);
   std::filesystem::remove_all(dir);
@@ -500,7 +501,7 @@ TEST(HapticRuntime, ReferenceClientButtonDispensesOverUdp) {
 // The command line: a realtime run of a scene file writes its summary and recording, and
 // `dentsph replay` reproduces the recorded tool forces (exit code 0 only when all agree).
 TEST(HapticRuntime, CommandLineRunsAndReplays) {
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_cli_realtime";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_cli_realtime_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "press.json") << testing::press_scene_json();

@@ -3,6 +3,7 @@
 // within 1e-4 relative over 100 steps, the Fig. 2 bond loop step for step, the bond overflow
 // counted alike. tests/cuda runs the same checks on a device.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -94,7 +95,7 @@ TEST(GpuEmulation, RunLoopMatchesTheCpuRun) {
   for (Vec3 p : lattice({-0.02, -0.02, 0.075}, 0.01, 3, 3, 2))
     more.particles.push_back(make_particle(Role::material, p, 1e-3, {0.5, 60, 1000, 200}));
   sc.events.push_back(more);
-  const auto dir = std::filesystem::temp_directory_path() / "dentsph_gpu_run";
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_gpu_run_" + std::to_string(::getpid()));
   RunOptions opt;
   opt.steps = 60;
   opt.out_dir = dir / "cpu";

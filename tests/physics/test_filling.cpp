@@ -2,6 +2,7 @@
 // the device's largest force, and the built-in procedure fills the real molars' Class I and
 // Class II cavities (the latter closed by a matrix band). One thread each: CTest runs two at once.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -78,7 +79,7 @@ void fills_the_molar(const char* file, CavityClass kind) {
   RunOptions opt;
   opt.threads = 1;
   opt.out_dir = std::filesystem::temp_directory_path() / ("dentsph_filling_" + std::string(file) +
-                                                              (kind == CavityClass::class_1 ? "_I" : "_II"));
+                                                              (kind == CavityClass::class_1 ? "_I_" : "_II_") + std::to_string(::getpid()));
   const RunSummary s = run_offline(sc, opt);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
