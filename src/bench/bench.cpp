@@ -226,8 +226,8 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
       res.sweep.push_back({size.cups, start.size(), moving_count(start), neighbours, c.first, c.second,
                            m.steps_per_second, m.per_step});
       if (c.first != "all_pairs") res.bytes_per_particle = m.bytes_per_particle;
-      log(fmt::format("{} particles ({} cups), {}: {:.1f} steps/s", start.size(), size.cups, name(c),
-                      m.steps_per_second));
+      log(fmt::format("{} particles in {} cup{}, {}: {:.1f} steps/s", start.size(), size.cups, size.cups == 1 ? "" : "s",
+                      name(c), m.steps_per_second));
     }
   }
   return res;
