@@ -60,14 +60,15 @@ struct BenchResult {
   Backend backend = Backend::cpu;               // a GPU backend: default_* are keyed 1 (one GPU)
 };
 
-// A cube of side^3 material particles (1 cm spacing) in an open container: the sweep's scenes.
-Scene sweep_block_scene(int side, int grid_reach = 1);
-
-// `cups` copies of sweep_block_scene's cup (the first one where that scene has it) on a
-// square-ish grid in x-y, with gaps of 3 h and more between their walls, so that no two cups ever
-// share a neighbour (nor a searched grid cell, the domain's wrap included). cups = 1 is
-// sweep_block_scene.
+// `cups` identical cups, each a cube of side^3 material particles (1 cm spacing) in an open
+// container of two wall layers, on a square-ish grid in x-y with gaps of 3.5 h and more between
+// their walls: no two cups ever share a neighbour, nor a searched grid cell (the domain's wrap
+// included). While the layout spans less than 2 m (up to 7 x 7 cups of side 16) the cups are
+// copies bit for bit and, on grids of cells of h or h / 2, move alike bit for bit. The sweep's
+// scenes.
 Scene sweep_cups_scene(int side, int cups, int grid_reach = 1);
+// One cup: the CUDA sweep's single blocks.
+Scene sweep_block_scene(int side, int grid_reach = 1);
 
 BenchResult run_benchmarks(const BenchOptions& options, const std::function<void(const std::string&)>& log);
 std::string bench_json(const BenchResult& result);

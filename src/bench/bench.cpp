@@ -134,10 +134,15 @@ Scene sweep_block_scene(int side, int grid_reach) { return sweep_cups_scene(side
 Scene sweep_cups_scene(int side, int cups, int grid_reach) {
   if (side < 1 || cups < 1)
     throw std::invalid_argument(fmt::format("sweep scene: side {} and cups {} must be at least 1", side, cups));
-  constexpr real s = 0.01;
+  // The lattice spacing: 1 cm rounded to a multiple of 2^-50 m, and x and y measured from 2 m, so
+  // that every lattice position is exact and, from 2 to 4 m, every translation by an even number
+  // of spacings is exact in floating point and rounds alike: there the cups are copies bit for bit
+  // (the same neighbours, the same sums), and stay so as they move.
+  const real s = std::ldexp(std::round(std::ldexp(0.01, 50)), -50);
+  constexpr real base = 2;
   // A cup's walls span side + 3 spacings (from -2 to side + 1); cups are `pitch` spacings apart,
   // leaving 7 or 8 spacings (3.5 h and more) between the walls of neighbouring cups. The pitch is
-  // even (a whole number of h), so every cup sits at the same place in the grid's cells.
+  // even: a whole number of h, so every cup sits at the same place in the grid's cells.
   const int pitch = side + 10 + side % 2;
   const int cols = int(std::ceil(std::sqrt(double(cups))));
   const int rows = (cups + cols - 1) / cols;
@@ -150,17 +155,18 @@ Scene sweep_cups_scene(int side, int cups, int grid_reach) {
   sc.params.adhesion.B = 3 * s;
   // The domain begins one spacing before the walls and ends five after them on every axis, so a
   // search past its edge (the grid wraps there) finds empty cells, never another cup's.
-  sc.params.domain_min = {-3 * s, -3 * s, -3 * s};
-  sc.params.domain_max = {((cols - 1) * pitch + side + 6) * s, ((rows - 1) * pitch + side + 6) * s, (side + 6) * s};
+  sc.params.domain_min = {base, base, -3 * s};
+  sc.params.domain_max = {base + ((cols - 1) * pitch + side + 9) * s, base + ((rows - 1) * pitch + side + 9) * s,
+                          (side + 6) * s};
   sc.params.grid_reach = grid_reach;
   sc.model = make_model(sc.params);
   const real m = lattice_particle_mass(1000, s, sc.model.kernel);
   const Material paste{0.5, 60, 1000, 50}, wall{0.5, 200, 1000, 0};
   // Each cup: a cube of side^3 paste in an open container with two wall layers, one spacing away.
   for (int c = 0; c < cups; ++c) {
-    const int ox = (c % cols) * pitch, oy = (c / cols) * pitch;
+    const int ox = (c % cols) * pitch + 3, oy = (c / cols) * pitch + 3;
     auto add = [&](Role role, int i, int j, int k, const Material& mat) {
-      sc.particles.push_back(make_particle(role, {(ox + i) * s, (oy + j) * s, k * s}, m, mat));
+      sc.particles.push_back(make_particle(role, {base + (ox + i) * s, base + (oy + j) * s, k * s}, m, mat));
     };
     for (int k = -2; k <= side + 1; ++k)
       for (int j = -2; j <= side + 1; ++j)
