@@ -189,13 +189,14 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   res.backend = opt.backend;
   res.machine = gpu ? gpu_machine(opt.backend) : machine_name();
   const std::string gpu_method = backend_name(opt.backend);
-  // A configuration: the method, and the thread count on the CPU.
+  // A configuration: the method, and the thread count on the CPU; each_scene: those every scene
+  // runs (the sweep adds the all-pairs step to its small scenes).
   using Config = std::pair<std::string, int>;
-  std::vector<Config> grid_configs;
+  std::vector<Config> each_scene;
   if (gpu)
-    grid_configs.push_back({gpu_method, 1});
+    each_scene.push_back({gpu_method, 1});
   else
-    for (int t : opt.threads) grid_configs.push_back({"grid", t});
+    for (int t : opt.threads) each_scene.push_back({"grid", t});
   auto name = [&](const Config& c) { return gpu ? c.first : fmt::format("{} threads, {}", c.second, c.first); };
   // Runs a copy of `start` under one configuration; `prepare` sets the tool pose before each step.
   auto run = [&](const Model& model, const State& start, const Config& c, auto&& prepare) {
@@ -208,7 +209,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   res.default_scene = paper.name;
   const State paper_start = make_state(paper);
   for (Role r : {Role::material, Role::boundary, Role::tool}) res.default_particles[role_name(r)] = paper_start.count(r);
-  for (const Config& c : grid_configs) {
+  for (const Config& c : each_scene) {
     const Measured m =
         run(paper.model, paper_start, c, [&](State& s) { s.tool_pose = paper.tool.at(s.time + paper.model.dt); });
     res.default_steps_per_second[c.second] = m.steps_per_second;
@@ -225,7 +226,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     const Scene sc = sweep_cups_scene(size.side, size.cups, opt.sweep_grid_reach);
     State start = make_state(sc);
     const real neighbours = mean_neighbours(sc.model, start);  // sorts `start` by cell
-    std::vector<Config> configs = grid_configs;
+    std::vector<Config> configs = each_scene;
     if (!gpu && start.size() <= opt.all_pairs_max_particles) configs.push_back({"all_pairs", 1});
     for (const Config& c : configs) {
       const Measured m = run(sc.model, start, c, [](State&) {});

@@ -45,28 +45,34 @@ TEST(Bench, JsonHasDefaultSceneSweepAndMemory) {
   EXPECT_EQ(j["default_scene"]["particles"]["tool"], 42);
   ASSERT_EQ(j["sweep"].size(), 6u) << "2 sizes x (grid at 1 and 2 threads + all-pairs)";
   for (const auto& row : j["sweep"]) {
-    for (const char* k : {"cups", "particles", "moving_particles", "neighbours", "method", "threads", "steps_per_second",
-                          "stage_us"})
+    for (const char* k : {"cups", "particles", "moving_particles", "neighbours", "method",
+                          "threads", "steps_per_second", "stage_us"})
       EXPECT_TRUE(row.contains(k)) << k;
     EXPECT_GT(row["moving_particles"].get<int>(), 0);
-    EXPECT_LT(row["moving_particles"].get<int>(), row["particles"].get<int>()) << "paste in a box of boundary particles";
+    EXPECT_LT(row["moving_particles"].get<int>(), row["particles"].get<int>())
+        << "paste in a box of boundary particles";
     EXPECT_GT(row["steps_per_second"].get<double>(), 0);
-    EXPECT_GT(row["neighbours"].get<double>(), 5) << "h = 2 spacings: a lattice particle has ~30 neighbours inside";
-    for (const char* k : {"hash", "sort", "reorder", "density", "forces", "wrench", "integrate", "total"})
+    EXPECT_GT(row["neighbours"].get<double>(), 5)
+        << "h = 2 spacings: a lattice particle has ~30 neighbours inside";
+    for (const char* k :
+         {"hash", "sort", "reorder", "density", "forces", "wrench", "integrate", "total"})
       EXPECT_GE(row["stage_us"][k].get<double>(), 0) << k;
   }
   for (int i : {0, 1, 2}) {
     const auto &one = j["sweep"][i], &two = j["sweep"][i + 3];
     EXPECT_EQ(one["cups"], 1);
     EXPECT_EQ(two["cups"], 2);
-    EXPECT_EQ(two["particles"].get<int>(), 2 * one["particles"].get<int>()) << "two copies of the cup";
+    EXPECT_EQ(two["particles"].get<int>(), 2 * one["particles"].get<int>())
+        << "two copies of the cup";
     EXPECT_EQ(two["moving_particles"].get<int>(), 2 * one["moving_particles"].get<int>());
-    EXPECT_EQ(two["neighbours"].get<double>(), one["neighbours"].get<double>()) << "the same cup twice, bit for bit";
+    EXPECT_EQ(two["neighbours"].get<double>(), one["neighbours"].get<double>())
+        << "the same cup twice, bit for bit";
   }
   EXPECT_EQ(j["sweep"][0]["threads"], 1);
   EXPECT_EQ(j["sweep"][1]["threads"], 2);
   EXPECT_EQ(j["sweep"][0]["method"], "grid");
-  EXPECT_GT(j["sweep"][0]["stage_us"]["total"].get<double>(), 0) << "the grid step's stages are timed";
+  EXPECT_GT(j["sweep"][0]["stage_us"]["total"].get<double>(), 0)
+      << "the grid step's stages are timed";
   EXPECT_EQ(j["sweep"][2]["method"], "all_pairs");
   EXPECT_GT(j["bytes_per_particle"].get<int>(), 100);
   EXPECT_LT(j["bytes_per_particle"].get<int>(), 4096);
@@ -126,7 +132,8 @@ TEST(Bench, CupsAreCopiesFarApartInsideTheGrid) {
       const real h = sc.model.kernel.h;
       for (int a = 0; a < cups; ++a)
         for (int b = a + 1; b < cups; ++b) {
-          const real gap = std::max({lo[b][0] - hi[a][0], lo[a][0] - hi[b][0], lo[b][1] - hi[a][1], lo[a][1] - hi[b][1]});
+          const real gap = std::max(
+              {lo[b][0] - hi[a][0], lo[a][0] - hi[b][0], lo[b][1] - hi[a][1], lo[a][1] - hi[b][1]});
           EXPECT_GT(gap, 3 * h + sc.model.neighbour_skin) << cups << " cups: " << a << " and " << b;
         }
       // Every particle inside the domain, and the cells a search reaches past the particles' span
@@ -148,38 +155,43 @@ TEST(Bench, CupsAreCopiesFarApartInsideTheGrid) {
 // neighbour, and a cup's translation changes no rounding. The paste stays inside its own box.
 TEST(Bench, CupsSteppedTogetherMatchOneCupSteppedAlone) {
   const int side = 6, cups = 4;  // 2 x 2: neighbours in x, in y and across
-  const Scene one = sweep_cups_scene(side, 1), many = sweep_cups_scene(side, cups);
-  State a = make_state(one), b = make_state(many);
-  const std::size_t n = one.particles.size();
-  for (int k = 0; k < 150; ++k) {
-    step(one.model, a);
-    step(many.model, b, StepOptions{2, nullptr});
-  }
-  real moved = 0;
-  for (std::size_t i = 0; i < n; ++i) moved = std::max(moved, norm(a.pos[a.index_of_id[i]] - one.particles[i].pos));
-  EXPECT_GT(moved, 1e-5) << "the paste has settled by a measurable amount";
-  // The single cup's walls, in x and y: its paste must stay between them.
-  std::array<real, 2> wall_lo{1e9, 1e9}, wall_hi{-1e9, -1e9};
-  for (const ParticleInit& p : one.particles)
-    for (int ax : {0, 1}) {
-      wall_lo[ax] = std::min(wall_lo[ax], p.pos[ax]);
-      wall_hi[ax] = std::max(wall_hi[ax], p.pos[ax]);
+  for (int reach : {1, 2}) {
+    SCOPED_TRACE(::testing::Message() << "cells of h / " << reach);
+    const Scene one = sweep_cups_scene(side, 1, reach), many = sweep_cups_scene(side, cups, reach);
+    State a = make_state(one), b = make_state(many);
+    const std::size_t n = one.particles.size();
+    for (int k = 0; k < 150; ++k) {
+      step(one.model, a);
+      step(many.model, b, StepOptions{2, nullptr});
     }
-  for (int c = 0; c < cups; ++c) {
-    const Vec3 off = cup_offset(many, one, c);
-    real dpos = 0, dvel = 0;
-    int outside = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t ia = a.index_of_id[i], ib = b.index_of_id[c * n + i];
-      dpos = std::max(dpos, norm(b.pos[ib] - off - a.pos[ia]));
-      dvel = std::max(dvel, norm(b.vel[ib] - a.vel[ia]));
-      if (one.particles[i].role == Role::material)
-        for (int ax : {0, 1})
-          outside += b.pos[ib][ax] - off[ax] <= wall_lo[ax] || b.pos[ib][ax] - off[ax] >= wall_hi[ax];
+    real moved = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      moved = std::max(moved, norm(a.pos[a.index_of_id[i]] - one.particles[i].pos));
+    EXPECT_GT(moved, 1e-5) << "the paste has settled by a measurable amount";
+    // The single cup's walls, in x and y: its paste must stay between them.
+    std::array<real, 2> wall_lo{1e9, 1e9}, wall_hi{-1e9, -1e9};
+    for (const ParticleInit& p : one.particles)
+      for (int ax : {0, 1}) {
+        wall_lo[ax] = std::min(wall_lo[ax], p.pos[ax]);
+        wall_hi[ax] = std::max(wall_hi[ax], p.pos[ax]);
+      }
+    for (int c = 0; c < cups; ++c) {
+      const Vec3 off = cup_offset(many, one, c);
+      real dpos = 0, dvel = 0;
+      int outside = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t ia = a.index_of_id[i], ib = b.index_of_id[c * n + i];
+        dpos = std::max(dpos, norm(b.pos[ib] - off - a.pos[ia]));
+        dvel = std::max(dvel, norm(b.vel[ib] - a.vel[ia]));
+        if (one.particles[i].role == Role::material)
+          for (int ax : {0, 1})
+            outside +=
+                b.pos[ib][ax] - off[ax] <= wall_lo[ax] || b.pos[ib][ax] - off[ax] >= wall_hi[ax];
+      }
+      EXPECT_EQ(dpos, 0) << "cup " << c;
+      EXPECT_EQ(dvel, 0) << "cup " << c;
+      EXPECT_EQ(outside, 0) << "cup " << c << ": paste past its walls";
     }
-    EXPECT_EQ(dpos, 0) << "cup " << c;
-    EXPECT_EQ(dvel, 0) << "cup " << c;
-    EXPECT_EQ(outside, 0) << "cup " << c << ": paste past its walls";
   }
 }
 
