@@ -1,6 +1,7 @@
 // Google Benchmark: one step of the built-in dental scene (the paper's counts, the tool moving
-// along its procedure), and of a block of material in a container (the `dentsph bench` sweep's
-// scenes), grid step against the all-pairs reference, for growing particle counts and threads.
+// along its procedure), and of the `dentsph bench` sweep's scenes (small blocks of material in a
+// container, then 1 to 14 copies of the 16^3 block's cup), grid step against the all-pairs
+// reference, for growing particle counts and threads. Arguments: side, cups, threads.
 #include <benchmark/benchmark.h>
 
 #include "dentsph/bench.hpp"
@@ -11,9 +12,9 @@ namespace {
 using namespace dentsph;
 
 void run(benchmark::State& bs, bool all_pairs) {
-  const Scene sc = sweep_block_scene(int(bs.range(0)));
+  const Scene sc = sweep_cups_scene(int(bs.range(0)), int(bs.range(1)));
   State st = make_state(sc);
-  const StepOptions opt{int(bs.range(1)), nullptr};
+  const StepOptions opt{int(bs.range(2)), nullptr};
   for (int k = 0; k < 10; ++k) step(sc.model, st, opt);  // first bonds, warm caches
   for (auto _ : bs) {
     if (all_pairs)
@@ -63,11 +64,17 @@ void BM_DentalForces(benchmark::State& bs) {
 }
 BENCHMARK(BM_DentalForces)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
+// The rows of `dentsph bench`'s CPU sweep, on 1 and 2 threads.
+void sweep_rows(benchmark::internal::Benchmark* b) {
+  for (const SweepSize& s : BenchOptions{}.sweep)
+    for (int threads : {1, 2}) b->Args({s.side, s.cups, threads});
+}
+
 void BM_GridStep(benchmark::State& bs) { run(bs, false); }
-BENCHMARK(BM_GridStep)->ArgsProduct({{8, 12, 16, 24, 32}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_GridStep)->Apply(sweep_rows)->ArgNames({"side", "cups", "threads"})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void BM_AllPairsStep(benchmark::State& bs) { run(bs, true); }
-BENCHMARK(BM_AllPairsStep)->ArgsProduct({{8, 12}, {1}})->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_AllPairsStep)->Args({8, 1, 1})->Args({12, 1, 1})->ArgNames({"side", "cups", "threads"})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 }  // namespace
 

@@ -50,7 +50,7 @@ int cmd_validate(const std::string& file) {
 
 int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   if (quick) {
-    opt.sweep_sides = {8, 12, 16};
+    opt.sweep = {{8, 1}, {12, 1}, {16, 1}, {16, 2}};
     opt.cuda_sweep_sides = {8, 16, 32};
     opt.repeats = 3;
     opt.seconds_per_run = 0.1;
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", bench_opt.threads, "Thread counts to measure (e.g. --threads 1 2)")->capture_default_str();
   bench->add_option("--json", bench_json_file, "Also write the results as JSON to this file");
   bench->add_option("--repeats", bench_opt.repeats, "Runs per configuration (the median is reported)")->check(CLI::Range(1, 100))->capture_default_str();
-  bench->add_flag("--quick", bench_quick, "A short sweep (up to 16^3 material particles, 32^3 with cuda, 3 repeats)");
+  bench->add_flag("--quick", bench_quick, "A short sweep (up to two cups of 16^3 material particles, 15k particles; blocks up to 32^3 with cuda; 3 repeats)");
   bench->add_option("--grid-reach", bench_opt.sweep_grid_reach, "The sweep's grid: cells of h / N searched N deep")
       ->check(CLI::Range(1, 3))
       ->capture_default_str();

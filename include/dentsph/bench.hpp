@@ -15,9 +15,19 @@
 
 namespace dentsph {
 
+// One scene of the CPU sweep: `cups` identical cups, each a cube of side^3 paste particles in its
+// box (sweep_cups_scene).
+struct SweepSize {
+  int side = 16;
+  int cups = 1;
+};
+
 struct BenchOptions {
   std::vector<int> threads{1, 2};                  // thread counts to measure
-  std::vector<int> sweep_sides{8, 12, 16, 20, 26, 32, 40, 44};  // material blocks of side^3 particles
+  // Two small single blocks (1600 and 3808 particles), then 1 to 14 cups of the side-16 block
+  // (7488 to 104832 particles): the boundary's share stays that of one cup, so the cost per
+  // particle along the cups measures the size alone.
+  std::vector<SweepSize> sweep{{8, 1}, {12, 1}, {16, 1}, {16, 2}, {16, 4}, {16, 6}, {16, 11}, {16, 14}};
   std::uint32_t all_pairs_max_particles = 8000;    // the all-pairs step only up to this count
   int repeats = 5;                                 // runs per configuration; the median is kept
   double seconds_per_run = 0.25;                   // wall time of one run (at least 5 steps)
@@ -29,6 +39,7 @@ struct BenchOptions {
 };
 
 struct BenchRow {
+  int cups = 1;               // copies of the cup in the scene (1 for a single block)
   std::uint32_t particles = 0;
   std::uint32_t moving = 0;   // of which material and tool (the rest is static boundary)
   real neighbours = 0;        // mean neighbours within h
@@ -49,7 +60,14 @@ struct BenchResult {
   Backend backend = Backend::cpu;               // a GPU backend: default_* are keyed 1 (one GPU)
 };
 
-// A cube of side^3 material particles (1 cm spacing) in an open container: the sweep's scenes.
+// `cups` identical cups, each a cube of side^3 material particles (1 cm spacing) in an open
+// container of two wall layers, on a square-ish grid in x-y with gaps of 3.5 h and more between
+// their walls: no two cups ever share a neighbour, nor a searched grid cell (the domain's wrap
+// included). While the layout spans less than 2 m (up to 7 x 7 cups of side 16) the cups are
+// copies bit for bit and, on grids of cells of h or h / 2, move alike bit for bit. The sweep's
+// scenes.
+Scene sweep_cups_scene(int side, int cups, int grid_reach = 1);
+// One cup: the CUDA sweep's single blocks.
 Scene sweep_block_scene(int side, int grid_reach = 1);
 
 BenchResult run_benchmarks(const BenchOptions& options, const std::function<void(const std::string&)>& log);
