@@ -4,7 +4,6 @@
 // maps it to its current index.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -102,13 +101,6 @@ struct GridIndex {
   bool lists_valid = false;
   // [n] each particle's pair data this step (after its density and pressure), for the force pass.
   std::vector<PairData> pair_data;
-  // The force pass's contiguous ranges of particles, one per thread, of about equal work (moving
-  // particles by their list lengths; boundary particles have next to none): range t is
-  // [work_begin[t], work_begin[t + 1]). Made for `work_ranges` threads from the lists of the last
-  // rebuild (0: to be made); at most kMaxWorkRanges ranges.
-  static constexpr int kMaxWorkRanges = 64;
-  std::array<std::uint32_t, kMaxWorkRanges + 1> work_begin{};
-  int work_ranges = 0;
 };
 
 class State {

@@ -181,7 +181,6 @@ void compute_static_density(const Model& model, State& s) {
 void compute_density(const Model& model, State& s, int threads, bool build_lists) {
   if (!s.rho_static_valid) compute_static_density(model, s);  // after a reorder: added particles rebuild
   const std::int64_t n = s.size();
-  if (build_lists) s.grid.work_ranges = 0;  // the force pass splits its work anew (forces.cpp)
   constexpr std::int64_t kPrefetch = 8;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {

@@ -137,31 +137,6 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   return f;
 }
 
-// Splits the particles into `threads` contiguous ranges of about equal force work, from the
-// lists of the last rebuild: a moving particle costs a fixed part (its bonds, its bookkeeping)
-// plus one unit per listed neighbour, a boundary particle one unit. Contiguous, so that each
-// thread still finds most of its particles' data in its cache from the density pass.
-void split_work(State& s, int threads) {
-  GridIndex& g = s.grid;
-  const std::uint32_t n = s.size();
-  constexpr std::uint64_t kPerMoving = 8;
-  auto work = [&](std::uint32_t i) -> std::uint64_t {
-    return s.role[i] == Role::boundary ? 1 : kPerMoving + g.neighbour_count[i];
-  };
-  std::uint64_t total = 0;
-  for (std::uint32_t i = 0; i < n; ++i) total += work(i);
-  g.work_begin[0] = 0;
-  std::uint64_t done = 0;
-  std::uint32_t i = 0;
-  for (int t = 1; t < threads; ++t) {
-    const std::uint64_t target = total * std::uint64_t(t) / std::uint64_t(threads);
-    while (i < n && done < target) done += work(i++);
-    g.work_begin[t] = i;
-  }
-  g.work_begin[threads] = n;
-  g.work_ranges = threads;
-}
-
 }  // namespace
 
 void compute_forces(const Model& model, State& s, int threads) {
@@ -170,26 +145,20 @@ void compute_forces(const Model& model, State& s, int threads) {
   // Bond events summed by an integer reduction (exact in any order). Not a named critical
   // section: libomp 14 under ThreadSanitizer crashes in one entered from a thread it did not
   // create (the haptic runtime's and the viewer's simulation threads).
-  // Contiguous ranges of equal work, one per thread (range t to thread t whatever the team's
-  // size): each thread keeps most of the particles (and caches) it had in the density pass. Equal
-  // halves left one thread 11-19% more work in the dental scene; chunks of 64 handed out
-  // dynamically balanced it but measured slower.
-  const int ranges = std::clamp(threads, 1, GridIndex::kMaxWorkRanges);
-  if (s.grid.work_ranges != ranges) split_work(s, ranges);
-  const std::uint32_t* begin = s.grid.work_begin.data();
+  // Static halves: each thread keeps the particles (and caches) it had in the density pass.
+  // Chunks of 64 handed out dynamically balanced the work better but measured slower.
   std::uint64_t formed = 0, broken = 0, overflowed = 0;
-#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(+ : formed, broken, overflowed)
-  for (int t = 0; t < ranges; ++t)
-    for (std::int64_t i = begin[t]; i < begin[t + 1]; ++i) {
-      // The bond lists are kept by id, so in cell order they are read at scattered places:
-      // fetched a few particles ahead, they are in cache when their particle comes.
-      if (i + kBondPrefetch < n) __builtin_prefetch(s.bonds.list(s.id[i + kBondPrefetch]));
-      bonds::Events ev;
-      s.force[i] = s.role[i] == Role::boundary ? Vec3{} : force_on(model, s, std::uint32_t(i), ev);  // static: unused
-      formed += ev.formed;
-      broken += ev.broken;
-      overflowed += ev.overflowed;
-    }
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : formed, broken, overflowed)
+  for (std::int64_t i = 0; i < n; ++i) {
+    // The bond lists are kept by id, so in cell order they are read at scattered places: fetched
+    // a few particles ahead, they are in cache when their particle comes.
+    if (i + kBondPrefetch < n) __builtin_prefetch(s.bonds.list(s.id[i + kBondPrefetch]));
+    bonds::Events ev;
+    s.force[i] = s.role[i] == Role::boundary ? Vec3{} : force_on(model, s, std::uint32_t(i), ev);  // static: unused
+    formed += ev.formed;
+    broken += ev.broken;
+    overflowed += ev.overflowed;
+  }
   bonds::Events total;
   total.formed = formed;
   total.broken = broken;

@@ -98,7 +98,6 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   grid.pos_at_build.resize(kept);
   grid.pos_at_build.shrink_to_fit();
   grid.lists_valid = false;
-  grid.work_ranges = 0;
   grid.pair_data.resize(n);
   scratch_vec.resize(n);
   scratch_real.resize(n);
