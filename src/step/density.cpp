@@ -70,6 +70,12 @@ grid::Visit listed(const State& s, std::int64_t i) {
   return s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
 }
 
+// The density of particle i from a search of its cells, where its list overflowed.
+real density_by_search(const Model& model, const State& s, std::int64_t i, Coords coords) {
+  const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
+  return own + density_sum(model, s, i, listed(s, i), coords);
+}
+
 // Sum of m_j w_q^3 over the entries q of a list, w_q = max(0, h^2 - r^2) from `w_at(q, j)`, in
 // four running sums (entry q into sum q mod 4) so that successive additions do not wait for one
 // another; the same order whichever thread takes the particle. `keep(j, w)` sees every entry.
@@ -124,10 +130,7 @@ real density_over_list(const Model& model, State& s, std::int64_t i, W&& w_at) {
 
 // The density of particle i over the list it keeps between rebuilds, at the current positions.
 real density_from_list(const Model& model, State& s, std::int64_t i) {
-  if (s.grid.neighbour_count[i] > GridIndex::kNeighbourCapacity) {
-    const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
-    return own + density_sum(model, s, i, listed(s, i), Coords::moved);
-  }
+  if (s.grid.neighbour_count[i] > GridIndex::kNeighbourCapacity) return density_by_search(model, s, i, Coords::moved);
   const Arrays a(model, s, i);
   const Vec3* pos = s.pos.data();
   return density_over_list(model, s, i, [&](std::uint32_t, std::uint32_t j) {
@@ -162,10 +165,7 @@ real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
     }
   });
   g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
-  if (count > cap) {
-    const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
-    return own + density_sum(model, s, i, listed(s, i), Coords::sorted);
-  }
+  if (count > cap) return density_by_search(model, s, i, Coords::sorted);
   return density_over_list(model, s, i, [&](std::uint32_t q, std::uint32_t) { return clamp_at_zero(a.h2 - r2_at[q]); });
 }
 
