@@ -70,7 +70,8 @@ grid::Visit listed(const State& s, std::int64_t i) {
   return s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
 }
 
-// The density of particle i from a search of its cells, where its list overflowed.
+// The density of particle i from a search of its cells: where its list overflowed, and for a
+// boundary particle without a skin (its list would serve one step only).
 real density_by_search(const Model& model, const State& s, std::int64_t i, Coords coords) {
   const real own = s.role[i] == Role::boundary ? s.rho_static[s.id[i]] : 0;
   return own + density_sum(model, s, i, listed(s, i), coords);
@@ -188,7 +189,7 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
     if (i + kPrefetch < n) __builtin_prefetch(&s.rho_static[s.id[i + kPrefetch]]);
     // Without a skin a boundary particle's list would serve one step only: search directly.
     if (s.role[i] == Role::boundary && !s.grid.keep_lists)
-      s.rho[i] = s.rho_static[s.id[i]] + density_sum(model, s, i, grid::Visit::moving, Coords::sorted);
+      s.rho[i] = density_by_search(model, s, i, Coords::sorted);
     else
       s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
     pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs

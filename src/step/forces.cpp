@@ -45,8 +45,9 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::
 }
 
 // Bonds moving particle i to those of the n close pairs (j != i, r^2 < A^2, as the callers filter
-// them) that may bond and are not bonded yet, in the order given (as bonds::try_form of the all-pairs step one by one would): the
-// grid step's one way of forming bonds, from its lists and from its search of overflowed ones.
+// them) that may bond and are not bonded yet, in the order given (as bonds::try_form of the
+// all-pairs step one by one would): the grid step's one way of forming bonds, from its lists and
+// from its search of overflowed ones.
 // Which are bonded already is found in one pass over i's bond list per chunk, with loops of fixed
 // length: a search per pair that stops at its partner mispredicted about once per pair.
 void form_bonds(State& s, std::uint32_t i, const std::uint32_t* close, std::uint32_t n, bonds::Events& ev) {

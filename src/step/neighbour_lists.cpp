@@ -9,7 +9,7 @@
 namespace dentsph::stages {
 
 bool lists_need_rebuild(const Model& model, const State& s, int threads) {
-  // keep_lists: the state was made with a skin (State::keep_lists is model.neighbour_skin > 0).
+  // GridIndex::keep_lists is set where the state was made with a skin (neighbour_skin > 0).
   const real skin = model.neighbour_skin;
   if (!s.grid.keep_lists || !s.grid.lists_valid) return true;
   const real limit2 = 0.25 * skin * skin;
