@@ -84,6 +84,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const Quat& q = fresh.pose.orientation;
   if (got && !(is_finite(fresh.pose.position) && std::isfinite(q.w + q.x + q.y + q.z))) ++rep_.non_finite_poses;
   else if (got) {
+    // Button 1's presses are counted here, at the device's rate, so that the simulation loop,
+    // which sees only the newest command, misses none between two of its steps.
+    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) ++dispense_presses_;
     sample_ = fresh;
     const Vec3 x = sample_.pose.position;
     const double ddt = sample_.device_time_s - prev_device_time_;
@@ -150,7 +153,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     c.velocity = velocity_;
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
-    c.buttons = sample_.buttons;
+    c.dispense_presses = dispense_presses_;
     c.valid = true;
     shared_.command.publish();
   }

@@ -42,6 +42,7 @@ class HapticLoop {
   std::uint64_t dropped_ = 0;
   // device state
   DeviceSample sample_;
+  std::uint64_t dispense_presses_ = 0;  // button 1 presses seen in fresh samples (ToolCommand)
   Vec3 velocity_, prev_position_;
   double prev_device_time_ = 0;
   bool have_prev_ = false;

@@ -14,7 +14,7 @@ struct ToolCommand {
   Vec3 velocity;              // m/s, filtered estimate
   std::int64_t stamp_ns = 0;  // runtime clock when the haptic loop published it
   std::uint32_t sequence = 0; // device pose sequence it came from
-  std::uint32_t buttons = 0;  // the device's pressed buttons (DeviceSample::buttons)
+  std::uint64_t dispense_presses = 0;  // presses of button 1 since the start (kButtonDispense)
   bool valid = false;
 };
 

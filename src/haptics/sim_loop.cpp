@@ -43,7 +43,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   std::size_t next_event = 0;
   VirtualCoupling proxy(opt_.coupling);
   bool proxy_started = false;
-  bool dispense_down = false;
+  std::uint64_t presses_handled = 0;
   const real dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   const IncrementPaste paste = scene_paste(scene_);
   while (!shared_.stop.load(std::memory_order_relaxed)) {
@@ -70,15 +70,12 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
 
     // ---- the newest tool command, the events due, one step ---------------------------------------
     if (shared_.command.update()) cmd = shared_.command.front();
-    if (cmd.valid) {
-      // Button 1 dispenses one increment when it goes down (holding it does not repeat).
-      const bool down = (cmd.buttons & haptic_protocol::kButtonDispense) != 0;
-      if (down && !dispense_down) {
-        events.push_back({state_.steps, kButtonIncrement});
-        dispense_increment(scene_, state_, dispense_volume, increment_axis(scene_), paste);
-        ++rep_.button_dispenses;
-      }
-      dispense_down = down;
+    // Button 1 dispenses one increment per press (holding it does not repeat), however many
+    // presses came since the last step.
+    for (; presses_handled < cmd.dispense_presses; ++presses_handled) {
+      events.push_back({state_.steps, kButtonIncrement});
+      dispense_increment(scene_, state_, dispense_volume, increment_axis(scene_), paste);
+      ++rep_.button_dispenses;
     }
     while (next_event < scene_.events.size() && scene_.events[next_event].t <= state_.time + 0.5 * dt) {
       events.push_back({state_.steps, std::uint32_t(next_event)});

@@ -475,6 +475,23 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   EXPECT_GT(differ, 0u);
 }
 
+// Presses shorter than the simulation's step interval are not lost: with the simulation capped at
+// 5 steps per second, three taps of 20 ms within 0.2 s, all between two steps, give three increments.
+TEST(HapticRuntime, ButtonTapsBetweenTwoSimulationStepsAreEachDispensed) {
+  const Scene scene = press_scene();
+  const std::uint32_t before = make_state(scene).count(Role::material);
+  RealtimeOptions o = options(ForceMode::direct);
+  o.sim_rate_limit_hz = 5;
+  const real s = increment_spacing(scene);
+  o.dispense_volume = 20 * s * s * s;
+  const std::size_t increment = material_increment({}, real(o.dispense_volume), s, 1, Material{}).size();
+  ButtonDevice taps({{0.02, 0.04}, {0.08, 0.10}, {0.14, 0.16}}, 0.6);
+  const RealtimeResult r = run_realtime(scene, taps, o);
+  EXPECT_EQ(r.run.status, "completed") << r.run.message;
+  EXPECT_EQ(r.sim.button_dispenses, 3u);
+  EXPECT_EQ(r.run.material, before + 3 * increment);
+}
+
 // Over UDP: the reference client holds button 1 for 0.3 s, then presses it for 0.1 s; the bit
 // reaches the simulation loop through the UDP device and the haptic loop: two increments.
 TEST(HapticRuntime, ReferenceClientButtonDispensesOverUdp) {
