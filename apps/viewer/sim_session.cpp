@@ -161,15 +161,15 @@ void SimSession::apply(const Command& c, State& st, std::vector<EventSample>* re
       }
       return;
     case Command::Kind::set_material: {
+      if (device_) {
+        // The runtime's recording holds the session's increments and tool switches, not the
+        // paste: a replay must step the paste the session stepped.
+        message_ = "the paste is fixed while a device drives the runtime (its recording replays the scene's paste)";
+        return;
+      }
       const MaterialEdit& m = c.material;
       if (!(m.Kp > 0) || !(m.mu >= 0) || !(m.Ka >= 0)) {
         message_ = "material: Kp must be positive, mu and Ka non-negative";
-        return;
-      }
-      const AdhesionParams& now = scene_.model.adhesion;
-      if (device_ && (m.A != now.A || m.B != now.B || m.eps != now.eps || m.zeta != now.zeta)) {
-        message_ = "the adhesion kernel (A, B, eps, zeta) is fixed while a device drives the runtime; Kp, Ka and mu "
-                   "can change";
         return;
       }
       ModelParams p = scene_.params;
