@@ -87,11 +87,14 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
     for (const EventSample& e : r.events) fmt::print(f.f, "{},{}\n", e.step, e.index);
   }
   {
+    // Written by the JSON library that reads it back (strings escaped, numbers to the last bit).
     File f(dir / "session.json");
-    fmt::print(f.f,
-               "{{\"mode\": \"{}\", \"haptic_rate_hz\": {:.17g}, \"force_scale\": {:.17g}, \"haptic_dropped\": {}, "
-               "\"dispense_volume\": {:.17g}}}\n",
-               r.mode, r.haptic_rate_hz, r.force_scale, r.haptic_dropped, r.dispense_volume);
+    const nlohmann::json session = {{"mode", r.mode},
+                                    {"haptic_rate_hz", r.haptic_rate_hz},
+                                    {"force_scale", r.force_scale},
+                                    {"haptic_dropped", r.haptic_dropped},
+                                    {"dispense_volume", r.dispense_volume}};
+    fmt::print(f.f, "{}\n", session.dump());
   }
 }
 

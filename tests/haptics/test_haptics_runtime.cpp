@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "client_process.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
@@ -379,7 +380,10 @@ TEST(Dispense, IncrementDropsAboveTheHighestMaterial) {
   for (std::uint32_t i = 0; i < n0; ++i)
     if (state.role[i] == Role::material) top = std::max(top, state.pos[i].z);
   const IncrementPaste paste = scene_paste(scene);
-  EXPECT_EQ(paste.mass, first_particle(scene, Role::material)->mass);
+  for (std::uint32_t i = 0; i < n0; ++i)
+    if (state.role[i] == Role::material) {
+      EXPECT_EQ(paste.mass, state.mass[i]) << "the paste's own mass";
+    }
   const std::size_t added = dispense_increment(scene, state, 20 * s * s * s, increment_axis(scene), paste);
   ASSERT_GT(added, 10u);
   EXPECT_EQ(state.count(Role::material), m0 + added);
@@ -395,7 +399,12 @@ TEST(Dispense, IncrementDropsAboveTheHighestMaterial) {
 TEST(Dispense, VolumeZeroMeansTheScenesDefault) {
   const Scene scene = press_scene();
   const real d = default_increment_volume(scene);
-  ASSERT_GT(d, 0);
+  const real s = increment_spacing(scene);
+  EXPECT_DOUBLE_EQ(d, 200 * s * s * s) << "without a tooth: 200 particles' volume";
+  const Scene dental = default_dental_scene();
+  ASSERT_TRUE(dental.tooth);
+  EXPECT_DOUBLE_EQ(increment_volume_or_default(dental, 0), dental.tooth->cavity_volume() / 6)
+      << "a sixth of the cavity";
   EXPECT_EQ(increment_volume_or_default(scene, 0), d);
   EXPECT_EQ(increment_volume_or_default(scene, -1), d);
   EXPECT_EQ(increment_volume_or_default(scene, 0.5 * d), 0.5 * d);
