@@ -89,11 +89,10 @@ namespace {
 // The tooth's CavityError with the options that set the cavity named; a refused axis with the
 // axis options.
 template <class Build>
-Scene with_cavity_options(const ToothSpec& spec, Build build) {
+Scene with_cavity_options(Build build) {
   try {
     return build();
-  } catch (const std::invalid_argument& e) {
-    if (!spec.long_axis && !spec.mesial) throw;
+  } catch (const ToothAxisError& e) {
     throw std::invalid_argument(fmt::format("--long-axis / --mesial: {}", e.what()));
   } catch (const CavityError& e) {
     std::string msg = e.what();
@@ -108,12 +107,12 @@ Scene with_cavity_options(const ToothSpec& spec, Build build) {
 
 Scene DentalOptions::procedure_scene() const {
   const ToothSpec spec = tooth();
-  return with_cavity_options(spec, [&] { return dental_run_scene(spec, procedure_); });
+  return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
 }
 
 Scene DentalOptions::filled_scene() const {
   const ToothSpec spec = tooth();
-  return with_cavity_options(spec, [&] {
+  return with_cavity_options([&] {
     return dental_scene(prepare_tooth(spec), DentalSceneParams{},
                         spec.mesh.empty() ? std::string("dental_default") : spec.mesh.stem().string(), tooth_name(spec));
   });

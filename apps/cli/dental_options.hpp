@@ -3,7 +3,6 @@
 // --procedure), and the scene they describe.
 #pragma once
 
-#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,7 +25,6 @@ class DentalOptions {
   // non-finite axis, or a mesial direction along the long axis, is refused by the scenes below,
   // the library's reason after the options' names.
   ToothSpec tooth() const;
-  const std::string& procedure() const { return procedure_; }
 
   // The filling procedure (--procedure, or the built-in one) on the tooth: what `dentsph run`
   // runs without a scene file.
@@ -36,7 +34,7 @@ class DentalOptions {
 
  private:
   std::string mesh_, procedure_, kind_, side_;
-  std::vector<double> values_;  // one per cavity_fields() entry; NaN: not given
+  std::vector<double> values_;  // one per cavity_fields() entry; given where its option was used
   std::vector<double> long_axis_, mesial_;
   std::vector<CLI::Option*> options_;
 };

@@ -315,9 +315,14 @@ std::string tooth_name(const ToothSpec& spec);
 // The tooth of `spec` loaded (or built), its frame found or made from the given axes, the cavity
 // carved and lined at default_tooth_spacing (a Class II with its matrix band): the one path every
 // lined tooth takes. Throws MeshError, CavityError (its reason after the tooth's name) and
-// std::invalid_argument (an axis that is zero or not finite, a mesial direction along the long
-// axis).
+// ToothAxisError (an axis that is zero or not finite, a mesial direction along the long axis).
 ToothScene prepare_tooth(const ToothSpec& spec);
+
+// ToothSpec's long axis or mesial direction describes no frame; what() says which and the fix.
+class ToothAxisError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 // A scanned tooth's scene: prepare_tooth() of the mesh (mm) with its frame found. Throws
 // MeshError or CavityError with the reason.

@@ -96,7 +96,7 @@ Scene parse_dental_scene(const Reader& root) {
     throw SceneError(fmt::format("{}: tooth.mesh: {}", root.source(), e.what()));
   } catch (const CavityError& e) {
     throw SceneError(fmt::format("{}: cavity: {}", root.source(), e.what()));
-  } catch (const std::invalid_argument& e) {
+  } catch (const ToothAxisError& e) {
     root.fail("tooth", e.what(), "give the tooth's axes in the mesh's coordinates, or leave them out");
   }
   Scene sc = procedure_or_built_in(*tooth, procedure);

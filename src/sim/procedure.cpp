@@ -15,14 +15,8 @@ namespace {
 // material in a DiskSet of that radius: each site looks at the points near it, linear in the
 // material and the sites instead of their product).
 std::vector<ParticleInit> free_sites(const State& state, const ProcedureEvent& event) {
-  const real c = event.clearance;
   std::vector<ParticleInit> ps;
-  if (!(c > 0)) {
-    for (const ParticleInit& site : event.particles)
-      if (ps.size() < event.count) ps.push_back(site);
-    return ps;
-  }
-  DiskSet material(c);
+  DiskSet material(event.clearance);  // no clearance: nothing is near
   for (std::uint32_t i = 0; i < state.size(); ++i)
     if (state.role[i] == Role::material && is_finite(state.pos[i])) material.add(state.pos[i]);
   for (const ParticleInit& site : event.particles) {

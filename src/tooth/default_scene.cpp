@@ -15,7 +15,7 @@ namespace {
 
 Vec3 checked_direction(const Vec3& v, const char* what) {
   if (!is_finite(v) || norm(v) == 0)
-    throw std::invalid_argument(
+    throw ToothAxisError(
         fmt::format("{} ({}, {}, {}) is not a direction; give a finite, non-zero vector", what, v.x, v.y, v.z));
   return v / norm(v);
 }
@@ -28,7 +28,7 @@ ToothFrame given_frame(const ToothFrame& found, const ToothSpec& spec) {
   const real off_axis = norm(hint - z * dot(hint, z));
   if (off_axis < std::sin(10.0 * M_PI / 180)) {
     if (spec.mesial)
-      throw std::invalid_argument(fmt::format(
+      throw ToothAxisError(fmt::format(
           "the mesial direction ({}, {}, {}) lies within 10 degrees of the long axis; give a direction across "
           "the tooth, towards its mesial surface",
           spec.mesial->x, spec.mesial->y, spec.mesial->z));

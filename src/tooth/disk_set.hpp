@@ -32,13 +32,15 @@ struct CellHash {
 };
 
 // Points in cells of edge `radius`: near(p) looks at the 27 cells around p's own, so a query
-// costs the points nearby, not all of them.
+// costs the points nearby, not all of them. With a radius of 0 or less (or NaN) no point is near
+// another, and the set keeps nothing.
 class DiskSet {
  public:
   explicit DiskSet(real radius) : r_(radius) {}
 
   // Whether some point of the set lies closer than the radius to p (strictly).
   bool near(const Vec3& p) const {
+    if (!(r_ > 0)) return false;
     const CellKey c = cell_of(p, r_);
     for (std::int64_t di = -1; di <= 1; ++di)
       for (std::int64_t dj = -1; dj <= 1; ++dj)
@@ -50,7 +52,9 @@ class DiskSet {
         }
     return false;
   }
-  void add(const Vec3& p) { cells_[cell_of(p, r_)].push_back(p); }
+  void add(const Vec3& p) {
+    if (r_ > 0) cells_[cell_of(p, r_)].push_back(p);
+  }
   // Adds p unless a point of the set is nearer than the radius; says whether it did.
   bool try_add(const Vec3& p) {
     if (near(p)) return false;
