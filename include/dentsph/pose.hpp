@@ -27,4 +27,7 @@ struct Pose {
   Vec3 apply(const Vec3& p) const { return position + orientation.rotate(p); }
 };
 
+// The pose a fraction s in [0, 1] of the way from a to b: positions linearly, orientations by slerp.
+Pose interpolate(const Pose& a, const Pose& b, real s);
+
 }  // namespace dentsph

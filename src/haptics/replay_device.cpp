@@ -23,8 +23,7 @@ class ReplayDevice final : public haptics::PlaybackDevice {
     const HapticSample& a = samples_[next_];
     const HapticSample& b = samples_[std::min(next_ + 1, samples_.size() - 1)];
     const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
-    return {a.device_position + (b.device_position - a.device_position) * w,
-            slerp(a.device_orientation, b.device_orientation, w)};
+    return interpolate({a.device_position, a.device_orientation}, {b.device_position, b.device_orientation}, w);
   }
   double end_s() const override { return samples_.empty() ? 0.0 : samples_.back().t; }
 

@@ -45,4 +45,8 @@ Quat slerp(Quat a, const Quat& b, real s) {
   return Quat{wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z}.normalized();
 }
 
+Pose interpolate(const Pose& a, const Pose& b, real s) {
+  return {a.position + s * (b.position - a.position), slerp(a.orientation, b.orientation, s)};
+}
+
 }  // namespace dentsph

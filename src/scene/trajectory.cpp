@@ -14,11 +14,7 @@ Pose ToolTrajectory::at(real t) const {
   const auto b = std::upper_bound(keyframes.begin(), keyframes.end(), t,
                                   [](real time, const ToolKeyframe& k) { return time < k.t; });
   const ToolKeyframe& a = *(b - 1);
-  const real s = (t - a.t) / (b->t - a.t);
-  Pose p;
-  p.position = a.pose.position + s * (b->pose.position - a.pose.position);
-  p.orientation = slerp(a.pose.orientation, b->pose.orientation, s);
-  return p;
+  return interpolate(a.pose, b->pose, (t - a.t) / (b->t - a.t));
 }
 
 }  // namespace dentsph
