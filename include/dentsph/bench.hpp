@@ -36,6 +36,16 @@ struct BenchOptions {
   Backend backend = Backend::cpu;
   std::vector<int> cuda_sweep_sides{8, 16, 26, 40, 64, 80, 100, 126};
   int sweep_grid_reach = 1;  // the sweep scenes' grid: cells of h / reach, searched reach deep
+  // CPU: the dental scene again with one core kept busy by a spinning thread, for each thread
+  // count and for the ThreadGovernor (what a run does when another program takes a core).
+  bool busy_core = true;
+};
+
+struct BusyCoreRow {
+  std::string configuration;  // "1 thread", "2 threads", "governor, up to 2"
+  int threads = 1;            // the count, or the governor's largest
+  bool governor = false;
+  double steps_per_second = 0;
 };
 
 struct BenchRow {
@@ -55,6 +65,7 @@ struct BenchResult {
   std::map<int, double> default_steps_per_second;           // by thread count (median)
   std::map<int, StageTimes> default_stage_us;               // by thread count, per step
   std::vector<BenchRow> sweep;
+  std::vector<BusyCoreRow> busy_core;           // the dental scene with one core busy (CPU)
   std::size_t bytes_per_particle = 0;           // of the largest sweep scene
   std::string machine;                          // CPU model and core count, or the GPU
   Backend backend = Backend::cpu;               // a GPU backend: default_* are keyed 1 (one GPU)

@@ -1,6 +1,7 @@
 // The benchmark runner behind `dentsph bench`. Each configuration runs `repeats` times for about
 // `seconds_per_run` of wall time after a warm-up; the median run's rate and stage times are kept.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/bench.hpp"
+#include "dentsph/thread_governor.hpp"
 
 namespace dentsph {
 
@@ -74,6 +76,41 @@ Measured measure(const Model& model, State& state, bool all_pairs, int threads, 
   m.bytes_per_particle = state.bytes_per_particle();
   return m;
 }
+
+// The grid step with its thread count chosen before every step by a ThreadGovernor of up to
+// `max_threads` (what the run loops use).
+template <class Prepare>
+Measured measure_governed(const Model& model, State& state, int max_threads, const BenchOptions& opt,
+                          Prepare&& prepare) {
+  ThreadGovernor governor(max_threads);
+  Measured m = timed_runs(opt, false, [&](StageTimes*) {
+    prepare(state);
+    const auto t0 = std::chrono::steady_clock::now();
+    step(model, state, StepOptions{governor.threads(), nullptr});
+    governor.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  });
+  m.bytes_per_particle = state.bytes_per_particle();
+  return m;
+}
+
+// Keeps one core busy while it lives: a thread that spins, as another program would.
+class BusyCore {
+ public:
+  BusyCore() : thread_([this] {
+    volatile std::uint64_t n = 0;
+    while (!stop_.load(std::memory_order_relaxed)) n = n + 1;
+  }) {}
+  ~BusyCore() {
+    stop_.store(true);
+    thread_.join();
+  }
+  BusyCore(const BusyCore&) = delete;
+  BusyCore& operator=(const BusyCore&) = delete;
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
 
 // A GPU backend: the step rate from graph replays (the haptic path), then the stage times from
 // separately timed steps (each stage waited for, so slower than the replays).
@@ -217,6 +254,24 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     log(fmt::format("{}: {}: {:.0f} steps/s", paper.name, name(c), m.steps_per_second));
   }
 
+  // The dental scene with one core kept busy by another thread: each thread count, and the
+  // governor over all of them.
+  if (!gpu && opt.busy_core) {
+    const int most = *std::max_element(opt.threads.begin(), opt.threads.end());
+    auto prepare = [&](State& s) { s.tool_pose = paper.tool.at(s.time + paper.model.dt); };
+    BusyCore busy;
+    for (int t : opt.threads) {
+      State st = paper_start;
+      const Measured m = measure(paper.model, st, false, t, opt, prepare);
+      res.busy_core.push_back({fmt::format("{} thread{}", t, t == 1 ? "" : "s"), t, false, m.steps_per_second});
+      log(fmt::format("{}, one core busy: {} threads: {:.0f} steps/s", paper.name, t, m.steps_per_second));
+    }
+    State st = paper_start;
+    const Measured m = measure_governed(paper.model, st, most, opt, prepare);
+    res.busy_core.push_back({fmt::format("governor, up to {}", most), most, true, m.steps_per_second});
+    log(fmt::format("{}, one core busy: governor up to {} threads: {:.0f} steps/s", paper.name, most, m.steps_per_second));
+  }
+
   std::vector<SweepSize> sizes = opt.sweep;
   if (gpu) {
     sizes.clear();
@@ -259,6 +314,12 @@ std::string bench_json(const BenchResult& r) {
                           {"threads", row.threads},
                           {"steps_per_second", row.steps_per_second},
                           {"stage_us", stages_json(row.stage_us)}});
+  j["busy_core"] = nlohmann::json::array();
+  for (const BusyCoreRow& row : r.busy_core)
+    j["busy_core"].push_back({{"configuration", row.configuration},
+                              {"threads", row.threads},
+                              {"governor", row.governor},
+                              {"steps_per_second", row.steps_per_second}});
   j["bytes_per_particle"] = r.bytes_per_particle;
   return j.dump(2);
 }
@@ -273,6 +334,11 @@ std::string bench_table(const BenchResult& r) {
     const double density = st.density_us + st.pressure_us;
     out += fmt::format("  {}: {:8.0f} steps/s  ({:.1f} us/step: density and pressure {:.1f}, forces and bonds {:.1f}, other {:.1f})\n",
                        who, v, st.total_us(), density, st.forces_us, st.total_us() - density - st.forces_us);
+  }
+  if (!r.busy_core.empty()) {
+    out += "  with one core kept busy by another thread:\n";
+    for (const BusyCoreRow& row : r.busy_core)
+      out += fmt::format("  {}: {:8.0f} steps/s\n", row.configuration, row.steps_per_second);
   }
   // ns/moving: the time per material or tool particle. A single block's box takes a smaller share
   // of the particles the larger the block (static boundary particles cost less than moving ones),

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "dentsph/step.hpp"
+#include "dentsph/thread_governor.hpp"
 #include "support/builders.hpp"
 
 namespace dentsph {
@@ -61,6 +62,24 @@ TEST(Threads, ParallelStepIsBitIdenticalToSerial) {
   EXPECT_GT(times.density_us, 0);
   EXPECT_GT(times.forces_us, 0);
   EXPECT_GE(times.total_us(), times.forces_us + times.density_us);
+}
+
+// The thread count may change from step to step (ThreadGovernor): a run whose count alternates
+// 1, 2, 2, 1, ... ends bit for bit where the serial run does.
+TEST(Threads, ChangingTheThreadCountBetweenStepsChangesNothing) {
+  const Model model = make_model(testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81}));
+  State serial = scene(model), mixed = scene(model);
+  for (int k = 0; k < 60; ++k) {
+    serial.tool_pose.position.z -= 0.0002;
+    mixed.tool_pose.position.z -= 0.0002;
+    step(model, serial);
+    step(model, mixed, StepOptions{(k / 2) % 2 == 0 ? 1 : 2, nullptr});
+  }
+  for (std::uint32_t i = 0; i < serial.size(); ++i) {
+    ASSERT_EQ(serial.pos[i], mixed.pos[i]) << "index " << i;
+    ASSERT_EQ(serial.vel[i], mixed.vel[i]) << "index " << i;
+  }
+  EXPECT_EQ(serial.tool_wrench.force, mixed.tool_wrench.force);
 }
 
 }  // namespace

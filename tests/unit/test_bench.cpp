@@ -76,10 +76,16 @@ TEST(Bench, JsonHasDefaultSceneSweepAndMemory) {
   EXPECT_EQ(j["sweep"][2]["method"], "all_pairs");
   EXPECT_GT(j["bytes_per_particle"].get<int>(), 100);
   EXPECT_LT(j["bytes_per_particle"].get<int>(), 4096);
-  EXPECT_EQ(lines, 2 + 6);
+  ASSERT_EQ(j["busy_core"].size(), 3u) << "1 and 2 threads and the governor, one core busy";
+  EXPECT_EQ(j["busy_core"][0]["threads"], 1);
+  EXPECT_EQ(j["busy_core"][1]["threads"], 2);
+  EXPECT_EQ(j["busy_core"][2]["governor"], true);
+  for (const auto& row : j["busy_core"]) EXPECT_GT(row["steps_per_second"].get<double>(), 0);
+  EXPECT_EQ(lines, 2 + 3 + 6);
   const std::string table = bench_table(r);
   EXPECT_NE(table.find("steps/s"), std::string::npos);
   EXPECT_NE(table.find("cups"), std::string::npos);
+  EXPECT_NE(table.find("one core kept busy"), std::string::npos);
 }
 
 // The CPU sweep's rows: the single blocks first, then the cup series up to 100k particles, whose
