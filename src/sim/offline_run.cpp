@@ -101,25 +101,18 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   ForceStats forces;
   // A GPU backend keeps the particles on the GPU: each step reads back only the wrench and the
   // diagnostics; the particles come down for snapshots, events and the end of the run.
-  std::unique_ptr<GpuStepper> gpu;
-  if (opt.backend != Backend::cpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
+  const std::unique_ptr<Stepper> stepper = make_stepper(opt.backend, scene.model, state, opt.threads);
   std::size_t next_event = 0;
   for (std::uint64_t k = 0; k < total; ++k) {
     // Events due by this step (a half step early, so that an event at t lands on the step at t).
     while (next_event < scene.events.size() && scene.events[next_event].t <= state.time + 0.5 * scene.model.dt) {
-      if (gpu) gpu->download(state);
+      stepper->sync_to_host(state);
       apply_event(scene, state, scene.events[next_event++]);
-      if (gpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
+      stepper->sync_from_host(state);
       ++sum.events_applied;
     }
     const real t_forces = state.time;
-    state.tool_pose = scene.tool.at(state.time + scene.model.dt);
-    if (gpu) {
-      gpu->step(state.tool_pose);
-      gpu->copy_results(state);
-    } else {
-      step(scene.model, state, StepOptions{opt.threads, nullptr});
-    }
+    stepper->step(state, scene.tool.at(state.time + scene.model.dt));
     if (csv) csv->add(t_forces, state.tool_wrench);
     sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
     forces.add(state.tool_wrench.force, scene.model.dt);
@@ -141,14 +134,14 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
           state.time, state.steps, sum.limits.force, sum.dt);
       break;
     }
-    if (snaps && gpu && snaps->due(state)) gpu->download(state);
+    if (snaps && snaps->due(state)) stepper->sync_to_host(state);
     if (snaps) snaps->maybe_write(state);
     if (opt.on_progress && ((k + 1) % report_every == 0 || k + 1 == total)) {
       const double w = elapsed();
       opt.on_progress({k + 1, total, state.time, w, w / double(k + 1) * double(total - k - 1)});
     }
   }
-  if (gpu) gpu->download(state);
+  stepper->sync_to_host(state);
   sum.steps = state.steps;
   sum.material = state.count(Role::material);  // at the end: increments add material
   sum.boundary = state.count(Role::boundary);
