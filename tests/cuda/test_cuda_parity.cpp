@@ -23,12 +23,12 @@ class CudaParity : public ::testing::TestWithParam<GpuScene> {};
 
 TEST_P(CudaParity, MatchesAllPairsOver100Steps) {
   DENTSPH_REQUIRE_DEVICE();
-  gpu_parity_run(on_device, GetParam(), true, 1e-4);
+  gpu_parity_run(on_device, GetParam(), true, kBackendParityTolerance);
 }
 
 TEST_P(CudaParity, MatchesGridStepOver100Steps) {
   DENTSPH_REQUIRE_DEVICE();
-  gpu_parity_run(on_device, GetParam(), false, 1e-4, 10);
+  gpu_parity_run(on_device, GetParam(), false, kBackendParityTolerance, 10);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaParity,

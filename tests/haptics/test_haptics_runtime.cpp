@@ -328,6 +328,44 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   std::filesystem::remove_all(dir);
 }
 
+// The same recorded device input on two backends: a session recorded on the CPU replays bit for
+// bit there and within the backends' parity tolerance on the GPU's algorithm (cuda-emulation, the
+// CUDA backend's stage bodies on the CPU); the runtime itself runs on cuda-emulation, names it,
+// and its recording replays bit for bit on cuda-emulation and within the tolerance on the CPU.
+TEST(HapticRuntime, ToolForcesAgreeAcrossBackendsOverTheSameRecordedInput) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::direct);
+  auto device = make_scripted_device(scene, o.workspace);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  EXPECT_EQ(r.run.backend, "cpu");
+  ASSERT_GT(r.recording.steps.size(), 100u);
+  const std::vector<Vec3> cpu = replay_steps(scene, r.recording, 1, Backend::cpu);
+  ASSERT_EQ(cpu.size(), r.recording.steps.size());
+  for (std::size_t k = 0; k < cpu.size(); ++k) ASSERT_EQ(cpu[k], r.recording.steps[k].tool_force) << k;
+  const ReplayComparison on_gpu =
+      compare_replay(replay_steps(scene, r.recording, 1, Backend::cuda_emulation), r.recording, kBackendParityTolerance);
+  std::printf("cpu session (%zu steps) on cuda-emulation: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
+              cpu.size(), on_gpu.differ, on_gpu.largest, on_gpu.peak);
+  EXPECT_EQ(on_gpu.outside, 0u) << "largest difference " << on_gpu.largest << " N";
+  EXPECT_GT(on_gpu.peak, 0.005) << "the tool pressed the paste";
+
+  o.backend = Backend::cuda_emulation;
+  device = make_scripted_device(scene, o.workspace);
+  const RealtimeResult g = run_realtime(scene, *device, o);
+  EXPECT_EQ(g.run.status, "completed") << g.run.message;
+  EXPECT_EQ(g.run.backend, "cuda-emulation");
+  EXPECT_EQ(realtime_sections(g)["sim"]["backend"], "cuda-emulation");
+  ASSERT_EQ(g.recording.backend, "cuda-emulation");
+  ASSERT_GT(g.recording.steps.size(), 20u);
+  const std::vector<Vec3> again = replay_steps(scene, g.recording, 1, Backend::cuda_emulation);
+  for (std::size_t k = 0; k < again.size(); ++k) ASSERT_EQ(again[k], g.recording.steps[k].tool_force) << k;
+  const ReplayComparison on_cpu =
+      compare_replay(replay_steps(scene, g.recording, 1, Backend::cpu), g.recording, kBackendParityTolerance);
+  std::printf("cuda-emulation session (%zu steps) on cpu: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
+              again.size(), on_cpu.differ, on_cpu.largest, on_cpu.peak);
+  EXPECT_EQ(on_cpu.outside, 0u) << "largest difference " << on_cpu.largest << " N";
+}
+
 // A device that sends NaN, infinite and absurd poses, and a simulation that diverges: nothing
 // non-finite or above the limit reaches the device, and the run says it diverged.
 TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
@@ -477,6 +515,11 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
   ASSERT_EQ(a.size(), r.recording.steps.size());
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
+  // On the GPU's algorithm the increments go in through its stepper (a new engine for each count):
+  // the forces agree within the backends' parity tolerance.
+  const ReplayComparison gpu =
+      compare_replay(replay_steps(scene, loaded, 1, Backend::cuda_emulation), loaded, kBackendParityTolerance);
+  EXPECT_EQ(gpu.outside, 0u) << "largest difference " << gpu.largest << " N";
   loaded.events.clear();
   const std::vector<Vec3> without = replay_steps(scene, loaded, 1);
   std::size_t differ = 0;

@@ -1,7 +1,8 @@
 // The GPU backend's algorithm, run on the CPU (make_emulated_gpu_stepper: the CUDA stage bodies
 // looped over the particles), against the CPU reference: the all-pairs step and the grid step
-// within 1e-4 relative over 100 steps, the Fig. 2 bond loop step for step, the bond overflow
-// counted alike. tests/cuda runs the same checks on a device.
+// within kBackendParityTolerance (1e-4) relative over 100 steps, the Fig. 2 bond loop step for
+// step, the bond overflow counted alike, edits between steps. tests/cuda runs the same checks on
+// a device.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -22,9 +23,13 @@ const GpuFactory emulated = [](const Model& m, const State& s) { return make_emu
 
 class GpuEmulation : public ::testing::TestWithParam<GpuScene> {};
 
-TEST_P(GpuEmulation, MatchesAllPairsOver100Steps) { gpu_parity_run(emulated, GetParam(), true, 1e-4); }
+TEST_P(GpuEmulation, MatchesAllPairsOver100Steps) {
+  gpu_parity_run(emulated, GetParam(), true, kBackendParityTolerance);
+}
 
-TEST_P(GpuEmulation, MatchesGridStepOver100Steps) { gpu_parity_run(emulated, GetParam(), false, 1e-4, 10); }
+TEST_P(GpuEmulation, MatchesGridStepOver100Steps) {
+  gpu_parity_run(emulated, GetParam(), false, kBackendParityTolerance, 10);
+}
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GpuEmulation,
                          ::testing::Values(GpuScene{4, 0.2, 1, false, 1}, GpuScene{5, 0.25, 2, true, 2},
@@ -89,7 +94,7 @@ TEST(GpuEmulation, EditsBetweenStepsMatchTheCpu) {
   }
   gpu->sync_to_host(g);
   ASSERT_EQ(g.size(), ref.size());
-  compare_states(g, ref, 60, 1e-4);
+  compare_states(g, ref, 60, kBackendParityTolerance);
   EXPECT_EQ(g.steps, 60u);
   EXPECT_EQ(g.bonds.counters.formed, ref.bonds.counters.formed);
 }
@@ -173,7 +178,7 @@ TEST(GpuEmulation, RunLoopMatchesTheCpuRun) {
   EXPECT_EQ(gpu.bonds.formed, cpu.bonds.formed);
   EXPECT_EQ(gpu.bonds_current, cpu.bonds_current);
   EXPECT_GT(cpu.peak_tool_force_N, 0);
-  EXPECT_NEAR(gpu.peak_tool_force_N, cpu.peak_tool_force_N, 1e-4 * cpu.peak_tool_force_N);
+  EXPECT_NEAR(gpu.peak_tool_force_N, cpu.peak_tool_force_N, kBackendParityTolerance * cpu.peak_tool_force_N);
   EXPECT_EQ(gpu.status, "completed");
   std::filesystem::remove_all(dir);
 }
