@@ -328,6 +328,16 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   std::filesystem::remove_all(dir);
 }
 
+// `rec`, replayed on `other` (not the backend that recorded it), against its recorded forces:
+// within the backends' parity tolerance. Returns the comparison.
+ReplayComparison expect_within_parity(const Scene& scene, const Recording& rec, Backend other) {
+  const ReplayComparison c = compare_replay(replay_steps(scene, rec, 1, other), rec, kBackendParityTolerance);
+  std::printf("%s session (%zu steps) replayed on %s: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
+              rec.backend.c_str(), rec.steps.size(), backend_name(other), c.differ, c.largest, c.peak);
+  EXPECT_EQ(c.outside, 0u) << "largest difference " << c.largest << " N";
+  return c;
+}
+
 // The same recorded device input on two backends: a session recorded on the CPU replays bit for
 // bit there and within the backends' parity tolerance on the GPU's algorithm (cuda-emulation, the
 // CUDA backend's stage bodies on the CPU); the runtime itself runs on cuda-emulation, names it,
@@ -335,35 +345,21 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
 TEST(HapticRuntime, ToolForcesAgreeAcrossBackendsOverTheSameRecordedInput) {
   const Scene scene = press_scene();
   RealtimeOptions o = options(ForceMode::direct);
-  auto device = make_scripted_device(scene, o.workspace);
-  const RealtimeResult r = run_realtime(scene, *device, o);
-  EXPECT_EQ(r.run.backend, "cpu");
-  ASSERT_GT(r.recording.steps.size(), 100u);
-  const std::vector<Vec3> cpu = replay_steps(scene, r.recording, 1, Backend::cpu);
-  ASSERT_EQ(cpu.size(), r.recording.steps.size());
-  for (std::size_t k = 0; k < cpu.size(); ++k) ASSERT_EQ(cpu[k], r.recording.steps[k].tool_force) << k;
-  const ReplayComparison on_gpu =
-      compare_replay(replay_steps(scene, r.recording, 1, Backend::cuda_emulation), r.recording, kBackendParityTolerance);
-  std::printf("cpu session (%zu steps) on cuda-emulation: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
-              cpu.size(), on_gpu.differ, on_gpu.largest, on_gpu.peak);
-  EXPECT_EQ(on_gpu.outside, 0u) << "largest difference " << on_gpu.largest << " N";
-  EXPECT_GT(on_gpu.peak, 0.005) << "the tool pressed the paste";
-
-  o.backend = Backend::cuda_emulation;
-  device = make_scripted_device(scene, o.workspace);
-  const RealtimeResult g = run_realtime(scene, *device, o);
-  EXPECT_EQ(g.run.status, "completed") << g.run.message;
-  EXPECT_EQ(g.run.backend, "cuda-emulation");
-  EXPECT_EQ(realtime_sections(g)["sim"]["backend"], "cuda-emulation");
-  ASSERT_EQ(g.recording.backend, "cuda-emulation");
-  ASSERT_GT(g.recording.steps.size(), 20u);
-  const std::vector<Vec3> again = replay_steps(scene, g.recording, 1, Backend::cuda_emulation);
-  for (std::size_t k = 0; k < again.size(); ++k) ASSERT_EQ(again[k], g.recording.steps[k].tool_force) << k;
-  const ReplayComparison on_cpu =
-      compare_replay(replay_steps(scene, g.recording, 1, Backend::cpu), g.recording, kBackendParityTolerance);
-  std::printf("cuda-emulation session (%zu steps) on cpu: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
-              again.size(), on_cpu.differ, on_cpu.largest, on_cpu.peak);
-  EXPECT_EQ(on_cpu.outside, 0u) << "largest difference " << on_cpu.largest << " N";
+  for (Backend backend : {Backend::cpu, Backend::cuda_emulation}) {
+    o.backend = backend;
+    auto device = make_scripted_device(scene, o.workspace);
+    const RealtimeResult r = run_realtime(scene, *device, o);
+    EXPECT_EQ(r.run.status, "completed") << r.run.message;
+    EXPECT_EQ(r.run.backend, backend_name(backend));
+    EXPECT_EQ(realtime_sections(r)["sim"]["backend"], backend_name(backend));
+    ASSERT_EQ(r.recording.backend, backend_name(backend));
+    ASSERT_GT(r.recording.steps.size(), 20u);
+    const std::vector<Vec3> again = replay_steps(scene, r.recording, 1, backend);
+    ASSERT_EQ(again.size(), r.recording.steps.size());
+    for (std::size_t k = 0; k < again.size(); ++k) ASSERT_EQ(again[k], r.recording.steps[k].tool_force) << k;
+    const Backend other = backend == Backend::cpu ? Backend::cuda_emulation : Backend::cpu;
+    EXPECT_GT(expect_within_parity(scene, r.recording, other).peak, 0.005) << "the tool pressed the paste";
+  }
 }
 
 // A device that sends NaN, infinite and absurd poses, and a simulation that diverges: nothing
@@ -517,9 +513,7 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
   // On the GPU's algorithm the increments go in through its stepper (a new engine for each count):
   // the forces agree within the backends' parity tolerance.
-  const ReplayComparison gpu =
-      compare_replay(replay_steps(scene, loaded, 1, Backend::cuda_emulation), loaded, kBackendParityTolerance);
-  EXPECT_EQ(gpu.outside, 0u) << "largest difference " << gpu.largest << " N";
+  expect_within_parity(scene, loaded, Backend::cuda_emulation);
   loaded.events.clear();
   const std::vector<Vec3> without = replay_steps(scene, loaded, 1);
   std::size_t differ = 0;

@@ -87,10 +87,7 @@ TEST(GpuEmulation, EditsBetweenStepsMatchTheCpu) {
       kick(g);
       gpu->sync_from_host(g);
     }
-    const Pose pose = gpu_scene_pose(start, k);
-    ref.tool_pose = pose;
-    step(model, ref);
-    gpu->step(g, pose);
+    step_both(model, ref, *gpu, g, gpu_scene_pose(start, k));
   }
   gpu->sync_to_host(g);
   ASSERT_EQ(g.size(), ref.size());
@@ -107,10 +104,7 @@ TEST(Backend, CpuStepperIsTheGridStepBitForBit) {
   const std::unique_ptr<Stepper> cpu = make_stepper(Backend::cpu, model, st, 1);
   EXPECT_STREQ(cpu->name(), "cpu");
   for (int k = 0; k < 40; ++k) {
-    const Pose pose = gpu_scene_pose(ref.tool_pose, k);
-    ref.tool_pose = pose;
-    step(model, ref);
-    cpu->step(st, pose);
+    step_both(model, ref, *cpu, st, gpu_scene_pose(ref.tool_pose, k));
     cpu->sync_to_host(st);
     cpu->sync_from_host(st);
   }

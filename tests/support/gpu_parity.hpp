@@ -79,6 +79,13 @@ inline Pose gpu_scene_pose(const Pose& start, int k) {
   return p;
 }
 
+// One step of the reference `ref` (the CPU grid step) and of `g` through `stepper`, the tool to `pose`.
+inline void step_both(const Model& model, State& ref, Stepper& stepper, State& g, const Pose& pose) {
+  ref.tool_pose = pose;
+  step(model, ref);
+  stepper.step(g, pose);
+}
+
 // g (from the GPU) against r (the reference) by stable id, within `tol` relative (floors from
 // each field's largest value: a tenth of it), the same bonds, the same wrench and counters.
 inline void compare_states(const State& g, const State& r, int step, real tol) {
@@ -184,12 +191,7 @@ inline void gpu_overflow_counted(const GpuFactory& make) {
   const Model model = gpu_scene_model(scene, 4);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
   std::unique_ptr<Stepper> gpu = make(model, g);
-  for (int k = 0; k < 20; ++k) {
-    const Pose pose = gpu_scene_pose(ref.tool_pose, k);
-    ref.tool_pose = pose;
-    step(model, ref);
-    gpu->step(g, pose);
-  }
+  for (int k = 0; k < 20; ++k) step_both(model, ref, *gpu, g, gpu_scene_pose(ref.tool_pose, k));
   gpu->sync_to_host(g);
   compare_states(g, ref, 20, 1e-6);
   EXPECT_GT(g.bonds.counters.overflowed, 100u) << "the lists overflowed";
