@@ -1,10 +1,12 @@
 // Google Benchmark: one step of the built-in dental scene (the paper's counts, the tool moving
 // along its procedure), and of the `dentsph bench` sweep's scenes (small blocks of material in a
 // container, then 1 to 14 copies of the 16^3 block's cup), grid step against the all-pairs
-// reference, for growing particle counts and threads. Arguments: side, cups, threads.
+// reference, for growing particle counts and threads; the dental scene's step also through the
+// Simulation every loop steps with. Arguments: side, cups, threads.
 #include <benchmark/benchmark.h>
 
 #include "dentsph/bench.hpp"
+#include "dentsph/simulation.hpp"
 #include "step/stages.hpp"
 
 namespace {
@@ -40,6 +42,20 @@ void BM_DentalStep(benchmark::State& bs) {
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DentalStep)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The same steps through the run core every loop uses (a Simulation: the CPU's Stepper, the tool
+// force statistics, the force limit, the divergence check): beside BM_DentalStep, the cost of the
+// core around the step.
+void BM_DentalSimulation(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  Simulation sim(sc, {Backend::cpu, int(bs.range(0)), false});
+  auto one = [&] { sim.step(sim.keyframe_pose()); };
+  for (int k = 0; k < 10; ++k) one();
+  for (auto _ : bs) one();
+  bs.counters["particles"] = sim.state().size();
+  bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DentalSimulation)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // One stage of the dental scene's step, repeated on the state after 200 steps (the paste pressed in,
 // bonds formed): the density pass over the kept lists (with each particle's pressure), and the

@@ -1,5 +1,6 @@
-// dentsph: the command-line program. Subcommands: run (an offline run of a scene), validate
-// (check a scene without running it).
+// dentsph: the command-line program. Subcommands: run (an offline run of a scene, or the haptic
+// runtime with --realtime), replay (a realtime run's recording), validate (check a scene without
+// running it), bench (steps per second).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -12,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "backend_option.hpp"
 #include "dentsph/bench.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
@@ -125,11 +127,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
   cli::RealtimeCommand realtime;
   realtime.add_options(*run);
-  const std::vector<std::string> backends = {"cpu", "cuda", "cuda-emulation"};
-  std::string run_backend = "cpu", bench_backend = "cpu";
-  run->add_option("--backend", run_backend, "Where the step runs: cpu, cuda (a GPU), cuda-emulation (its algorithm on the CPU, slow)")
-      ->check(CLI::IsMember(backends))
-      ->capture_default_str();
+  std::string run_backend = "cpu", bench_backend = "cpu", replay_backend = "cpu";
+  cli::add_backend_option(*run, run_backend);
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -142,9 +141,9 @@ int main(int argc, char** argv) {
   bench->add_option("--grid-reach", bench_opt.sweep_grid_reach, "The sweep's grid: cells of h / N searched N deep")
       ->check(CLI::Range(1, 3))
       ->capture_default_str();
-  bench->add_option("--backend", bench_backend, "cpu (thread counts), or cuda: the sweep then reaches 2 million particles")
-      ->check(CLI::IsMember(backends))
-      ->capture_default_str();
+  cli::add_backend_option(*bench, bench_backend,
+                          "cpu (thread counts), or cuda: the sweep then reaches 2 million particles (cuda-emulation: "
+                          "the GPU's algorithm on the CPU)");
 
   std::string replay_dir, replay_scene;
   int replay_threads = 1;
@@ -158,6 +157,9 @@ int main(int argc, char** argv) {
   cli::DentalOptions replay_dental;
   replay_dental.add_options(*replay, replay_scene_opt, true);
   replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
+  cli::add_backend_option(*replay, replay_backend,
+                          "Where the replay steps: the recording's backend reproduces its forces bit for bit, another "
+                          "agrees within the backends' parity tolerance");
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -168,16 +170,17 @@ int main(int argc, char** argv) {
     if (*run) {
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
-      if (realtime.enabled() && opt.backend != Backend::cpu)
-        throw std::invalid_argument("--realtime runs the step on the CPU: leave out --backend, or run offline with it");
       return cmd_run(run_scene, run_dental, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
-                                   replay_dir, replay_threads);
+                                   replay_dir, replay_threads, parse_backend(replay_backend));
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
+  } catch (const CudaUnavailable& e) {
+    fmt::print(stderr, "error: --backend cuda: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

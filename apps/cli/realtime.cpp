@@ -93,6 +93,7 @@ std::unique_ptr<Device> RealtimeCommand::make_device(const Scene& scene, const R
 int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
   if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
   RealtimeOptions o = options(scene, double(offline.duration), offline.threads, offline.allow_unstable, offline.out_dir);
+  o.backend = offline.backend;
   o.stop = &g_stop;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -116,20 +117,19 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   return 0;
 }
 
-int replay_recording(const Scene& scene, const std::string& dir, int threads) {
+int replay_recording(const Scene& scene, const std::string& dir, int threads, Backend backend) {
   const Recording r = load_recording(dir);
-  const std::vector<Vec3> f = replay_steps(scene, r, threads);
-  double worst = 0, peak = 0;
-  std::size_t differ = 0;
-  for (std::size_t k = 0; k < f.size(); ++k) {
-    worst = std::max(worst, double(norm(f[k] - r.steps[k].tool_force)));
-    peak = std::max(peak, double(norm(r.steps[k].tool_force)));
-    differ += !(f[k] == r.steps[k].tool_force);
-  }
-  fmt::print("replayed {} steps and {} events of {}: {} tool forces differ from the recording (largest difference "
-             "{:.3g} N; recorded peak {:.4g} N)\n",
-             f.size(), r.events.size(), dir, differ, worst, peak);
-  return differ == 0 ? 0 : 4;
+  const std::vector<Vec3> f = replay_steps(scene, r, threads, backend);
+  const ReplayComparison c = compare_replay(f, r, kBackendParityTolerance);
+  const bool exact = r.backend == backend_name(backend);
+  fmt::print("replayed {} steps and {} events of {} on {} (recorded on {}): {} tool forces differ from the recording "
+             "(largest difference {:.3g} N; recorded peak {:.4g} N)\n",
+             f.size(), r.events.size(), dir, backend_name(backend), r.backend, c.differ, c.largest, c.peak);
+  if (exact) return c.differ == 0 ? 0 : 4;
+  fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} relative, or of the "
+             "peak where forces are small)\n",
+             c.outside, kBackendParityTolerance);
+  return c.outside == 0 ? 0 : 4;
 }
 
 }  // namespace dentsph::cli

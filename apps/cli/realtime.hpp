@@ -28,7 +28,7 @@ class RealtimeCommand {
                           const std::filesystem::path& out_dir) const;
   // The chosen device (a UDP bridge is bound and says where it listens).
   std::unique_ptr<Device> make_device(const Scene& scene, const RealtimeOptions& options, bool quiet) const;
-  // Runs `scene` under the runtime; `offline` carries --duration, --out, --threads and
+  // Runs `scene` under the runtime; `offline` carries --duration, --out, --threads, --backend and
   // --allow-unstable. Returns the exit code.
   int run(const Scene& scene, const RunOptions& offline, bool quiet);
 
@@ -43,8 +43,9 @@ class RealtimeCommand {
   const CLI::Option* threads_option_ = nullptr;
 };
 
-// `dentsph replay RECORDING [SCENE]`: steps the scene on the recorded tool poses and compares
-// the tool forces with the recorded ones. Returns 0 when they agree bit for bit, 4 otherwise.
-int replay_recording(const Scene& scene, const std::string& recording_dir, int threads);
+// `dentsph replay RECORDING [SCENE] [--backend B]`: steps the scene on the recorded tool poses
+// and compares the tool forces with the recorded ones. Returns 0 when they agree (bit for bit on
+// the recording's backend, within kBackendParityTolerance on another), 4 otherwise.
+int replay_recording(const Scene& scene, const std::string& recording_dir, int threads, Backend backend);
 
 }  // namespace dentsph::cli

@@ -14,6 +14,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
+#include "backend_option.hpp"
 #include "colour_map.hpp"
 #include "dentsph/haptics.hpp"
 #include "dental_options.hpp"
@@ -37,6 +38,7 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"closed_by_user", r.closed_by_user},
             {"timed_out", r.timed_out},
             {"sim", {{"steps", r.sim_steps}, {"steps_per_second", r.sim_steps_per_second}, {"time_s", r.last.time}}},
+            {"backend", r.last.backend},
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};
   if (r.last.assessment) j["assessment"] = json::parse(dentsph::assessment_json(*r.last.assessment));
@@ -69,6 +71,8 @@ int main(int argc, char** argv) {
   app.add_option("--width", vo.width, "Window width in pixels")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_option("--height", vo.height, "Window height in pixels")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_option("--threads", so.threads, "Threads of the simulation step")->check(CLI::Range(1, 1024))->capture_default_str();
+  std::string backend = "cpu";
+  cli::add_backend_option(app, backend);
   app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed or bonds")->capture_default_str();
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
   app.add_flag("--paused", so.start_paused, "Start paused");
@@ -92,7 +96,7 @@ int main(int argc, char** argv) {
     (void)viewer::colour_by_from_name(vo.colour_by);
     if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
     Scene sc = !scene_file.empty() ? load_scene(scene_file) : dental.filled_scene();
-    check_time_step(sc, make_state(sc), false);
+    so.backend = parse_backend(backend);
     const bool with_device = app.count("--device") > 0;
     RealtimeOptions ro;
     std::unique_ptr<Device> dev;
@@ -117,6 +121,9 @@ int main(int argc, char** argv) {
                  vo.timeout_s);
       return 4;
     }
+  } catch (const CudaUnavailable& e) {
+    fmt::print(stderr, "error: --backend cuda: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

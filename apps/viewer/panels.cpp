@@ -154,6 +154,7 @@ void loops_panel(const Snapshot& s, const FrameStats& st) {
   ImGui::Text("render      %.1f fps", st.fps);
   ImGui::Text("            frame p50 %.1f ms, p99 %.1f ms", st.frame_p50_ms, st.frame_p99_ms);
   ImGui::Text("simulation  %.0f steps/s  (%.3g x real time)", s.steps_per_second, s.steps_per_second * double(s.dt));
+  ImGui::Text("            on %s", s.backend.c_str());
   if (s.haptic) {
     const Snapshot::Haptic& h = *s.haptic;
     ImGui::Separator();

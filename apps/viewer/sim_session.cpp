@@ -10,7 +10,6 @@
 
 #include "dentsph/dispense.hpp"
 #include "dentsph/step.hpp"
-#include "dentsph/run.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph::viewer {
@@ -23,44 +22,31 @@ using clock_type = std::chrono::steady_clock;
 
 SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(scene)), opt_(options) {
   force_scale_ = scene_.force_scale;
-  const real s = increment_spacing(scene_);
   const IncrementPaste paste = scene_paste(scene_);
   paste_ = paste.material;
   paste_mass_ = paste.mass;
-  tool_material_ = scene_tool_material(scene_);
   press_axis_ = increment_axis(scene_);
   if (scene_.tooth) {
     AssessParams ap;
-    ap.spacing = s;
+    ap.spacing = increment_spacing(scene_);
     assessor_.emplace(*scene_.tooth, ap);
   }
   opt_.dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   paused_ = opt_.start_paused;
-  reset_state(state_);
-  publish(state_, true, 0);
+  reset();
+  publish(*sim_, true, 0);
 }
 
 SimSession::~SimSession() { stop(); }
 
-void SimSession::reset_state(State& st) {
-  st = make_state(scene_);
-  apply_paste(st);  // the paste as edited, not as the scene first gave it
+void SimSession::reset() {
+  sim_.reset();  // one stepper at a time (a GPU's memory)
+  sim_.emplace(scene_, SimulationOptions{opt_.backend, opt_.threads, false});
+  if (paste_edited_) sim_->set_paste(scene_.model, paste_);  // the paste as edited, not as the scene gave it
   tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
-  st.tool_pose = st.tool_pose_applied;
-  forces_ = {};
   diverged_ = false;
   steps_.store(0, std::memory_order_release);
-}
-
-void SimSession::apply_paste(State& st) {
-  for (std::uint32_t i = 0; i < st.size(); ++i)
-    if (st.role[i] == Role::material) {
-      st.Kp[i] = paste_.Kp;
-      st.Ka[i] = paste_.Ka;
-      st.mu[i] = paste_.mu;
-    }
-  sound_speed_ = stability_limits(scene_.model, st).sound_speed;
 }
 
 std::vector<std::string> SimSession::tools() const { return instrument_names(); }
@@ -71,6 +57,7 @@ void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions opti
   rt_options_ = std::move(options);
   // One increment for the D key and the device's button, the one the recording replays.
   rt_options_.dispense_volume = opt_.dispense_volume;
+  rt_options_.backend = opt_.backend;
   force_scale_ = rt_options_.force_scale.value_or(scene_.force_scale);
 }
 
@@ -122,7 +109,7 @@ Vec3 SimSession::tool_tip_goal() const {
   return pressed_ ? target_ - press_axis_ * (opt_.press_depth_spacings * s) : target_;
 }
 
-void SimSession::apply(const Command& c, State& st, std::vector<EventSample>* recorded) {
+void SimSession::apply(const Command& c, Simulation& sim, std::vector<EventSample>* recorded) {
   message_.clear();
   switch (c.kind) {
     case Command::Kind::pause:
@@ -142,71 +129,66 @@ void SimSession::apply(const Command& c, State& st, std::vector<EventSample>* re
         message_ = "the haptic runtime does not reset: close the window and start again";
         return;
       }
-      reset_state(st);
+      reset();
       return;
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
     case Command::Kind::dispense:
-      if (recorded) recorded->push_back({st.steps, kButtonIncrement});
-      dispense_increment(scene_, st, opt_.dispense_volume, press_axis_, {paste_mass_, paste_});
+      if (recorded) recorded->push_back({sim.state().steps, kButtonIncrement});
+      sim.dispense(opt_.dispense_volume, {paste_mass_, paste_});
       return;
     case Command::Kind::switch_tool:
       try {
-        const EventSample event = tool_switch_event(st.steps, c.tool);  // refuses an unknown tool first
-        switch_instrument(scene_, st, c.tool);
+        const EventSample event = tool_switch_event(sim.state().steps, c.tool);  // refuses an unknown tool first
+        sim.switch_instrument(c.tool);
         if (recorded) recorded->push_back(event);
         tool_name_ = c.tool;
       } catch (const std::exception& e) {
         message_ = e.what();
       }
       return;
-    case Command::Kind::set_material: {
+    case Command::Kind::set_material:
       if (device_) {
         // The runtime's recording holds the session's increments and tool switches, not the
         // paste: a replay must step the paste the session stepped.
         message_ = "the paste is fixed while a device drives the runtime (its recording replays the scene's paste)";
         return;
       }
-      const MaterialEdit& m = c.material;
-      if (!(m.Kp > 0) || !(m.mu >= 0) || !(m.Ka >= 0)) {
-        message_ = "material: Kp must be positive, mu and Ka non-negative";
-        return;
-      }
-      ModelParams p = scene_.params;
-      p.adhesion.A = m.A;
-      p.adhesion.B = m.B;
-      p.adhesion.eps = m.eps;
-      p.adhesion.zeta = m.zeta;
-      Model model;
-      try {
-        model = make_model(p);
-      } catch (const std::exception& e) {
-        message_ = e.what();
-        return;
-      }
-      // Refuse an edit that would put dt over a stability limit: the paste would explode.
-      const real acoustic = model.cfl_lambda * model.kernel.h / std::sqrt(std::max(m.Kp, tool_material_.Kp));
-      const real viscous = m.mu > 0 ? 0.125 * model.kernel.h2 * paste_.rho0 / m.mu : INFINITY;
-      if (model.dt > acoustic || model.dt > viscous) {
-        message_ = fmt::format(
-            "refused: dt = {:.3g} s would exceed the {} limit ({:.3g} s); lower {}", model.dt,
-            model.dt > acoustic ? "acoustic" : "viscous", std::min(acoustic, viscous),
-            model.dt > acoustic ? "Kp" : "mu");
-        return;
-      }
-      scene_.params = p;
-      scene_.model = model;
-      paste_.Kp = m.Kp;
-      paste_.Ka = m.Ka;
-      paste_.mu = m.mu;
-      apply_paste(st);
+      set_material(c.material, sim);
       return;
-    }
   }
 }
 
-void SimSession::publish(const State& st, bool with_assessment, double steps_per_second) {
+void SimSession::set_material(const MaterialEdit& m, Simulation& sim) {
+  if (!(m.Kp > 0) || !(m.mu >= 0) || !(m.Ka >= 0)) {
+    message_ = "material: Kp must be positive, mu and Ka non-negative";
+    return;
+  }
+  ModelParams p = scene_.params;
+  p.adhesion.A = m.A;
+  p.adhesion.B = m.B;
+  p.adhesion.eps = m.eps;
+  p.adhesion.zeta = m.zeta;
+  Material paste = paste_;
+  paste.Kp = m.Kp;
+  paste.Ka = m.Ka;
+  paste.mu = m.mu;
+  try {
+    const Model model = make_model(p);
+    // Refused when dt would be over the acoustic or viscous limit: the paste would explode.
+    sim.set_paste(model, paste);
+    scene_.params = p;
+    scene_.model = model;
+    paste_ = paste;
+    paste_edited_ = true;
+  } catch (const std::exception& e) {
+    message_ = e.what();
+  }
+}
+
+void SimSession::publish(Simulation& sim, bool with_assessment, double steps_per_second) {
   // Filled in the back buffer, whose arrays keep their capacity from publication to publication.
+  const State& st = sim.synced();
   Snapshot& s = back_;
   const std::uint32_t n = st.size();
   s.time = st.time;
@@ -231,16 +213,18 @@ void SimSession::publish(const State& st, bool with_assessment, double steps_per
   s.device_force_N = st.tool_wrench.force * force_scale_;
   s.force_scale = force_scale_;
   s.assessment.reset();
-  if (with_assessment && assessor_) s.assessment = assessor_->assess(st, scene_.model, forces_, force_scale_);
-  s.limits = stability_limits(scene_.model, st);
-  s.dt = scene_.model.dt;
-  s.material = {paste_.Kp, paste_.Ka, paste_.mu, scene_.model.adhesion.A, scene_.model.adhesion.B,
-                scene_.model.adhesion.eps, scene_.model.adhesion.zeta};
+  const Model& model = sim.model();
+  if (with_assessment && assessor_) s.assessment = assessor_->assess(st, model, sim.forces(), force_scale_);
+  s.limits = stability_limits(model, st);
+  s.dt = model.dt;
+  s.material = {paste_.Kp, paste_.Ka, paste_.mu, model.adhesion.A, model.adhesion.B, model.adhesion.eps,
+                model.adhesion.zeta};
   s.tool_name = tool_name_;
   s.message = message_;
   s.paused = paused_;
   s.diverged = diverged_;
   s.steps_per_second = steps_per_second;
+  s.backend = sim.stepper().name();
   if (device_) {
     Snapshot::Haptic h;
     constexpr auto r = std::memory_order_relaxed;
@@ -274,11 +258,11 @@ void SimSession::publish(const State& st, bool with_assessment, double steps_per
   std::swap(published_, back_);
 }
 
-void SimSession::take_due(const State& st) {
+void SimSession::take_due(std::uint64_t steps) {
   due_.clear();
   std::lock_guard lock(mutex_);
   due_.swap(queue_);  // both keep their capacity: no allocation once they have grown
-  while (!scheduled_.empty() && scheduled_.begin()->first <= st.steps) {
+  while (!scheduled_.empty() && scheduled_.begin()->first <= steps) {
     due_.push_back(scheduled_.begin()->second);
     scheduled_.erase(scheduled_.begin());
   }
@@ -288,7 +272,7 @@ void SimSession::run() {
   last_publish_ = clock_type::now();
   last_assess_ = last_publish_;
   auto rate_t0 = last_publish_;
-  std::uint64_t rate_steps0 = state_.steps;
+  std::uint64_t rate_steps0 = sim_->state().steps;
   double rate = 0;
   const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);
   const auto assess_every = std::chrono::duration<double>(1.0 / opt_.assess_hz);
@@ -296,55 +280,51 @@ void SimSession::run() {
     {
       std::unique_lock lock(mutex_);
       const bool idle = (paused_ || diverged_) && !single_ && queue_.empty() &&
-                        (scheduled_.empty() || scheduled_.begin()->first > state_.steps || paused_);
+                        (scheduled_.empty() || scheduled_.begin()->first > sim_->state().steps || paused_);
       if (idle) wake_.wait_for(lock, std::chrono::milliseconds(20));
     }
-    take_due(state_);
-    for (const Command& c : due_) apply(c, state_);
+    take_due(sim_->state().steps);
+    for (const Command& c : due_) apply(c, *sim_);  // a reset makes sim_ anew
+    Simulation& sim = *sim_;
     const bool changed = !due_.empty();
     const bool stepping = (!paused_ || single_) && !diverged_;
     if (stepping) {
       single_ = false;
+      sim.apply_due_events();
       // The tool follows its goal at a bounded speed: a mouse jumps, a tool must not.
       const Vec3 goal = tool_tip_goal();
-      const Vec3 from = state_.tool_pose_applied.position;
-      const Vec3 d = goal - from;
-      const real max_move = opt_.tool_speed * scene_.model.dt;
+      const Pose& applied = sim.state().tool_pose_applied;
+      const Vec3 d = goal - applied.position;
+      const real max_move = opt_.tool_speed * sim.model().dt;
       const real len = norm(d);
-      state_.tool_pose = state_.tool_pose_applied;
-      state_.tool_pose.position = len > max_move ? from + d * (max_move / len) : goal;
-      step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
-      forces_.add(state_.tool_wrench.force, scene_.model.dt);
-      steps_.store(state_.steps, std::memory_order_release);
-      if (exploded(state_.diagnostics, sound_speed_)) {
+      Pose pose = applied;
+      pose.position = len > max_move ? applied.position + d * (max_move / len) : goal;
+      if (!sim.step(pose)) {
         diverged_ = true;
-        message_ = fmt::format("the simulation diverged at t = {:.4g} s (material faster than {} times the sound "
-                               "speed, or non-finite): reset it (R) and soften the paste",
-                               state_.time, explosion_speed_factor);
+        message_ = fmt::format("the simulation diverged: {}; reset it (R) and soften the paste", sim.divergence());
       }
+      steps_.store(sim.state().steps, std::memory_order_release);
     }
     const auto now = clock_type::now();
     if (now - rate_t0 >= std::chrono::milliseconds(500)) {
-      rate = double(state_.steps - rate_steps0) / std::chrono::duration<double>(now - rate_t0).count();
+      rate = double(sim.state().steps - rate_steps0) / std::chrono::duration<double>(now - rate_t0).count();
       rate_t0 = now;
-      rate_steps0 = state_.steps;
+      rate_steps0 = sim.state().steps;
     }
     if (changed || now - last_publish_ >= publish_every || !stepping) {
       const bool assess = changed || now - last_assess_ >= assess_every;
-      publish(state_, assess, rate);
+      publish(sim, assess, rate);
       last_publish_ = now;
       if (assess) last_assess_ = now;
     }
   }
-  publish(state_, true, rate);
+  publish(*sim_, true, rate);
 }
 
-void SimSession::between_steps(State& st, std::vector<EventSample>& recorded) {
-  take_due(st);
-  for (const Command& c : due_) apply(c, st, &recorded);
-  // The runtime's step that follows adds its force; the assessment reads the forces so far.
-  forces_.add(st.tool_wrench.force, scene_.model.dt);
-  steps_.store(st.steps, std::memory_order_release);
+void SimSession::between_steps(Simulation& sim, std::vector<EventSample>& recorded) {
+  take_due(sim.state().steps);
+  for (const Command& c : due_) apply(c, sim, &recorded);
+  steps_.store(sim.state().steps, std::memory_order_release);
   const auto now = clock_type::now();
   const auto publish_every = std::chrono::duration<double>(1.0 / opt_.snapshot_hz);
   const auto assess_every = std::chrono::duration<double>(1.0 / opt_.assess_hz);
@@ -352,22 +332,23 @@ void SimSession::between_steps(State& st, std::vector<EventSample>& recorded) {
     const bool assess = !due_.empty() || now - last_assess_ >= assess_every;
     const double wall = std::chrono::duration<double>(now - rate_t0_).count();
     if (wall >= 0.5) {
-      sim_rate_ = double(st.steps - rate_steps0_) / wall;
+      sim_rate_ = double(sim.state().steps - rate_steps0_) / wall;
       rate_t0_ = now;
-      rate_steps0_ = st.steps;
+      rate_steps0_ = sim.state().steps;
     }
-    publish(st, assess, sim_rate_);
+    publish(sim, assess, sim_rate_);
     last_publish_ = now;
     if (assess) last_assess_ = now;
   }
 }
 
 void SimSession::run_device() {
+  sim_.reset();  // the runtime steps a Simulation of its own (one backend's memory at a time)
   RealtimeOptions o = rt_options_;
   o.stop = &rt_stop_;
   o.live = &live_;
   o.snapshot_rate_hz = 0;  // the viewer publishes its own snapshots from between_steps
-  o.between_steps = [this](const Scene&, State& st, std::vector<EventSample>& recorded) { between_steps(st, recorded); };
+  o.between_steps = [this](Simulation& sim, std::vector<EventSample>& recorded) { between_steps(sim, recorded); };
   live_t0_ = rate_t0_ = last_publish_ = last_assess_ = clock_type::now();
   try {
     realtime_result_ = run_realtime(scene_, *device_, o);

@@ -1,6 +1,7 @@
-// The simulation behind the viewer, on a thread of its own: either its own loop, driven by the
-// mouse as a stand-in device (tool target, press), or the haptic runtime with a real device
-// (use_device: the runtime's simulation loop calls back between steps). Either way it takes
+// The simulation behind the viewer, on a thread of its own: either its own loop around a
+// Simulation (simulation.hpp), driven by the mouse as a stand-in device (tool target, press), or
+// the haptic runtime with a real device (use_device: the runtime's simulation loop calls back
+// between steps with its Simulation). Either way the steps run on the session's backend. Either way it takes
 // commands (dispense, switch tool, paste edits, reset; pause and single step in its own loop)
 // and publishes snapshots for the render loop, which never touches the State. Commands may be
 // scheduled for an exact step, so a scripted session runs the same simulation however fast the
@@ -22,6 +23,7 @@
 #include "dentsph/assess.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/simulation.hpp"
 #include "dentsph/step.hpp"
 
 namespace dentsph::viewer {
@@ -63,6 +65,7 @@ struct Snapshot {
   bool paused = false;
   bool diverged = false;
   double steps_per_second = 0;  // wall-clock rate of the simulation loop
+  std::string backend;          // where it steps: cpu, cuda or cuda-emulation
   // With a device (the haptic runtime): the haptic loop's live figures.
   struct Haptic {
     std::string device;
@@ -77,6 +80,7 @@ struct Snapshot {
 
 struct SessionOptions {
   int threads = 1;                  // threads of the step
+  Backend backend = Backend::cpu;   // where the step runs (a GPU keeps the particles, downloaded per snapshot)
   real tool_speed = 0.02;           // m/s, fastest the tool follows its target (of simulated time)
   real press_depth_spacings = 2.5;  // a held press moves the tool this many spacings down the tooth axis
   real dispense_volume = 0;         // m^3 of an increment; 0: a sixth of the cavity (or 200 particles)
@@ -92,8 +96,9 @@ class SimSession {
   SimSession(const SimSession&) = delete;
   SimSession& operator=(const SimSession&) = delete;
 
-  // Runs the haptic runtime with `device` instead of the session's own loop (before start()).
-  // The device drives the tool; pause, single step and adhesion edits are refused then.
+  // Runs the haptic runtime with `device` instead of the session's own loop (before start()), on
+  // the session's backend. The device drives the tool; pause, reset and paste edits are refused
+  // then.
   void use_device(std::unique_ptr<Device> device, RealtimeOptions options);
   void start();
   void stop();  // joins the thread; idempotent
@@ -118,27 +123,26 @@ class SimSession {
  private:
   void run();
   void run_device();
-  // The runtime's hook (device mode): applies the commands due, recording the dispenses and tool
-  // switches for the replay.
-  void between_steps(State& st, std::vector<EventSample>& recorded);
-  // Moves the commands due at `st.steps` off the queues into due_ (under the lock).
-  void take_due(const State& st);
-  // Applies `c` to `st`; with `recorded` (device mode), appends what a replay must repeat.
-  void apply(const Command& c, State& st, std::vector<EventSample>* recorded = nullptr);
-  void publish(const State& st, bool with_assessment, double steps_per_second);
-  void reset_state(State& st);
-  void apply_paste(State& st);  // paste_ onto every material particle
+  // The runtime's hook (device mode): applies the commands due to its Simulation, recording the
+  // dispenses and tool switches for the replay, and publishes.
+  void between_steps(Simulation& sim, std::vector<EventSample>& recorded);
+  // Moves the commands due at `steps` off the queues into due_ (under the lock).
+  void take_due(std::uint64_t steps);
+  // Applies `c` to `sim`; with `recorded` (device mode), appends what a replay must repeat.
+  void apply(const Command& c, Simulation& sim, std::vector<EventSample>* recorded = nullptr);
+  void set_material(const MaterialEdit& m, Simulation& sim);
+  void publish(Simulation& sim, bool with_assessment, double steps_per_second);
+  void reset();  // the session's own Simulation from the scene again, with the paste as edited
   Vec3 tool_tip_goal() const;
 
   Scene scene_;
   SessionOptions opt_;
-  State state_;
+  std::optional<Simulation> sim_;  // the session's own loop's (and the first snapshot's)
   std::optional<CavityAssessor> assessor_;
-  ForceStats forces_;
   real paste_mass_ = 0;
   real force_scale_ = 1;  // device N per simulated N: the scene's, or the runtime's override
-  real sound_speed_ = 0;  // m/s, sqrt(max Kp): material far faster than this has exploded
-  Material paste_, tool_material_;
+  Material paste_;
+  bool paste_edited_ = false;
   std::string tool_name_ = "ball_burnisher";
   std::string message_;
   Vec3 target_;  // tool tip target, m

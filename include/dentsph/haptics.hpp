@@ -22,6 +22,7 @@
 #include "dentsph/haptics/recording.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/simulation.hpp"
 
 namespace dentsph {
 
@@ -83,6 +84,8 @@ struct RealtimeOptions {
   double sim_rate_limit_hz = 0;       // > 0: at most this many steps per second
   double snapshot_rate_hz = 30;       // 30 .. 60; 0: no consumer loop
   int threads = 1;                    // threads of the simulation step
+  Backend backend = Backend::cpu;     // where the simulation steps (a GPU: the particles stay there,
+                                      // downloaded at the snapshot rate)
   bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread and nice -10 for the
                                       // simulation (best effort)
   bool allow_unstable = false;
@@ -99,12 +102,12 @@ struct RealtimeOptions {
   // When set, the haptic loop keeps it current (a viewer's live panel).
   HapticLive* live = nullptr;
   // Called on the simulation thread before every step, after the procedure's events, never on the
-  // haptic thread: a viewer applies its edits (dispense, switch tool, paste parameters) and takes
-  // its snapshots here. It may add or remove particles; it must not take long. It appends to
-  // `recorded` what a replay must repeat (RealtimeResult::recording's events, at state.steps): an
-  // increment dispensed (kButtonIncrement, dispense_increment of the session's dispense_volume),
-  // a tool switched (tool_switch_event).
-  std::function<void(const Scene& scene, State& state, std::vector<EventSample>& recorded)> between_steps;
+  // haptic thread: a viewer applies its edits (dispense, switch tool) through the Simulation and
+  // takes its snapshots here (Simulation::synced). It must not take long. It appends to `recorded`
+  // what a replay must repeat (RealtimeResult::recording's events, at state().steps): an increment
+  // dispensed (kButtonIncrement, Simulation::dispense of the session's dispense_volume), a tool
+  // switched (tool_switch_event).
+  std::function<void(Simulation& sim, std::vector<EventSample>& recorded)> between_steps;
 };
 
 // Rate and period jitter of a loop.

@@ -46,7 +46,9 @@ struct StabilityLimits {
   real force = 0;     // 0.25 sqrt(h / max|a|), from the last step (infinite before any)
   real sound_speed = 0;  // m/s, c = sqrt(max Kp); material moving at many times c has exploded
 };
-StabilityLimits stability_limits(const Model& model, const State& state);
+// With `paste`: the limits the State would have if every material particle were of that material
+// (a paste edit checked before it is made).
+StabilityLimits stability_limits(const Model& model, const State& state, const Material* paste = nullptr);
 // The force limit alone, from the last step's largest acceleration (infinite before any).
 real force_time_step_limit(const Model& model, const StepDiagnostics& diagnostics);
 // Weakly compressible SPH keeps material far slower than its sound speed: material at

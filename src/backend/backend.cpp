@@ -1,7 +1,10 @@
-// What every backend shares: names, and the results a GpuStepper hands back each step.
+// What every backend shares: names, the factory of steppers, and the results a GPU engine hands
+// back each step.
 #include "dentsph/backend.hpp"
 
 #include <fmt/format.h>
+
+#include "backend/cuda/engine.hpp"
 
 namespace dentsph {
 
@@ -20,14 +23,20 @@ Backend parse_backend(const std::string& name) {
   throw std::invalid_argument(fmt::format("unknown backend '{}': choose cpu, cuda or cuda-emulation", name));
 }
 
-std::unique_ptr<GpuStepper> make_gpu_stepper(Backend backend, const Model& model, const State& state) {
-  if (backend == Backend::cuda) return make_cuda_stepper(model, state);
-  if (backend == Backend::cuda_emulation) return make_emulated_gpu_stepper(model, state);
-  throw std::invalid_argument("make_gpu_stepper: the cpu backend has no GPU stepper");
+std::unique_ptr<Stepper> make_stepper(Backend backend, const Model& model, const State& state, int threads,
+                                      ThreadPolicy policy) {
+  switch (backend) {
+    case Backend::cpu: return make_cpu_stepper(model, threads, policy);
+    case Backend::cuda: return make_cuda_stepper(model, state);
+    case Backend::cuda_emulation: return make_emulated_gpu_stepper(model, state);
+  }
+  throw std::invalid_argument("make_stepper: unknown backend");
 }
 
-void GpuStepper::start_from(const Model& model, const State& state) {
-  dt_ = model.dt;
+namespace gpu {
+
+void Engine::start_from(const State& state) {
+  size_ = state.size();
   wrench_ = state.tool_wrench;
   diagnostics_ = state.diagnostics;
   counters_ = state.bonds.counters;
@@ -36,8 +45,8 @@ void GpuStepper::start_from(const Model& model, const State& state) {
   time_ = state.time;
 }
 
-void GpuStepper::finish_step(const ToolWrench& wrench, const StepDiagnostics& diagnostics,
-                             const BondCounters& counters, const Pose& tool_pose) {
+void Engine::finish_step(const ToolWrench& wrench, const StepDiagnostics& diagnostics, const BondCounters& counters,
+                         const Pose& tool_pose) {
   wrench_ = wrench;
   diagnostics_ = diagnostics;
   counters_ = counters;
@@ -46,7 +55,7 @@ void GpuStepper::finish_step(const ToolWrench& wrench, const StepDiagnostics& di
   ++steps_;
 }
 
-void GpuStepper::copy_results(State& state) const {
+void Engine::copy_results(State& state) const {
   state.tool_wrench = wrench_;
   state.diagnostics = diagnostics_;
   state.bonds.counters = counters_;
@@ -54,5 +63,7 @@ void GpuStepper::copy_results(State& state) const {
   state.time = time_;
   state.steps = steps_;
 }
+
+}  // namespace gpu
 
 }  // namespace dentsph

@@ -61,17 +61,12 @@ Measured timed_runs(const BenchOptions& opt, bool timed, One&& one) {
   return runs[runs.size() / 2];
 }
 
-// The CPU: runs `state` (the grid step on `threads`, or the all-pairs step); `prepare` sets the
-// tool pose before each step.
+// The all-pairs reference on the CPU: runs `state`; `prepare` sets the tool pose before each step.
 template <class Prepare>
-Measured measure(const Model& model, State& state, bool all_pairs, int threads, const BenchOptions& opt,
-                 Prepare&& prepare) {
-  Measured m = timed_runs(opt, true, [&](StageTimes* times) {
+Measured measure_all_pairs(const Model& model, State& state, const BenchOptions& opt, Prepare&& prepare) {
+  Measured m = timed_runs(opt, false, [&](StageTimes*) {
     prepare(state);
-    if (all_pairs)
-      step_all_pairs(model, state);
-    else
-      step(model, state, StepOptions{threads, times});
+    step_all_pairs(model, state);
   });
   m.bytes_per_particle = state.bytes_per_particle();
   return m;
@@ -112,22 +107,28 @@ class BusyCore {
   std::thread thread_;
 };
 
-// A GPU backend: the step rate from graph replays (the haptic path), then the stage times from
-// separately timed steps (each stage waited for, so slower than the replays).
+// A Stepper (the CPU grid step on `threads`, or a GPU backend) from `state`: the step rate, then
+// the stage times. The CPU times its stages in the measured runs (the clock costs nothing there);
+// a GPU's stage times come from separately timed steps (each stage waited for, so slower than the
+// graph replays that give its rate, the haptic path). `prepare` sets the tool pose before each step.
 template <class Prepare>
-Measured measure_gpu(const Model& model, const State& initial, const BenchOptions& opt, Prepare&& prepare) {
-  std::unique_ptr<GpuStepper> gpu = make_gpu_stepper(opt.backend, model, initial);
-  State st = initial;  // only its time and tool pose are read
+Measured measure(const Model& model, State& state, int threads, const BenchOptions& opt, Prepare&& prepare) {
+  const std::unique_ptr<Stepper> stepper = make_stepper(opt.backend, model, state, threads);
+  const bool cpu = opt.backend == Backend::cpu;
   auto one = [&](StageTimes* times) {
-    prepare(st);
-    times ? gpu->step_timed(st.tool_pose, *times) : gpu->step(st.tool_pose);
-    st.time = gpu->time();
+    prepare(state);
+    if (times)
+      stepper->step_timed(state, state.tool_pose, *times);
+    else
+      stepper->step(state, state.tool_pose);
   };
-  Measured m = timed_runs(opt, false, one);
-  StageTimes t;
-  for (int k = 0; k < 20; ++k) one(&t);
-  m.per_step = per_step(t, t.steps);
-  m.bytes_per_particle = initial.bytes_per_particle();
+  Measured m = timed_runs(opt, cpu, one);
+  if (!cpu) {
+    StageTimes t;
+    for (int k = 0; k < 20; ++k) one(&t);
+    m.per_step = per_step(t, t.steps);
+  }
+  m.bytes_per_particle = state.bytes_per_particle();
   return m;
 }
 
@@ -237,9 +238,9 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   auto name = [&](const Config& c) { return gpu ? c.first : fmt::format("{} threads, {}", c.second, c.first); };
   // Runs a copy of `start` under one configuration; `prepare` sets the tool pose before each step.
   auto run = [&](const Model& model, const State& start, const Config& c, auto&& prepare) {
-    if (gpu) return measure_gpu(model, start, opt, prepare);
     State st = start;
-    return measure(model, st, c.first == "all_pairs", c.second, opt, prepare);
+    if (c.first == "all_pairs") return measure_all_pairs(model, st, opt, prepare);
+    return measure(model, st, c.second, opt, prepare);
   };
 
   const Scene paper = default_dental_scene();
@@ -262,7 +263,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     BusyCore busy;
     for (int t : opt.threads) {
       State st = paper_start;
-      const Measured m = measure(paper.model, st, false, t, opt, prepare);
+      const Measured m = measure(paper.model, st, t, opt, prepare);
       res.busy_core.push_back({fmt::format("{} thread{}", t, t == 1 ? "" : "s"), t, false, m.steps_per_second});
       log(fmt::format("{}, one core busy: {} threads: {:.0f} steps/s", paper.name, t, m.steps_per_second));
     }

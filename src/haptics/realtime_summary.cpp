@@ -34,7 +34,8 @@ std::string realtime_json(const RealtimeResult& r) {
                                {"zero_gain_ticks", h.zero_gain_ticks}}},
                  {"recorded_ticks", r.recording.haptic.size()},
                  {"recording_dropped_ticks", r.recording.haptic_dropped}};
-  j["sim"] = {{"steps", r.sim.steps},
+  j["sim"] = {{"backend", r.run.backend},
+              {"steps", r.sim.steps},
               {"steps_per_second", r.sim.steps_per_second},
               {"realtime_factor", r.sim.realtime_factor},
               {"step_p50_us", r.sim.step_p50_us},
@@ -58,13 +59,13 @@ std::string realtime_report(const RealtimeResult& r) {
       "{} deadline misses in {} ticks\n"
       "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
-      "simulation: {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
+      "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
       "dispensed by the button\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
       r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
-      h.watchdog_trips, h.zero_gain_ticks, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
+      h.watchdog_trips, h.zero_gain_ticks, r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
       r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, r.consumer.frames, r.consumer.rate_hz);
 }
 

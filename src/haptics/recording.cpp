@@ -93,7 +93,8 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
                                     {"haptic_rate_hz", r.haptic_rate_hz},
                                     {"force_scale", r.force_scale},
                                     {"haptic_dropped", r.haptic_dropped},
-                                    {"dispense_volume", r.dispense_volume}};
+                                    {"dispense_volume", r.dispense_volume},
+                                    {"backend", r.backend}};
     fmt::print(f.f, "{}\n", session.dump());
   }
 }
@@ -124,8 +125,8 @@ Recording load_recording(const std::filesystem::path& dir) {
   }
   for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, 2))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
-  // The session's settings, as save_recording writes them (dispense_volume is absent in older
-  // recordings: the scene's default).
+  // The session's settings, as save_recording writes them (dispense_volume and backend are absent
+  // in older recordings: the scene's default, the CPU).
   if (std::ifstream in(dir / "session.json"); in) {
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
     if (s.is_discarded() || !s.is_object())
@@ -135,6 +136,7 @@ Recording load_recording(const std::filesystem::path& dir) {
     r.force_scale = s.value("force_scale", r.force_scale);
     r.haptic_dropped = s.value("haptic_dropped", r.haptic_dropped);
     r.dispense_volume = s.value("dispense_volume", 0.0);
+    r.backend = s.value("backend", std::string("cpu"));
   }
   return r;
 }

@@ -1,5 +1,7 @@
-// Deterministic replay: the recorded tool pose of every step, keyed by step, not wall time.
+// Deterministic replay: the recorded tool pose of every step, keyed by step, not wall time, into a
+// Simulation on any backend.
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -10,7 +12,7 @@
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/recording.hpp"
 #include "dentsph/scene.hpp"
-#include "dentsph/step.hpp"
+#include "dentsph/simulation.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph {
@@ -23,12 +25,15 @@ EventSample tool_switch_event(std::uint64_t step, const std::string& name) {
   return {step, kToolSwitch + std::uint32_t(it - names.begin())};
 }
 
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads) {
-  State state = make_state(scene);
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads, Backend backend) {
+  // The recorded session ran whatever its time step; a replay repeats it, diverging or not.
+  Simulation sim(scene, {backend, threads, true});
+  const State& state = sim.state();
   std::vector<Vec3> forces;
   forces.reserve(r.steps.size());
   std::size_t next_event = 0;
   const real volume = increment_volume_or_default(scene, r.dispense_volume);
+  const IncrementPaste paste = scene_paste(scene);
   for (const StepSample& s : r.steps) {
     if (s.step != state.steps)
       throw std::runtime_error(fmt::format("recording: step {} follows step {}: the steps must be consecutive from 0",
@@ -36,7 +41,7 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
     for (; next_event < r.events.size() && r.events[next_event].step == s.step; ++next_event) {
       const std::uint32_t i = r.events[next_event].index;
       if (i == kButtonIncrement) {
-        dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+        sim.dispense(volume, paste);
         continue;
       }
       if (i >= kToolSwitch) {
@@ -44,19 +49,35 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
         if (i - kToolSwitch >= names.size())
           throw std::runtime_error(fmt::format("recording: event {} switches to instrument {}, but there are {}: "
                                                "replay with the version that recorded it", i, i - kToolSwitch, names.size()));
-        switch_instrument(scene, state, names[i - kToolSwitch]);
+        sim.switch_instrument(names[i - kToolSwitch]);
         continue;
       }
       if (i >= scene.events.size())
         throw std::runtime_error(fmt::format("recording: event {} does not exist in scene '{}' ({} events): "
                                              "replay into the scene that was recorded", i, scene.name, scene.events.size()));
-      apply_event(scene, state, scene.events[i]);
+      sim.apply_event(i);
     }
-    state.tool_pose = s.tool_pose;
-    step(scene.model, state, StepOptions{threads, nullptr});
+    sim.step(s.tool_pose);
     forces.push_back(state.tool_wrench.force);
   }
   return forces;
+}
+
+ReplayComparison compare_replay(const std::vector<Vec3>& f, const Recording& r, double rel, double floor_share) {
+  if (f.size() != r.steps.size())
+    throw std::invalid_argument(fmt::format("compare_replay: {} replayed steps against {} recorded", f.size(), r.steps.size()));
+  ReplayComparison c;
+  for (const StepSample& s : r.steps) c.peak = std::max(c.peak, double(norm(s.tool_force)));
+  const double floor = floor_share * c.peak;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    const Vec3& rec = r.steps[k].tool_force;
+    c.largest = std::max(c.largest, double(norm(f[k] - rec)));
+    c.differ += !(f[k] == rec);
+    bool out = false;
+    for (int ax = 0; ax < 3; ++ax) out |= !(std::abs(f[k][ax] - rec[ax]) <= rel * std::max(std::abs(double(rec[ax])), floor));
+    c.outside += out;
+  }
+  return c;
 }
 
 }  // namespace dentsph

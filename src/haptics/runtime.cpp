@@ -61,22 +61,14 @@ void check_options(const RealtimeOptions& o, double force_scale) {
 RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOptions& opt) {
   const double force_scale = opt.force_scale.value_or(double(scene.force_scale));
   check_options(opt, force_scale);
-  State state = make_state(scene);
+  // The simulation first: it checks dt and starts the backend before any thread starts.
+  Simulation core(scene, {opt.backend, opt.threads, opt.allow_unstable});
   RealtimeResult res;
-  RunSummary& sum = res.run;
-  sum.scene = scene.name;
-  sum.threads = opt.threads;
-  sum.dt = scene.model.dt;
-  const StabilityLimits limits = check_time_step(scene, state, opt.allow_unstable);
-  sum.acoustic_violated = sum.dt > limits.acoustic;
-  sum.viscous_violated = sum.dt > limits.viscous;
-  sum.forced = opt.allow_unstable && (sum.acoustic_violated || sum.viscous_violated);
-
   haptics::Snapshot empty;
-  empty.positions.resize(std::size_t(state.size()) * 2 + 1024);  // room for dispensed increments
+  empty.positions.resize(std::size_t(core.state().size()) * 2 + 1024);  // room for dispensed increments
   haptics::RuntimeShared shared(empty);
   haptics::HapticLoop haptic(device, opt, shared);
-  haptics::SimLoop sim(scene, state, opt, force_scale, shared);
+  haptics::SimLoop sim(core, opt, force_scale, shared);
   haptics::ConsumerLoop consumer(opt, shared);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
@@ -124,35 +116,23 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.haptic_rate_hz = opt.haptic_rate_hz;
   res.recording.force_scale = force_scale;
   res.recording.dispense_volume = increment_volume_or_default(scene, opt.dispense_volume);
+  res.recording.backend = backend_name(opt.backend);
   res.recording.haptic_dropped = haptic.recording_dropped();
   res.recording.haptic = haptic.take_recording();
   res.recording.steps = std::move(sim.steps);
   res.recording.events = std::move(sim.events);
 
-  sum.status = sim.summary.status;
-  sum.message = sim.summary.message;
-  sum.limits = sim.summary.limits;
-  sum.force_violation_steps = sim.summary.force_violation_steps;
-  sum.first_force_violation_t = sim.summary.first_force_violation_t;
-  sum.peak_tool_force_N = sim.summary.peak_tool_force_N;
+  RunSummary& sum = res.run;
+  sum = core.summary();
   sum.force_scale = force_scale;
-  if (scene.tooth) sum.cavity_json = cavity_json(*scene.tooth);
-  sum.events_applied = sim.summary.events_applied;
-  sum.steps = state.steps;
-  sum.sim_time_s = state.time;
   sum.wall_time_s = wall;
   sum.steps_per_second = res.sim.steps_per_second;
-  sum.material = state.count(Role::material);
-  sum.boundary = state.count(Role::boundary);
-  sum.tool = state.count(Role::tool);
-  sum.bonds = state.bonds.counters;
-  sum.bonds_current = state.bonded_pairs();
   sum.realtime_json = realtime_json(res);
   if (!opt.out_dir.empty()) {
     std::filesystem::create_directories(opt.out_dir);
     io::write_summary(opt.out_dir / "summary.json", sum);
     save_recording(opt.out_dir / "recording", res.recording);
-    io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+    io::write_preview_png(opt.out_dir / "preview.png", core.synced(), -scene.model.gravity, scene.model.kernel.h);
   }
   return res;
 }

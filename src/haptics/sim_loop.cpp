@@ -1,51 +1,33 @@
 #include "haptics/sim_loop.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-
-#include <fmt/format.h>
 
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/protocol.hpp"
-#include "dentsph/step.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/virtual_coupling.hpp"
 
 namespace dentsph::haptics {
 
-SimLoop::SimLoop(const Scene& scene, State& state, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
-    : scene_(scene), state_(state), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
+SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
+    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
   steps.reserve(1 << 16);
-  summary.limits = stability_limits(scene.model, state);
-  summary.limits.force = std::numeric_limits<real>::infinity();
-}
-
-bool SimLoop::diverged() {
-  const StepDiagnostics& d = state_.diagnostics;
-  if (!exploded(d, summary.limits.sound_speed)) return false;
-  summary.status = "diverged";
-  summary.message = fmt::format("at t = {:.6g} s (step {}): {}; lower simulation.dt or the stiffness", state_.time,
-                                state_.steps,
-                                d.non_finite ? fmt::format("{} material particles became non-finite", d.non_finite)
-                                             : fmt::format("material reached {:.3g} m/s", d.max_speed));
-  return true;
 }
 
 void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop) {
   t0_ns_ = t0_ns;
-  const real dt = scene_.model.dt;
+  const real dt = sim_.model().dt;
   const std::int64_t min_step_ns = opt_.sim_rate_limit_hz > 0 ? std::int64_t(1e9 / opt_.sim_rate_limit_hz) : 0;
   const std::int64_t snapshot_ns = opt_.snapshot_rate_hz > 0 ? std::int64_t(1e9 / opt_.snapshot_rate_hz) : 0;
   std::int64_t next_snapshot = t0_ns, last_step_start = t0_ns - min_step_ns;
   bool stalled = false;
   ToolCommand cmd;
-  std::size_t next_event = 0;
+  const State& state = sim_.state();
   VirtualCoupling proxy(opt_.coupling);
   bool proxy_started = false;
   std::uint64_t presses_handled = 0;
-  const real dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
-  const IncrementPaste paste = scene_paste(scene_);
+  const real dispense_volume = increment_volume_or_default(sim_.scene(), opt_.dispense_volume);
+  const IncrementPaste paste = scene_paste(sim_.scene());
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     std::int64_t now = now_ns();
     if (should_stop(now)) {
@@ -59,7 +41,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       sleep_until_ns(now + std::int64_t(opt_.faults.sim_stall_s * 1e9), 0);
     }
     std::int64_t wake = 0;
-    if (opt_.pace_realtime) wake = t0_ns + std::int64_t(double(state_.time) * 1e9);
+    if (opt_.pace_realtime) wake = t0_ns + std::int64_t(double(state.time) * 1e9);
     if (min_step_ns > 0) wake = std::max(wake, last_step_start + min_step_ns);
     if (wake > now) {
       // Sleep in slices so that a stop is seen quickly.
@@ -68,55 +50,48 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
     }
     last_step_start = now;
 
-    // ---- the newest tool command, the events due, one step ---------------------------------------
+      // ---- the newest tool command, the events due, one step ---------------------------------------
     if (shared_.command.update()) cmd = shared_.command.front();
     // Button 1 dispenses one increment per press (holding it does not repeat), however many
     // presses came since the last step.
     for (; presses_handled < cmd.dispense_presses; ++presses_handled) {
-      events.push_back({state_.steps, kButtonIncrement});
-      dispense_increment(scene_, state_, dispense_volume, increment_axis(scene_), paste);
+      events.push_back({state.steps, kButtonIncrement});
+      sim_.dispense(dispense_volume, paste);
       ++rep_.button_dispenses;
     }
-    while (next_event < scene_.events.size() && scene_.events[next_event].t <= state_.time + 0.5 * dt) {
-      events.push_back({state_.steps, std::uint32_t(next_event)});
-      apply_event(scene_, state_, scene_.events[next_event++]);
-      ++summary.events_applied;
-    }
+    sim_.apply_due_events([&](std::size_t i) { events.push_back({state.steps, std::uint32_t(i)}); });
+    Pose pose = state.tool_pose;  // without a device pose yet, the tool stays where it is
     if (cmd.valid) {
       Vec3 tool = cmd.pose.position;
       if (opt_.mode == ForceMode::coupling) {
         // The proxy: pulled by the coupling to the device, pushed by the tool force of the last
         // step, over this step's dt.
         if (!proxy_started) proxy.reset(tool), proxy_started = true;
-        proxy.step(cmd.pose.position, cmd.velocity, state_.tool_wrench.force * force_scale_, dt);
+        proxy.step(cmd.pose.position, cmd.velocity, state.tool_wrench.force * force_scale_, dt);
         tool = proxy.position();
       }
-      state_.tool_pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
+      pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
     }
-    if (opt_.between_steps) opt_.between_steps(scene_, state_, events);
+    if (opt_.between_steps) opt_.between_steps(sim_, events);
     StepSample sample;
-    sample.step = state_.steps;
+    sample.step = state.steps;
     sample.wall_t = double(now - t0_ns) * 1e-9;
-    sample.tool_pose = state_.tool_pose;
+    sample.tool_pose = pose;
     const std::int64_t s0 = now_ns();
-    step(scene_.model, state_, StepOptions{opt_.threads, nullptr});
+    const bool going = sim_.step(pose);
     now = now_ns();
     step_times_.add(double(now - s0) * 1e-3);
-    sample.tool_force = state_.tool_wrench.force;
+    sample.tool_force = state.tool_wrench.force;
     steps.push_back(sample);
-    summary.peak_tool_force_N = std::max(summary.peak_tool_force_N, norm(state_.tool_wrench.force));
-    const real force_limit = force_time_step_limit(scene_.model, state_.diagnostics);
-    summary.limits.force = std::min(summary.limits.force, force_limit);
-    if (dt > force_limit && summary.force_violation_steps++ == 0) summary.first_force_violation_t = state_.time - dt;
-    if (diverged()) break;  // nothing more is published: the watchdog ramps the force to zero
+    if (!going) break;  // diverged: nothing more is published, the watchdog ramps the force to zero
 
     // ---- publish ----------------------------------------------------------------------------------
     SimOutput& out = shared_.output.back();
-    out.force_N = state_.tool_wrench.force * force_scale_;
+    out.force_N = state.tool_wrench.force * force_scale_;
     out.proxy_position = proxy_started ? proxy.position() : cmd.pose.position;
     out.proxy_velocity = proxy_started ? proxy.velocity() : Vec3{};
-    out.step = state_.steps;
-    out.sim_time = state_.time;
+    out.step = state.steps;
+    out.sim_time = state.time;
     out.command_stamp_ns = cmd.valid ? cmd.stamp_ns : now;
     out.published_ns = now;
     out.valid = true;
@@ -130,12 +105,13 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
 }
 
 void SimLoop::publish_snapshot(std::int64_t now_ns) {
+  const State& state = sim_.synced();
   Snapshot& s = shared_.snapshots.back();
-  if (s.positions.size() < state_.size()) s.positions.resize(state_.size());  // dispensed material
-  std::copy(state_.pos.begin(), state_.pos.end(), s.positions.begin());
-  s.count = state_.size();
-  s.sim_time = state_.time;
-  s.step = state_.steps;
+  if (s.positions.size() < state.size()) s.positions.resize(state.size());  // dispensed material
+  std::copy(state.pos.begin(), state.pos.end(), s.positions.begin());
+  s.count = state.size();
+  s.sim_time = state.time;
+  s.step = state.steps;
   s.published_ns = now_ns;
   shared_.snapshots.publish();
 }
@@ -145,7 +121,7 @@ SimReport SimLoop::report() const {
   r.steps = steps.size();
   const double wall = double(end_ns_ - t0_ns_) * 1e-9;
   r.steps_per_second = wall > 0 ? double(r.steps) / wall : 0;
-  r.realtime_factor = wall > 0 ? double(r.steps) * double(scene_.model.dt) / wall : 0;
+  r.realtime_factor = wall > 0 ? double(r.steps) * double(sim_.model().dt) / wall : 0;
   r.step_p50_us = step_times_.quantile(0.5);
   r.step_p99_us = step_times_.quantile(0.99);
   r.step_max_us = step_times_.max();

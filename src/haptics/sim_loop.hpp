@@ -1,8 +1,9 @@
-// The simulation loop: owns the State. Takes the newest tool command, applies the procedure's
-// events at their simulated time (and an increment of paste on each press of the device's button
-// 1), steps, publishes the tool force (scaled to device newtons) and,
-// at the snapshot rate, the particle positions. Paced to real time (never ahead of the wall
-// clock) or free-running; optionally capped at a step rate (a slow simulation).
+// The simulation loop: a thin loop around a Simulation (the State, its stepper and the run's
+// bookkeeping). Takes the newest tool command, applies the procedure's events at their simulated
+// time (and an increment of paste on each press of the device's button 1), steps, publishes the
+// tool force (scaled to device newtons) and, at the snapshot rate, the particle positions. Paced
+// to real time (never ahead of the wall clock) or free-running; optionally capped at a step rate
+// (a slow simulation).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "dentsph/haptics.hpp"
+#include "dentsph/simulation.hpp"
 #include "haptics/shared.hpp"
 #include "haptics/timing_stats.hpp"
 
@@ -17,7 +19,7 @@ namespace dentsph::haptics {
 
 class SimLoop {
  public:
-  SimLoop(const Scene& scene, State& state, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
+  SimLoop(Simulation& sim, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
   // Runs on the calling thread from t0_ns until shared.stop is set or should_stop(now) says so
   // (then it sets shared.stop), or the simulation diverges.
   void run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop);
@@ -25,14 +27,11 @@ class SimLoop {
 
   std::vector<StepSample> steps;    // every step's tool pose and force
   std::vector<EventSample> events;  // the procedure events applied
-  RunSummary summary;               // filled as in run_offline (peak force, limits, status)
 
  private:
   void publish_snapshot(std::int64_t now_ns);
-  bool diverged();
 
-  const Scene& scene_;
-  State& state_;
+  Simulation& sim_;
   RealtimeOptions opt_;
   double force_scale_;
   RuntimeShared& shared_;

@@ -25,6 +25,7 @@ std::string summary_json(const RunSummary& s) {
   j["sim_time_s"] = s.sim_time_s;
   j["wall_time_s"] = s.wall_time_s;
   j["steps_per_second"] = s.steps_per_second;
+  j["backend"] = s.backend;
   j["threads"] = s.threads;
   j["particles"] = {{"material", s.material}, {"boundary", s.boundary}, {"tool", s.tool},
                     {"total", s.material + s.boundary + s.tool}};

@@ -8,13 +8,16 @@
 
 namespace dentsph {
 
-StabilityLimits stability_limits(const Model& model, const State& s) {
+StabilityLimits stability_limits(const Model& model, const State& s, const Material* paste) {
   constexpr real inf = std::numeric_limits<real>::infinity();
   const real h = model.kernel.h;
   real kp_max = 0, rho_over_mu_min = inf;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
-    kp_max = std::max(kp_max, s.Kp[i]);
-    if (s.mu[i] > 0) rho_over_mu_min = std::min(rho_over_mu_min, s.rho0[i] / s.mu[i]);
+    const bool edited = paste && s.role[i] == Role::material;
+    const real Kp = edited ? paste->Kp : s.Kp[i], mu = edited ? paste->mu : s.mu[i];
+    const real rho0 = edited ? paste->rho0 : s.rho0[i];
+    kp_max = std::max(kp_max, Kp);
+    if (mu > 0) rho_over_mu_min = std::min(rho_over_mu_min, rho0 / mu);
   }
   StabilityLimits l;
   l.sound_speed = std::sqrt(kp_max);

@@ -1,4 +1,4 @@
-// The offline run loop: tool pose from the trajectory, one step, outputs, stability bookkeeping.
+// The offline run loop around a Simulation: the tool pose from the trajectory, one step, outputs.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,28 +11,12 @@
 #include "dentsph/assess.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
-#include "dentsph/step.hpp"
+#include "dentsph/simulation.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
 
 namespace dentsph {
-
-StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable) {
-  const StabilityLimits l = stability_limits(scene.model, state);
-  const real dt = scene.model.dt;
-  const real limit = std::min(l.acoustic, l.viscous);
-  if (dt > limit && !allow_unstable) {
-    const char* which = l.acoustic <= l.viscous ? "acoustic (lambda h / sqrt(max stiffness))"
-                                                : "viscous (0.125 h^2 rest_density / viscosity)";
-    throw UnstableTimeStep(fmt::format(
-        "{}: simulation.dt: {:.3g} s is over the {} stability limit of {:.3g} s (acoustic {:.3g} s, viscous {:.3g} s); "
-        "set simulation.dt to at most {:.3g}, lower the stiffest material's stiffness or viscosity, or pass "
-        "--allow-unstable to run anyway",
-        scene.source, dt, which, limit, l.acoustic, l.viscous, limit));
-  }
-  return l;
-}
 
 namespace {
 
@@ -63,17 +47,7 @@ class SnapshotWriter {
 }  // namespace
 
 RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
-  State state = make_state(scene);
-  RunSummary sum;
-  sum.scene = scene.name;
-  sum.force_scale = scene.force_scale;
-  sum.threads = opt.threads;
-  sum.dt = scene.model.dt;
-  sum.limits = check_time_step(scene, state, opt.allow_unstable);
-  sum.acoustic_violated = sum.dt > sum.limits.acoustic;
-  sum.viscous_violated = sum.dt > sum.limits.viscous;
-  sum.forced = opt.allow_unstable && (sum.acoustic_violated || sum.viscous_violated);
-
+  Simulation sim(scene, {opt.backend, opt.threads, opt.allow_unstable});
   const real duration = opt.duration > 0 ? opt.duration : scene.duration;
   const std::uint64_t total = opt.steps > 0 ? opt.steps : std::uint64_t(std::llround(duration / scene.model.dt));
 
@@ -83,87 +57,43 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     std::filesystem::create_directories(opt.out_dir);
     if (scene.output.vtk) snaps = std::make_unique<SnapshotWriter>(opt.out_dir, scene.output.snapshot_interval);
     csv = std::make_unique<io::ToolForceCsv>(opt.out_dir / "tool_force.csv");
-    if (snaps) snaps->maybe_write(state, true);
+    if (snaps) snaps->maybe_write(sim.state(), true);
   }
 
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const std::uint64_t report_every = std::max<std::uint64_t>(1, total / 100);
-  sum.limits.force = std::numeric_limits<real>::infinity();
-  // Dental scenes: the cavity voxelised once, the tool force accumulated every step.
+  // Dental scenes: the cavity voxelised once.
   std::optional<CavityAssessor> assessor;
   if (scene.tooth) {
     AssessParams ap;
     ap.spacing = scene.material_spacing;
     assessor.emplace(*scene.tooth, ap);
-    sum.cavity_json = cavity_json(*scene.tooth);
   }
-  ForceStats forces;
   // A GPU backend keeps the particles on the GPU: each step reads back only the wrench and the
   // diagnostics; the particles come down for snapshots, events and the end of the run.
-  std::unique_ptr<GpuStepper> gpu;
-  if (opt.backend != Backend::cpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
-  std::size_t next_event = 0;
+  const State& state = sim.state();
   for (std::uint64_t k = 0; k < total; ++k) {
-    // Events due by this step (a half step early, so that an event at t lands on the step at t).
-    while (next_event < scene.events.size() && scene.events[next_event].t <= state.time + 0.5 * scene.model.dt) {
-      if (gpu) gpu->download(state);
-      apply_event(scene, state, scene.events[next_event++]);
-      if (gpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
-      ++sum.events_applied;
-    }
+    sim.apply_due_events();
     const real t_forces = state.time;
-    state.tool_pose = scene.tool.at(state.time + scene.model.dt);
-    if (gpu) {
-      gpu->step(state.tool_pose);
-      gpu->copy_results(state);
-    } else {
-      step(scene.model, state, StepOptions{opt.threads, nullptr});
-    }
+    const bool going = sim.step(sim.keyframe_pose());
     if (csv) csv->add(t_forces, state.tool_wrench);
-    sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
-    forces.add(state.tool_wrench.force, scene.model.dt);
-    const real force_limit = force_time_step_limit(scene.model, state.diagnostics);
-    sum.limits.force = std::min(sum.limits.force, force_limit);
-    if (sum.dt > force_limit) {
-      if (sum.force_violation_steps++ == 0) sum.first_force_violation_t = t_forces;
-    }
-    // Exploded material: the run says so instead of writing garbage.
-    if (exploded(state.diagnostics, sum.limits.sound_speed)) {
-      const bool non_finite = state.diagnostics.non_finite > 0;
-      sum.status = "diverged";
-      sum.message = fmt::format(
-          "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
-          "simulation.dt or the stiffness",
-          non_finite ? fmt::format("{} material particles became non-finite", state.diagnostics.non_finite)
-                     : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
-                                   state.diagnostics.max_speed, explosion_speed_factor, sum.limits.sound_speed),
-          state.time, state.steps, sum.limits.force, sum.dt);
-      break;
-    }
-    if (snaps && gpu && snaps->due(state)) gpu->download(state);
-    if (snaps) snaps->maybe_write(state);
+    if (!going) break;  // exploded material: the run says so instead of writing garbage
+    if (snaps && snaps->due(state)) snaps->maybe_write(sim.synced());
     if (opt.on_progress && ((k + 1) % report_every == 0 || k + 1 == total)) {
       const double w = elapsed();
       opt.on_progress({k + 1, total, state.time, w, w / double(k + 1) * double(total - k - 1)});
     }
   }
-  if (gpu) gpu->download(state);
-  sum.steps = state.steps;
-  sum.material = state.count(Role::material);  // at the end: increments add material
-  sum.boundary = state.count(Role::boundary);
-  sum.tool = state.count(Role::tool);
-  sum.sim_time_s = state.time;
+  RunSummary sum = sim.summary();
   sum.wall_time_s = elapsed();
   sum.steps_per_second = sum.wall_time_s > 0 ? double(sum.steps) / sum.wall_time_s : 0;
-  sum.bonds = state.bonds.counters;
-  sum.bonds_current = state.bonded_pairs();
   if (snaps) {
     snaps->maybe_write(state, true);
     sum.snapshots = snaps->count();
   }
   if (assessor) {
-    const Assessment a = assessor->assess(state, scene.model, forces, scene.force_scale);
+    const Assessment a = assessor->assess(state, scene.model, sim.forces(), scene.force_scale);
     sum.assessment_json = assessment_json(a);
     sum.assessment_report = a.report();
   }

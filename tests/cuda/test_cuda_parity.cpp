@@ -23,12 +23,12 @@ class CudaParity : public ::testing::TestWithParam<GpuScene> {};
 
 TEST_P(CudaParity, MatchesAllPairsOver100Steps) {
   DENTSPH_REQUIRE_DEVICE();
-  gpu_parity_run(on_device, GetParam(), true, 1e-4);
+  gpu_parity_run(on_device, GetParam(), true, kBackendParityTolerance);
 }
 
 TEST_P(CudaParity, MatchesGridStepOver100Steps) {
   DENTSPH_REQUIRE_DEVICE();
-  gpu_parity_run(on_device, GetParam(), false, 1e-4, 10);
+  gpu_parity_run(on_device, GetParam(), false, kBackendParityTolerance, 10);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaParity,
@@ -61,14 +61,14 @@ TEST(Cuda, AgreesWithItsHostEmulation) {
   const State st = gpu_scene_state(model, scene);
   auto dev = make_cuda_stepper(model, st);
   auto emu = make_emulated_gpu_stepper(model, st);
+  State a = st, b = st;
   for (int k = 0; k < 100; ++k) {
     const Pose pose = gpu_scene_pose(st.tool_pose, k);
-    dev->step(pose);
-    emu->step(pose);
+    dev->step(a, pose);
+    emu->step(b, pose);
   }
-  State a, b;
-  dev->download(a);
-  emu->download(b);
+  dev->sync_to_host(a);
+  emu->sync_to_host(b);
   compare_states(a, b, 100, 1e-6);
 }
 

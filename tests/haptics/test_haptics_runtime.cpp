@@ -328,6 +328,40 @@ TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   std::filesystem::remove_all(dir);
 }
 
+// `rec`, replayed on `other` (not the backend that recorded it), against its recorded forces:
+// within the backends' parity tolerance. Returns the comparison.
+ReplayComparison expect_within_parity(const Scene& scene, const Recording& rec, Backend other) {
+  const ReplayComparison c = compare_replay(replay_steps(scene, rec, 1, other), rec, kBackendParityTolerance);
+  std::printf("%s session (%zu steps) replayed on %s: %zu forces differ, largest by %.3g N of a %.3g N peak\n",
+              rec.backend.c_str(), rec.steps.size(), backend_name(other), c.differ, c.largest, c.peak);
+  EXPECT_EQ(c.outside, 0u) << "largest difference " << c.largest << " N";
+  return c;
+}
+
+// The same recorded device input on two backends: a session recorded on the CPU replays bit for
+// bit there and within the backends' parity tolerance on the GPU's algorithm (cuda-emulation, the
+// CUDA backend's stage bodies on the CPU); the runtime itself runs on cuda-emulation, names it,
+// and its recording replays bit for bit on cuda-emulation and within the tolerance on the CPU.
+TEST(HapticRuntime, ToolForcesAgreeAcrossBackendsOverTheSameRecordedInput) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::direct);
+  for (Backend backend : {Backend::cpu, Backend::cuda_emulation}) {
+    o.backend = backend;
+    auto device = make_scripted_device(scene, o.workspace);
+    const RealtimeResult r = run_realtime(scene, *device, o);
+    EXPECT_EQ(r.run.status, "completed") << r.run.message;
+    EXPECT_EQ(r.run.backend, backend_name(backend));
+    EXPECT_EQ(realtime_sections(r)["sim"]["backend"], backend_name(backend));
+    ASSERT_EQ(r.recording.backend, backend_name(backend));
+    ASSERT_GT(r.recording.steps.size(), 20u);
+    const std::vector<Vec3> again = replay_steps(scene, r.recording, 1, backend);
+    ASSERT_EQ(again.size(), r.recording.steps.size());
+    for (std::size_t k = 0; k < again.size(); ++k) ASSERT_EQ(again[k], r.recording.steps[k].tool_force) << k;
+    const Backend other = backend == Backend::cpu ? Backend::cuda_emulation : Backend::cpu;
+    EXPECT_GT(expect_within_parity(scene, r.recording, other).peak, 0.005) << "the tool pressed the paste";
+  }
+}
+
 // A device that sends NaN, infinite and absurd poses, and a simulation that diverges: nothing
 // non-finite or above the limit reaches the device, and the run says it diverged.
 TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
@@ -477,6 +511,9 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   const std::vector<Vec3> a = replay_steps(scene, loaded, 1);
   ASSERT_EQ(a.size(), r.recording.steps.size());
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], r.recording.steps[k].tool_force) << k;
+  // On the GPU's algorithm the increments go in through its stepper (a new engine for each count):
+  // the forces agree within the backends' parity tolerance.
+  expect_within_parity(scene, loaded, Backend::cuda_emulation);
   loaded.events.clear();
   const std::vector<Vec3> without = replay_steps(scene, loaded, 1);
   std::size_t differ = 0;

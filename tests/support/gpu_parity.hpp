@@ -1,4 +1,4 @@
-// Parity checks of a GpuStepper (the CUDA backend, or its host emulation) against the CPU
+// Parity checks of a GPU backend's Stepper (the CUDA backend, or its host emulation) against the CPU
 // reference: the all-pairs step and the grid step. Shared by tests/parity/test_gpu_emulation.cpp,
 // which runs everywhere, and tests/cuda/test_cuda_parity.cpp, which needs a device.
 #pragma once
@@ -18,7 +18,7 @@
 
 namespace dentsph::testing {
 
-using GpuFactory = std::function<std::unique_ptr<GpuStepper>(const Model&, const State&)>;
+using GpuFactory = std::function<std::unique_ptr<Stepper>(const Model&, const State&)>;
 
 constexpr real kGpuSpacing = 0.01;  // m
 
@@ -79,6 +79,13 @@ inline Pose gpu_scene_pose(const Pose& start, int k) {
   return p;
 }
 
+// One step of the reference `ref` (the CPU grid step) and of `g` through `stepper`, the tool to `pose`.
+inline void step_both(const Model& model, State& ref, Stepper& stepper, State& g, const Pose& pose) {
+  ref.tool_pose = pose;
+  step(model, ref);
+  stepper.step(g, pose);
+}
+
 // g (from the GPU) against r (the reference) by stable id, within `tol` relative (floors from
 // each field's largest value: a tenth of it), the same bonds, the same wrench and counters.
 inline void compare_states(const State& g, const State& r, int step, real tol) {
@@ -94,38 +101,45 @@ inline void compare_states(const State& g, const State& r, int step, real tol) {
 }
 
 // 100 steps of `scene` on the GPU stepper and on the reference (all-pairs or grid step), compared
-// after every step (`check_every`: download and compare every that many steps). The tool pose
-// goes in, the wrench comes out each step; the particles come down only for the comparison.
+// after every step (`check_every`: sync the particles to the host and compare every that many
+// steps). The tool pose goes in, the wrench comes out each step; the particles come down only for
+// the comparison.
 inline void gpu_parity_run(const GpuFactory& make, const GpuScene& scene, bool all_pairs, real tol,
                            int check_every = 1, int steps = 100) {
   const Model model = gpu_scene_model(scene);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
   const Pose start = ref.tool_pose;
-  std::unique_ptr<GpuStepper> gpu = make(model, g);
+  std::unique_ptr<Stepper> gpu = make(model, g);
+  const std::vector<Vec3> stale = g.pos;  // the host's particles before the steps
   for (int k = 0; k < steps; ++k) {
     const Pose pose = gpu_scene_pose(start, k);
     ref.tool_pose = pose;
     all_pairs ? step_all_pairs(model, ref) : step(model, ref);
-    gpu->step(pose);
-    // The small results come every step without a download.
-    expect_near_rel(gpu->wrench().force, ref.tool_wrench.force, tol, 1e-6, "tool force (no download)", 0, k);
+    gpu->step(g, pose);
+    // The small results come every step without a sync; the particles stay where they were.
+    expect_near_rel(g.tool_wrench.force, ref.tool_wrench.force, tol, 1e-6, "tool force (no sync)", 0, k);
     if (::testing::Test::HasFatalFailure()) return;
-    ASSERT_EQ(gpu->bond_counters().formed, ref.bonds.counters.formed) << "step " << k;
+    ASSERT_EQ(g.bonds.counters.formed, ref.bonds.counters.formed) << "step " << k;
+    ASSERT_EQ(g.steps, ref.steps);
+    ASSERT_EQ(g.time, ref.time);
+    ASSERT_EQ(g.tool_pose_applied.position, pose.position);
+    if (k == 0) ASSERT_EQ(g.pos, stale) << "step() alone moves no host particle";
     if ((k + 1) % check_every == 0 || k + 1 == steps) {
-      gpu->download(g);
+      gpu->sync_to_host(g);
       compare_states(g, ref, k, tol);
       if (::testing::Test::HasFatalFailure()) return;
     }
   }
   EXPECT_GT(ref.bonds.counters.formed, 0u) << "bonds formed: the comparison covers adhesion";
   EXPECT_GT(norm(ref.tool_wrench.force), 0) << "the tool touched the material";
-  EXPECT_EQ(gpu->steps(), std::uint64_t(steps));
+  EXPECT_EQ(g.steps, std::uint64_t(steps));
 }
 
 // The paper's Fig. 2 with a GPU stepper: a tool particle pushed into a material particle held at
 // the origin and pulled away again. The holding needs the particles on the host every step, so
-// each step uploads, steps once and downloads (which also tests those). Every step's force and
-// bond count must equal the CPU grid step's, and the bond must form once and break once.
+// each step syncs them to the host, holds the particle there and syncs the State back (into the
+// same memory: the particle count is unchanged), which tests both. Every step's force and bond
+// count must equal the CPU grid step's, and the bond must form once and break once.
 inline void gpu_fig2_loop(const GpuFactory& make) {
   const real s = kGpuSpacing;
   const Model model = make_model(params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}, 1e-4));
@@ -145,16 +159,17 @@ inline void gpu_fig2_loop(const GpuFactory& make) {
                                             {0.5 * (model.adhesion.A + model.kernel.h), 100},
                                             {1.1 * model.adhesion.B, 600}};
   int step_no = 0, bonded_steps = 0;
+  std::unique_ptr<Stepper> gpu = make(model, g);
   for (const auto& [r, n] : path) {
     const real r0 = ref.tool_pose.position.x;
     for (int k = 1; k <= n; ++k, ++step_no) {
       ref.tool_pose.position.x = r0 + (r - r0) * k / n;
       step(model, ref);
       hold(ref);
-      std::unique_ptr<GpuStepper> gpu = make(model, g);
-      gpu->step(ref.tool_pose);
-      gpu->download(g);
+      gpu->step(g, ref.tool_pose);
+      gpu->sync_to_host(g);
       hold(g);
+      gpu->sync_from_host(g);
       ASSERT_EQ(g.bonds.count(0), ref.bonds.count(0)) << "step " << step_no;
       bonded_steps += ref.bonds.count(0);
       expect_near_rel(g.tool_wrench.force, ref.tool_wrench.force, 1e-9, 1e-12, "tool force", 0, step_no);
@@ -175,14 +190,9 @@ inline void gpu_overflow_counted(const GpuFactory& make) {
   const GpuScene scene{5, 0.1, 1, false, 21};
   const Model model = gpu_scene_model(scene, 4);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
-  std::unique_ptr<GpuStepper> gpu = make(model, g);
-  for (int k = 0; k < 20; ++k) {
-    const Pose pose = gpu_scene_pose(ref.tool_pose, k);
-    ref.tool_pose = pose;
-    step(model, ref);
-    gpu->step(pose);
-  }
-  gpu->download(g);
+  std::unique_ptr<Stepper> gpu = make(model, g);
+  for (int k = 0; k < 20; ++k) step_both(model, ref, *gpu, g, gpu_scene_pose(ref.tool_pose, k));
+  gpu->sync_to_host(g);
   compare_states(g, ref, 20, 1e-6);
   EXPECT_GT(g.bonds.counters.overflowed, 100u) << "the lists overflowed";
 }

@@ -162,6 +162,53 @@ TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {
   EXPECT_EQ(dentsph_cli("replay " + (out / "recording").string()).code, 4);
 }
 
+// --backend under the realtime runtime and replay: the built-in procedure runs end to end on the
+// GPU's algorithm (cuda-emulation, the CUDA backend's stage bodies on the CPU), its summary and its
+// recording name the backend; the recording replays bit for bit on its backend and within the
+// backends' parity tolerance on the CPU.
+TEST(Cli, RealtimeRunsAndReplaysOnTheCudaEmulation) {
+  const fs::path out = dir() / "rt_emulation";
+  const Result r = dentsph_cli("run --realtime --backend cuda-emulation --device scripted --duration 2 --threads 1 -q --out " +
+                               out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("simulation (cuda-emulation)"), std::string::npos) << r.output;
+  const nlohmann::json s = read_json(out / "summary.json");
+  EXPECT_EQ(s.at("backend"), "cuda-emulation");
+  EXPECT_EQ(s.at("sim").at("backend"), "cuda-emulation");
+  EXPECT_EQ(s.at("status"), "completed");
+  EXPECT_GT(s.at("steps").get<int>(), 10);
+  EXPECT_GT(s.at("particles").at("material").get<int>(), 0) << "the procedure's first increment went in on the GPU path";
+  EXPECT_EQ(read_json(out / "recording" / "session.json").at("backend"), "cuda-emulation");
+  const std::string recording = (out / "recording").string();
+  const Result same = dentsph_cli("replay " + recording + " --backend cuda-emulation");
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
+  const Result cpu = dentsph_cli("replay " + recording + " --threads 1");
+  EXPECT_EQ(cpu.code, 0) << cpu.output;
+  EXPECT_NE(cpu.output.find("on cpu (recorded on cuda-emulation)"), std::string::npos) << cpu.output;
+  EXPECT_NE(cpu.output.find(" 0 forces outside the parity tolerance"), std::string::npos) << cpu.output;
+}
+
+// --backend cuda where the CUDA backend cannot run (no GPU, or a build without it): every command
+// that takes it refuses with exit status 2 and the reason, before stepping.
+TEST(Cli, TheCudaBackendWithoutAGpuIsRefusedWithTheReason) {
+  const fs::path out = dir() / "rt_for_cuda";
+  ASSERT_EQ(dentsph_cli("run scenes/tool_press.json --realtime --duration 0.2 --threads 1 -q --out " + out.string()).code, 0);
+  for (const std::string& args : std::vector<std::string>{"run scenes/tool_press.json --backend cuda --steps 1 -q",
+                                 "run scenes/tool_press.json --realtime --backend cuda --duration 1 -q",
+                                 "replay " + (out / "recording").string() + " scenes/tool_press.json --backend cuda",
+                                 "bench --backend cuda --quick"}) {
+    const Result r = dentsph_cli(args);
+    if (r.code == 0) GTEST_SKIP() << "the CUDA backend runs here: " << args;
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("error: --backend cuda: "), std::string::npos) << r.output;
+    const bool reason = r.output.find("no CUDA device: ") != std::string::npos ||
+                        r.output.find("this build has no CUDA backend: ") != std::string::npos;
+    EXPECT_TRUE(reason) << r.output;
+    EXPECT_EQ(r.output.find("steps ("), std::string::npos) << "nothing stepped: " << r.output;
+  }
+}
+
 TEST(Cli, ADentalSceneFileIsValidatedAndRun) {
   const Result v = dentsph_cli("validate scenes/class2_fill.json");
   EXPECT_EQ(v.code, 0) << v.output;

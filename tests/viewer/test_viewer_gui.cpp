@@ -190,6 +190,44 @@ TEST(ViewerGui, RendersTheHapticRuntimeWithAScriptedDevice) {
   EXPECT_GT(j["sim"]["steps"].get<int>(), 0);  // the viewer's snapshots came from the runtime's simulation
 }
 
+// The GPU's algorithm behind the window (--backend cuda-emulation, the CUDA backend's stage bodies
+// on the CPU): the scene renders as on the CPU and steps, its summary names the backend; under the
+// haptic runtime (--device scripted) the runtime steps on it too.
+TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
+  REQUIRE_XVFB();
+  const fs::path png = temp("emulation.png"), sum = temp("emulation.json");
+  fs::remove(png);
+  Result r = run_viewer(fmt::format("--backend cuda-emulation --frames 20 --screenshot '{}' --summary '{}'",
+                                    png.string(), sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const Image img(png);
+  EXPECT_GT(img.share(tooth_pixel), 0.05);
+  EXPECT_GT(img.share(paste_pixel), 0.005);
+  auto j = nlohmann::json::parse(slurp(sum));
+  EXPECT_EQ(j["backend"], "cuda-emulation");
+  EXPECT_GT(j["sim"]["steps"].get<int>(), 0);
+  EXPECT_EQ(j["particles"]["material"], 1600);
+
+  r = run_viewer(fmt::format("--backend cuda-emulation --device scripted --frames 30 --summary '{}'", sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  j = nlohmann::json::parse(slurp(sum));
+  EXPECT_EQ(j["backend"], "cuda-emulation");
+  EXPECT_EQ(j["realtime"]["sim"]["backend"], "cuda-emulation");
+  EXPECT_GT(j["realtime"]["sim"]["steps"].get<int>(), 0);
+}
+
+// --backend cuda where it cannot run: exit status 2 and the reason, no window.
+TEST(ViewerGui, TheCudaBackendWithoutAGpuIsAClearError) {
+  REQUIRE_XVFB();
+  const Result r = run_viewer("--backend cuda --frames 1");
+  if (r.status == 0) GTEST_SKIP() << "the CUDA backend runs here";
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("error: --backend cuda: "), std::string::npos) << r.err;
+  EXPECT_TRUE(r.err.find("no CUDA device: ") != std::string::npos ||
+              r.err.find("this build has no CUDA backend: ") != std::string::npos)
+      << r.err;
+}
+
 TEST(ViewerGui, ALostDeviceConnectionDegradesToZeroForce) {
   REQUIRE_XVFB();
   // The reference client plays 1.5 s and leaves without a goodbye; the viewer keeps drawing for

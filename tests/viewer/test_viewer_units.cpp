@@ -206,6 +206,38 @@ TEST(SimSession, EditsAreCheckedAndUnstableOnesRefused) {
   session.stop();
 }
 
+// The session's own loop steps through the same Simulation as `dentsph run`: a scene's procedure
+// event lands on the step at its time, and the GPU's algorithm (cuda-emulation) steps the same
+// scripted session as the CPU, within the backends' parity tolerance, naming itself.
+TEST(SimSession, AppliesTheScenesEventsAndStepsOnAnyBackend) {
+  Scene sc = small_scene();
+  ProcedureEvent drop;
+  drop.kind = ProcedureEvent::Kind::dispense;
+  drop.t = 10 * sc.model.dt;
+  for (Vec3 p : testing::lattice({0.0, 0.0, 0.05}, 0.01, 2, 2, 1))
+    drop.particles.push_back(testing::particle(Role::material, p, sc.particles.front().mass, sc.particles.front().material));
+  sc.events.push_back(drop);
+  auto run = [&](Backend backend, std::uint64_t until) {
+    SessionOptions o;
+    o.backend = backend;
+    SimSession session(sc, o);
+    session.post_at(until, Command{Command::Kind::pause});
+    session.start();
+    const Snapshot s = wait_for(session, [&](const Snapshot& x) { return x.paused && x.steps == until; });
+    session.stop();
+    return s;
+  };
+  EXPECT_EQ(count(run(Backend::cpu, 9), Role::material), 48u) << "not before its time";
+  const Snapshot cpu = run(Backend::cpu, 40), gpu = run(Backend::cuda_emulation, 40);
+  EXPECT_EQ(count(cpu, Role::material), 52u);
+  EXPECT_EQ(cpu.backend, "cpu");
+  EXPECT_EQ(gpu.backend, "cuda-emulation");
+  ASSERT_EQ(gpu.xyz.size(), cpu.xyz.size());
+  EXPECT_GT(norm(cpu.device_force_N), 0) << "the tool touched the paste";
+  for (int ax = 0; ax < 3; ++ax)
+    EXPECT_NEAR(gpu.device_force_N[ax], cpu.device_force_N[ax], kBackendParityTolerance * norm(cpu.device_force_N));
+}
+
 TEST(SimSession, UnderTheHapticRuntimeAppliesCommandsBetweenItsStepsAndShowsTheHapticLoop) {
   Scene sc = small_scene();
   RealtimeOptions ro;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dentsph/backend.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -59,6 +60,7 @@ struct Recording {
   double force_scale = 1;
   std::uint64_t haptic_dropped = 0;  // ticks not recorded (capacity full)
   double dispense_volume = 0;  // m^3 of a button increment (session.json; 0: the scene's default)
+  std::string backend = "cpu"; // the backend that stepped the session (session.json; older: cpu)
   std::vector<HapticSample> haptic;
   std::vector<StepSample> steps;
   std::vector<EventSample> events;
@@ -71,9 +73,23 @@ void save_recording(const std::filesystem::path& dir, const Recording& r);
 Recording load_recording(const std::filesystem::path& dir);
 
 // Steps `scene` from its initial state on the recorded tool poses, applying the recorded events
-// before their steps; returns the simulated tool force after each step. Deterministic: the same
-// recording gives the same forces bit for bit (any thread count).
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1);
+// before their steps, on `backend`; returns the simulated tool force after each step.
+// Deterministic: the same recording gives the same forces bit for bit on the backend that
+// recorded it (any thread count); another backend agrees within its parity tolerance.
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1, Backend backend = Backend::cpu);
+
+// Replayed tool forces against a recording's.
+struct ReplayComparison {
+  std::size_t differ = 0;   // steps whose force is not the recorded one bit for bit
+  std::size_t outside = 0;  // steps with a component off by more than the tolerance
+  double largest = 0;       // N, the largest |difference|
+  double peak = 0;          // N, the largest recorded |force|
+};
+// Compares `replayed` with r.steps' tool forces: a component is within the tolerance when it is
+// off by at most `rel` of the recorded component, or of `floor_share` of the recorded peak where
+// the force is small (the tool out of contact). Throws std::invalid_argument when the counts differ.
+ReplayComparison compare_replay(const std::vector<Vec3>& replayed, const Recording& r, double rel,
+                                double floor_share = 0.01);
 
 // Energy delivered to the hand, E(t_k) = sum of F . v dt over the recorded ticks (J), with v from
 // the recorded device positions (central differences). A passive rendering keeps it bounded by

@@ -68,41 +68,18 @@ class Buffers {
 
   // Sizes every array for `state` under `model` and copies the state in (as set 0).
   void upload(const Model& model, const State& s) {
-    const std::uint32_t n = s.size();
-    const std::uint64_t buckets = 2 * std::uint64_t(model.grid.cell_count());
-    if (n == 0) throw std::invalid_argument("GPU backend: the state has no particles");
-    if (buckets >= (std::uint64_t(1) << 32))
-      throw std::invalid_argument("GPU backend: the grid has " + std::to_string(buckets / 2) +
-                                  " cells, over the 2^31 the 32-bit sort keys allow; enlarge the kernel support or "
-                                  "shrink simulation.domain");
-    const int cap = model.max_bonds_per_particle;
-    v_.n = n;
-    v_.buckets = std::uint32_t(buckets);
-    // n of each array a State has too, in both sets and for the step's results.
-    auto per_particle = [&](auto*& d, const auto& h) { d = alloc<typename std::decay_t<decltype(h)>::value_type>(n); };
-    for (ParticleArrays& a : sets_) each_set_array(a, s, per_particle);
-    each_result_array(v_, s, per_particle);
-    v_.key = alloc<std::uint32_t>(n);
-    v_.key_sorted = alloc<std::uint32_t>(n);
-    v_.iota = alloc<std::uint32_t>(n);
-    v_.order = alloc<std::uint32_t>(n);
-    v_.bucket_begin = alloc<std::uint32_t>(2 * buckets);  // begin and end in one block: one clear
-    v_.bucket_end = v_.bucket_begin + buckets;
-    v_.rho_static = alloc<real>(n);
-    v_.bond_count = alloc<std::uint32_t>(n);
-    v_.bond_partner = alloc<std::uint32_t>(std::size_t(n) * cap);
-    v_.bond_capacity = cap;
-    v_.events = alloc<BondEvents>(1);
-    v_.partial_count = 2 * blocks_for(n);
-    v_.partials = alloc<StepSums>(v_.partial_count);
-    v_.tool = tool_ = alloc<ToolInput>(1);
-    v_.out = alloc<StepOutput>(1);
-    v_.grid = model.grid;
-    v_.kernel = model.kernel;
-    v_.adhesion = model.adhesion;
-    v_.gravity = model.gravity;
-    v_.dt = model.dt;
+    allocate(model, s);
+    put_state(s);
+  }
 
+  // Copies `s` in (as set 0) over the arrays sized for a State of its size: the memory, and the
+  // graphs captured on it, stay.
+  void put_state(const State& s) {
+    const std::uint32_t n = s.size();
+    if (n != v_.n)
+      throw std::logic_error("GPU backend: a state of " + std::to_string(n) + " particles put into memory sized for " +
+                             std::to_string(v_.n));
+    const int cap = v_.bond_capacity;
     each_array(sets_[0], s, [&](auto* d, const auto& h) { put(d, h); });
     std::vector<std::uint32_t> iota(n), count(n), partner(std::size_t(n) * cap, 0);
     std::iota(iota.begin(), iota.end(), 0u);
@@ -167,6 +144,44 @@ class Buffers {
   }
 
  private:
+  // Sizes every array for a State of `s`'s size under `model`.
+  void allocate(const Model& model, const State& s) {
+    const std::uint32_t n = s.size();
+    const std::uint64_t buckets = 2 * std::uint64_t(model.grid.cell_count());
+    if (n == 0) throw std::invalid_argument("GPU backend: the state has no particles");
+    if (buckets >= (std::uint64_t(1) << 32))
+      throw std::invalid_argument("GPU backend: the grid has " + std::to_string(buckets / 2) +
+                                  " cells, over the 2^31 the 32-bit sort keys allow; enlarge the kernel support or "
+                                  "shrink simulation.domain");
+    const int cap = model.max_bonds_per_particle;
+    v_.n = n;
+    v_.buckets = std::uint32_t(buckets);
+    // n of each array a State has too, in both sets and for the step's results.
+    auto per_particle = [&](auto*& d, const auto& h) { d = alloc<typename std::decay_t<decltype(h)>::value_type>(n); };
+    for (ParticleArrays& a : sets_) each_set_array(a, s, per_particle);
+    each_result_array(v_, s, per_particle);
+    v_.key = alloc<std::uint32_t>(n);
+    v_.key_sorted = alloc<std::uint32_t>(n);
+    v_.iota = alloc<std::uint32_t>(n);
+    v_.order = alloc<std::uint32_t>(n);
+    v_.bucket_begin = alloc<std::uint32_t>(2 * buckets);  // begin and end in one block: one clear
+    v_.bucket_end = v_.bucket_begin + buckets;
+    v_.rho_static = alloc<real>(n);
+    v_.bond_count = alloc<std::uint32_t>(n);
+    v_.bond_partner = alloc<std::uint32_t>(std::size_t(n) * cap);
+    v_.bond_capacity = cap;
+    v_.events = alloc<BondEvents>(1);
+    v_.partial_count = 2 * blocks_for(n);
+    v_.partials = alloc<StepSums>(v_.partial_count);
+    v_.tool = tool_ = alloc<ToolInput>(1);
+    v_.out = alloc<StepOutput>(1);
+    v_.grid = model.grid;
+    v_.kernel = model.kernel;
+    v_.adhesion = model.adhesion;
+    v_.gravity = model.gravity;
+    v_.dt = model.dt;
+  }
+
   // Call fn(device array, state vector) for every per-particle array of a set (`a`), and of the
   // step's results (`v`), that a State holds in the same order (rho_static, by id, and the bonds
   // apart). The arrays are passed as lvalues: fn may set them (the allocation) or read them.

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "backend/cuda/buffers.hpp"
+#include "backend/cuda/engine.hpp"
 #include "backend/cuda/launch.hpp"
 #include "dentsph/backend.hpp"
 
@@ -66,9 +67,9 @@ std::uint32_t neighbour_block() {
   return std::uint32_t(t);
 }
 
-class CudaStepper final : public GpuStepper {
+class CudaEngine final : public gpu::Engine {
  public:
-  CudaStepper(const Model& model, const State& state) {
+  CudaEngine(const Model& model, const State& state) : Engine(model) {
     const CudaStatus st = cuda_status();
     if (!st.available) throw CudaUnavailable(st.reason);
     device_ = st.device;
@@ -78,7 +79,7 @@ class CudaStepper final : public GpuStepper {
     check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream");
     buf_.upload(model, state);
     buf_.set_neighbour_block(neighbour_block());
-    start_from(model, state);
+    start_from(state);
     scratch_.bytes = gpu::sort_scratch_bytes(buf_.base());
     scratch_.ptr = buf_.memory().alloc<unsigned char>(scratch_.bytes);
     check(cudaHostAlloc(reinterpret_cast<void**>(&in_), sizeof(gpu::ToolInput), cudaHostAllocDefault), "pinned input");
@@ -91,7 +92,7 @@ class CudaStepper final : public GpuStepper {
     for (int dir = 0; dir < 2; ++dir) capture(dir);
   }
 
-  ~CudaStepper() override {
+  ~CudaEngine() override {
     if (stream_) cudaStreamSynchronize(stream_);
     for (cudaGraphExec_t g : exec_)
       if (g) cudaGraphExecDestroy(g);
@@ -104,14 +105,14 @@ class CudaStepper final : public GpuStepper {
   }
 
   void step(const Pose& tool_pose) override {
-    *in_ = gpu::tool_input(tool_pose, tool_pose_applied_);
+    *in_ = gpu::tool_input(tool_pose, tool_pose_applied());
     check(cudaGraphLaunch(exec_[buf_.current()], stream_), "graph launch");
     check(cudaStreamSynchronize(stream_), "step");  // the one wait: the step's force
     finish(tool_pose);
   }
 
   void step_timed(const Pose& tool_pose, StageTimes& times) override {
-    *in_ = gpu::tool_input(tool_pose, tool_pose_applied_);
+    *in_ = gpu::tool_input(tool_pose, tool_pose_applied());
     const gpu::StepView v = buf_.next_view();
     check(cudaMemcpyAsync(buf_.tool(), in_, sizeof(gpu::ToolInput), cudaMemcpyHostToDevice, stream_), "pose in");
     check(gpu::enqueue_step(v, scratch_, stream_, marks_), "step");
@@ -133,6 +134,15 @@ class CudaStepper final : public GpuStepper {
     check(cudaStreamSynchronize(stream_), "download");
     buf_.download(state, out_->events);
     copy_results(state);
+  }
+
+  // The same memory and the same graphs: upload, sort and the static boundary density again.
+  void reload(const State& state) override {
+    check(cudaStreamSynchronize(stream_), "reload");
+    buf_.put_state(state);
+    start_from(state);
+    *out_ = gpu::StepOutput{};  // its bond events count from the upload
+    prepare();
   }
 
   std::string device_name() const override { return device_; }
@@ -208,8 +218,8 @@ CudaStatus cuda_status() {
   return {true, "", describe(p)};
 }
 
-std::unique_ptr<GpuStepper> make_cuda_stepper(const Model& model, const State& state) {
-  return std::make_unique<CudaStepper>(model, state);
+std::unique_ptr<gpu::Engine> gpu::make_cuda_engine(const Model& model, const State& state) {
+  return std::make_unique<CudaEngine>(model, state);
 }
 
 }  // namespace dentsph

@@ -10,7 +10,7 @@
 #include <new>
 
 #include "backend/cuda/buffers.hpp"
-#include "dentsph/backend.hpp"
+#include "backend/cuda/engine.hpp"
 #include "backend/cuda/density.hpp"
 #include "backend/cuda/forces.hpp"
 #include "backend/cuda/hash.hpp"
@@ -21,7 +21,7 @@
 #include "backend/cuda/sort.hpp"
 #include "backend/cuda/tool_wrench.hpp"
 
-namespace dentsph {
+namespace dentsph::gpu {
 
 namespace {
 
@@ -49,11 +49,11 @@ void launch(std::uint32_t n, Body&& body) {
   for (std::uint32_t i = 0; i < n; ++i) body(i);
 }
 
-class EmulatedStepper final : public GpuStepper {
+class EmulatedEngine final : public Engine {
  public:
-  EmulatedStepper(const Model& model, const State& state) {
+  EmulatedEngine(const Model& model, const State& state) : Engine(model) {
     buf_.upload(model, state);
-    start_from(model, state);
+    start_from(state);
     prepare();
   }
 
@@ -62,6 +62,11 @@ class EmulatedStepper final : public GpuStepper {
   void download(State& state) const override {
     buf_.download(state, *buf_.base().events);
     copy_results(state);
+  }
+  void reload(const State& state) override {
+    buf_.put_state(state);
+    start_from(state);
+    prepare();
   }
   std::string device_name() const override { return "host emulation of the CUDA backend"; }
 
@@ -104,7 +109,7 @@ class EmulatedStepper final : public GpuStepper {
   }
 
   void run(const Pose& tool_pose, StageTimes* times) {
-    *buf_.tool() = gpu::tool_input(tool_pose, tool_pose_applied_);
+    *buf_.tool() = gpu::tool_input(tool_pose, tool_pose_applied());
     const gpu::StepView v = buf_.next_view();
     auto t = std::chrono::steady_clock::now();
     auto lap = [&](double StageTimes::*field) {
@@ -148,8 +153,8 @@ class EmulatedStepper final : public GpuStepper {
 
 }  // namespace
 
-std::unique_ptr<GpuStepper> make_emulated_gpu_stepper(const Model& model, const State& state) {
-  return std::make_unique<EmulatedStepper>(model, state);
+std::unique_ptr<Engine> make_emulated_engine(const Model& model, const State& state) {
+  return std::make_unique<EmulatedEngine>(model, state);
 }
 
-}  // namespace dentsph
+}  // namespace dentsph::gpu

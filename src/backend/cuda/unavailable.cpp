@@ -1,5 +1,6 @@
 // The CUDA backend's entry points in a build without CUDA (DENTSPH_CUDA=OFF, or no nvcc found
 // when configuring): they say so.
+#include "backend/cuda/engine.hpp"
 #include "dentsph/backend.hpp"
 
 namespace dentsph {
@@ -14,6 +15,6 @@ bool cuda_built() { return false; }
 
 CudaStatus cuda_status() { return {false, kReason, ""}; }
 
-std::unique_ptr<GpuStepper> make_cuda_stepper(const Model&, const State&) { throw CudaUnavailable(kReason); }
+std::unique_ptr<gpu::Engine> gpu::make_cuda_engine(const Model&, const State&) { throw CudaUnavailable(kReason); }
 
 }  // namespace dentsph

@@ -1,0 +1,162 @@
+// Simulation: the one run core behind every loop. It owns the host State and a Stepper (any
+// backend) for a Scene, and keeps the bookkeeping around a step that every loop needs: the
+// procedure's events due, the tool's pose from the keyframes (or from a caller: a device, the
+// mouse), edits between steps (increments, instrument switches, paste edits) through the stepper,
+// the force limit, divergence with its one message, and the run's statistics. The loops are thin
+// around it: the offline run (run.hpp), the haptic runtime's simulation loop (haptics.hpp), the
+// viewer's session (apps/viewer) and replay (haptics/recording.hpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "dentsph/assess.hpp"
+#include "dentsph/backend.hpp"
+#include "dentsph/dispense.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/step.hpp"
+#include "dentsph/stepper.hpp"
+
+namespace dentsph {
+
+// The scene's dt is over a stability limit and the run was not forced. what() says by how much
+// and how to fix it.
+class UnstableTimeStep : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "simulation.dt: ... s is over the acoustic (...) stability limit of ... s (acoustic ..., viscous
+// ...)" when `dt` is over the acoustic or viscous limit of `l`; empty otherwise.
+std::string time_step_excess(real dt, const StabilityLimits& l);
+
+// The acoustic and viscous limits of a scene's initial state, and an error (UnstableTimeStep)
+// when dt exceeds one of them and `allow_unstable` is false.
+StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable);
+
+// What a run did, as summary.json reports it (docs/outputs.md). The Simulation fills what it
+// knows (Simulation::summary); each loop adds its own (wall time, snapshots, assessment, ...).
+struct RunSummary {
+  std::string scene, status = "completed";  // status: completed | diverged
+  std::string message;                      // why a run diverged
+  std::string backend = "cpu";              // the stepper's: cpu | cuda | cuda-emulation
+  std::uint64_t steps = 0;
+  real sim_time_s = 0;
+  double wall_time_s = 0;
+  double steps_per_second = 0;
+  std::uint32_t material = 0, boundary = 0, tool = 0;
+  std::uint64_t bonds_current = 0;
+  BondCounters bonds;
+  real dt = 0;
+  StabilityLimits limits;          // acoustic and viscous from the scene; force: the smallest seen
+  bool acoustic_violated = false, viscous_violated = false, forced = false;
+  std::uint64_t force_violation_steps = 0;  // steps whose dt exceeded the force limit
+  real first_force_violation_t = -1;        // s, -1 if none
+  real peak_tool_force_N = 0;        // simulated N: the largest force on the tool in the simulation
+  real force_scale = 1;              // device N per simulated N (Scene::force_scale)
+  std::uint64_t snapshots = 0;
+  std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
+  std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
+  std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
+  std::string assessment_report;     // dental scenes: the same, for a person
+  int threads = 1;
+  std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",
+                                     // "consumer", "device") are added to summary.json
+};
+
+struct SimulationOptions {
+  Backend backend = Backend::cpu;
+  int threads = 1;              // threads of the CPU step (the most it uses, with the governor)
+  bool allow_unstable = false;  // step even when dt is over the acoustic or viscous limit
+  // governed: the CPU step uses the fastest count up to `threads`, timed as it runs (fewer when
+  // another program takes a core); fixed: always `threads`. The results are the same bit for bit.
+  ThreadPolicy thread_policy = ThreadPolicy::governed;
+};
+
+class Simulation {
+ public:
+  // The scene's initial state (make_state) and the stepper of `options.backend` for it. Throws
+  // UnstableTimeStep when dt is over a limit (unless allowed) and CudaUnavailable where the cuda
+  // backend cannot run. `scene` must outlive the Simulation; its Model is copied.
+  Simulation(const Scene& scene, const SimulationOptions& options = {});
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  const Scene& scene() const { return scene_; }
+  const Model& model() const { return model_; }
+  const Stepper& stepper() const { return *stepper_; }
+  int threads() const { return options_.threads; }
+
+  // The host State. Its small results (tool_wrench, diagnostics, tool_pose_applied, time, steps,
+  // bonds.counters) are current after every step; its particles only after synced().
+  const State& state() const { return state_; }
+  // The whole State current (a GPU backend downloads, once at most between two steps).
+  const State& synced();
+  // The State to change between steps (particles added, removed or changed): synced here, handed
+  // back to the stepper before the next step.
+  State& edit();
+
+  // The tool's pose from the scene's keyframes at the end of the next step.
+  Pose keyframe_pose() const { return scene_.tool.at(state_.time + model_.dt); }
+  // Applies the scene's procedure events due before the next step (those at t <= time + dt / 2,
+  // so that an event at t lands on the step at t), in order, calling on_applied(index) for each.
+  // Returns how many.
+  std::size_t apply_due_events(const std::function<void(std::size_t)>& on_applied = {});
+  // Applies the scene's event `index` now (a replay applies them at their recorded steps).
+  void apply_event(std::size_t index);
+  // An increment of `volume` m^3 of `paste` dropped on the tooth's axis (dispense_increment).
+  // Returns the particles added.
+  std::size_t dispense(real volume, const IncrementPaste& paste);
+  // The instrument `name` in place of the tool (switch_instrument; std::invalid_argument for an
+  // unknown name, nothing changed).
+  void switch_instrument(const std::string& name);
+  // Every material particle's viscosity, stiffness and adhesion strength become `paste`'s, and the
+  // Model becomes `model` (same dt, h and grid; the adhesion kernel may differ), unless dt would be
+  // over the acoustic or viscous limit of the State that gives: then nothing changes and it throws
+  // UnstableTimeStep naming the limit.
+  void set_paste(const Model& model, const Material& paste);
+
+  // One step with the tool moved to `tool_pose`: the statistics and the force limit updated,
+  // divergence checked. False once the simulation has diverged (the step was taken; a loop stops).
+  bool step(const Pose& tool_pose);
+
+  bool diverged() const { return diverged_; }
+  // Why it diverged (what, when, and the fix); empty while it has not.
+  const std::string& divergence() const { return divergence_; }
+  // Acoustic, viscous and sound speed of the State (initial, or after set_paste); force: the
+  // smallest force limit seen (infinite before any step).
+  const StabilityLimits& limits() const { return limits_; }
+  // The tool force after every step (peak, impulse, time in contact).
+  const ForceStats& forces() const { return forces_; }
+  std::uint64_t force_violation_steps() const { return force_violation_steps_; }
+  std::uint64_t events_applied() const { return events_applied_; }
+
+  // What the core knows of the run (scene, backend, threads, steps, time, particles, bonds,
+  // stability, forces, events, status; the cavity of a dental scene), from the synced State.
+  RunSummary summary();
+
+ private:
+  void rebuild_stepper();
+
+  const Scene& scene_;
+  SimulationOptions options_;
+  Model model_;
+  State state_;
+  std::unique_ptr<Stepper> stepper_;
+  bool edited_ = false;  // the host State changed since the stepper last took it
+  std::size_t next_event_ = 0;
+  StabilityLimits limits_;
+  bool acoustic_violated_ = false, viscous_violated_ = false;
+  ForceStats forces_;
+  std::uint64_t force_violation_steps_ = 0;
+  real first_force_violation_t_ = -1;
+  std::uint64_t events_applied_ = 0;
+  bool diverged_ = false;
+  std::string divergence_;
+};
+
+}  // namespace dentsph

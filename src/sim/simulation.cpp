@@ -1,0 +1,139 @@
+// The run core (simulation.hpp): the State, its Stepper and the bookkeeping around each step.
+#include "dentsph/simulation.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "dentsph/dental.hpp"
+#include "dentsph/tools.hpp"
+
+namespace dentsph {
+
+Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
+    : scene_(scene), options_(options), model_(scene.model), state_(make_state(scene)) {
+  limits_ = check_time_step(scene, state_, options.allow_unstable);
+  limits_.force = std::numeric_limits<real>::infinity();
+  acoustic_violated_ = model_.dt > limits_.acoustic;
+  viscous_violated_ = model_.dt > limits_.viscous;
+  stepper_ = make_stepper(options.backend, model_, state_, options.threads, options.thread_policy);
+}
+
+const State& Simulation::synced() {
+  stepper_->sync_to_host(state_);
+  return state_;
+}
+
+State& Simulation::edit() {
+  stepper_->sync_to_host(state_);
+  edited_ = true;
+  return state_;
+}
+
+std::size_t Simulation::apply_due_events(const std::function<void(std::size_t)>& on_applied) {
+  std::size_t applied = 0;
+  while (next_event_ < scene_.events.size() && scene_.events[next_event_].t <= state_.time + 0.5 * model_.dt) {
+    if (on_applied) on_applied(next_event_);
+    apply_event(next_event_++);
+    ++applied;
+  }
+  return applied;
+}
+
+void Simulation::apply_event(std::size_t index) {
+  dentsph::apply_event(scene_, edit(), scene_.events.at(index));
+  ++events_applied_;
+}
+
+std::size_t Simulation::dispense(real volume, const IncrementPaste& paste) {
+  return dispense_increment(scene_, edit(), volume, increment_axis(scene_), paste);
+}
+
+void Simulation::switch_instrument(const std::string& name) {
+  (void)tool_by_name(name, increment_spacing(scene_));  // an unknown name changes nothing
+  dentsph::switch_instrument(scene_, edit(), name);
+}
+
+void Simulation::set_paste(const Model& model, const Material& paste) {
+  StabilityLimits l = stability_limits(model, synced(), &paste);
+  const std::string excess = time_step_excess(model.dt, l);
+  if (!excess.empty())
+    throw UnstableTimeStep(fmt::format("refused: {} with this paste; lower its stiffness (Kp) or viscosity (mu)", excess));
+  State& st = edit();
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (st.role[i] == Role::material) {
+      st.Kp[i] = paste.Kp;
+      st.Ka[i] = paste.Ka;
+      st.mu[i] = paste.mu;
+    }
+  l.force = limits_.force;
+  limits_ = l;
+  model_ = model;
+  rebuild_stepper();
+}
+
+void Simulation::rebuild_stepper() {
+  stepper_->sync_to_host(state_);
+  stepper_ = make_stepper(options_.backend, model_, state_, options_.threads, options_.thread_policy);
+  edited_ = false;
+}
+
+bool Simulation::step(const Pose& tool_pose) {
+  if (edited_) {
+    stepper_->sync_from_host(state_);
+    edited_ = false;
+  }
+  const real t = state_.time;
+  stepper_->step(state_, tool_pose);
+  const StepDiagnostics& d = state_.diagnostics;
+  forces_.add(state_.tool_wrench.force, model_.dt);
+  const real force_limit = force_time_step_limit(model_, d);
+  limits_.force = std::min(limits_.force, force_limit);
+  if (model_.dt > force_limit && force_violation_steps_++ == 0) first_force_violation_t_ = t;
+  // Exploded material: the run says so instead of stepping garbage.
+  if (!diverged_ && exploded(d, limits_.sound_speed)) {
+    diverged_ = true;
+    divergence_ = fmt::format(
+        "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
+        "simulation.dt or the stiffness",
+        d.non_finite > 0 ? fmt::format("{} material particles became non-finite", d.non_finite)
+                         : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
+                                       d.max_speed, explosion_speed_factor, limits_.sound_speed),
+        state_.time, state_.steps, limits_.force, model_.dt);
+  }
+  return !diverged_;
+}
+
+RunSummary Simulation::summary() {
+  const State& st = synced();
+  RunSummary s;
+  s.scene = scene_.name;
+  s.backend = stepper_->name();
+  s.threads = options_.threads;
+  if (diverged_) {
+    s.status = "diverged";
+    s.message = divergence_;
+  }
+  s.steps = st.steps;
+  s.sim_time_s = st.time;
+  s.material = st.count(Role::material);  // at the end: increments add material
+  s.boundary = st.count(Role::boundary);
+  s.tool = st.count(Role::tool);
+  s.bonds = st.bonds.counters;
+  s.bonds_current = st.bonded_pairs();
+  s.dt = model_.dt;
+  s.limits = limits_;
+  s.acoustic_violated = acoustic_violated_;
+  s.viscous_violated = viscous_violated_;
+  s.forced = options_.allow_unstable && (acoustic_violated_ || viscous_violated_);
+  s.force_violation_steps = force_violation_steps_;
+  s.first_force_violation_t = first_force_violation_t_;
+  s.peak_tool_force_N = forces_.peak_N;
+  s.force_scale = scene_.force_scale;
+  s.events_applied = events_applied_;
+  if (scene_.tooth) s.cavity_json = cavity_json(*scene_.tooth);
+  return s;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,31 @@
+// The acoustic and viscous limits against dt: the one check of the run, the runtime, the viewer
+// and `dentsph validate`, and its message.
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "dentsph/simulation.hpp"
+
+namespace dentsph {
+
+std::string time_step_excess(real dt, const StabilityLimits& l) {
+  const real limit = std::min(l.acoustic, l.viscous);
+  if (!(dt > limit)) return "";
+  const char* which = l.acoustic <= l.viscous ? "acoustic (lambda h / sqrt(max stiffness))"
+                                              : "viscous (0.125 h^2 rest_density / viscosity)";
+  return fmt::format("simulation.dt: {:.3g} s is over the {} stability limit of {:.3g} s (acoustic {:.3g} s, viscous "
+                     "{:.3g} s)",
+                     dt, which, limit, l.acoustic, l.viscous);
+}
+
+StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable) {
+  const StabilityLimits l = stability_limits(scene.model, state);
+  const std::string excess = time_step_excess(scene.model.dt, l);
+  if (!excess.empty() && !allow_unstable)
+    throw UnstableTimeStep(fmt::format("{}: {}; set simulation.dt to at most {:.3g}, lower the stiffest material's "
+                                       "stiffness or viscosity, or pass --allow-unstable to run anyway",
+                                       scene.source, excess, std::min(l.acoustic, l.viscous)));
+  return l;
+}
+
+}  // namespace dentsph
