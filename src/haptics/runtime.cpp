@@ -24,6 +24,8 @@
 #include "haptics/sim_loop.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
+#include "report/run_outputs.hpp"
+#include "report/session_assessment.hpp"
 
 namespace dentsph {
 
@@ -116,6 +118,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   const bool priority = res.haptic.realtime_priority;
   res.haptic = haptic.report();
   res.haptic.realtime_priority = priority;
+  res.haptic.profile = opt.profile;
   res.sim = sim.report();
   res.consumer = consumer.report();
   res.device_name = device.name();
@@ -137,6 +140,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sum.peak_tool_force_N = sim.summary.peak_tool_force_N;
   sum.force_scale = force_scale;
   if (scene.tooth) sum.cavity_json = cavity_json(*scene.tooth);
+  if (scene.tooth) sum.assessment_json = report::session_assessment_json(scene, state, res.recording);
   sum.events_applied = sim.summary.events_applied;
   sum.steps = state.steps;
   sum.sim_time_s = state.time;
@@ -153,6 +157,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
     io::write_summary(opt.out_dir / "summary.json", sum);
     save_recording(opt.out_dir / "recording", res.recording);
     io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+    report::finish_run(opt.out_dir, scene, state, report::log_of_recording(scene, res.recording));
   }
   return res;
 }

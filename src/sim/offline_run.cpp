@@ -15,6 +15,7 @@
 #include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
+#include "report/run_outputs.hpp"
 
 namespace dentsph {
 
@@ -104,11 +105,13 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   std::unique_ptr<GpuStepper> gpu;
   if (opt.backend != Backend::cpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
   std::size_t next_event = 0;
+  report::ProcedureLog procedure(state);
   for (std::uint64_t k = 0; k < total; ++k) {
     // Events due by this step (a half step early, so that an event at t lands on the step at t).
     while (next_event < scene.events.size() && scene.events[next_event].t <= state.time + 0.5 * scene.model.dt) {
       if (gpu) gpu->download(state);
       apply_event(scene, state, scene.events[next_event++]);
+      procedure.applied(state, scene.events[next_event - 1]);
       if (gpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
       ++sum.events_applied;
     }
@@ -170,6 +173,8 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   if (!opt.out_dir.empty()) {
     io::write_summary(opt.out_dir / "summary.json", sum);
     io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+    csv.reset();  // flushed and closed: the report reads it
+    report::finish_run(opt.out_dir, scene, state, procedure);
   }
   return sum;
 }
