@@ -17,6 +17,8 @@ h1 { font-size: 22px; margin-bottom: 4px; }
 h2 { font-size: 17px; margin-top: 28px; border-bottom: 1px solid #ddd; padding-bottom: 4px; }
 .sub { color: #555; font-size: 13px; }
 table { border-collapse: collapse; width: 100%; font-size: 14px; background: #fff; }
+#sessions { font-size: 12px; }
+#sessions td, #sessions th { padding: 4px 5px; }
 th, td { text-align: left; padding: 6px 8px; border-bottom: 1px solid #e4e4e4; vertical-align: top; }
 th { background: #f0f0f0; }
 td.num { white-space: nowrap; }
