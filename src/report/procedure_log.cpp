@@ -70,18 +70,17 @@ std::vector<IncrementThickness> ProcedureLog::thickness(const Scene& scene, cons
     IncrementThickness t;
     t.index = int(k + 1);
     t.particles = counts[k];
-    std::map<std::pair<long, long>, std::pair<double, double>> columns;  // (x, y) cell -> z range
+    std::map<std::pair<long, long>, std::uint32_t> columns;  // (x, y) cell -> particles
     for (std::size_t q = next; q < next + counts[k]; ++q) {
       const Vec3& w = state.pos[material[q]];
       if (!is_finite(w)) continue;
       const Vec3 l = fr.to_local(w);
-      const std::pair<long, long> cell{std::lround(std::floor(l.x / (2 * s))), std::lround(std::floor(l.y / (2 * s)))};
-      auto [it, fresh] = columns.try_emplace(cell, l.z, l.z);
-      if (!fresh) it->second = {std::min(it->second.first, l.z), std::max(it->second.second, l.z)};
+      ++columns[{std::lround(std::floor(l.x / (2 * s))), std::lround(std::floor(l.y / (2 * s)))}];
     }
     next += counts[k];
+    // A column of 2 x 2 spacings holding n particles of s^3 each: a layer n s / 4 thick.
     std::vector<double> thick;
-    for (const auto& [cell, range] : columns) thick.push_back((range.second - range.first + s) * 1e3);
+    for (const auto& [cell, n] : columns) thick.push_back(n * s / 4 * 1e3);
     t.median_mm = quantile(thick, 0.5);
     t.p90_mm = quantile(thick, 0.9);
     out.push_back(t);

@@ -25,8 +25,9 @@ struct LoggedEvent {
 };
 
 // Thickness of one increment at the end of a run, along the tooth's long axis: its particles
-// binned in columns of two spacings across the axis, each column's extent plus one spacing (the
-// layer a particle stands for); the median and the 90th percentile over the columns.
+// binned in columns of two spacings across the axis, each column's volume (its particles times
+// spacing^3) over its area (4 spacing^2), so that a particle drawn up a wall or by the instrument
+// adds a quarter spacing, not its height; the median and the 90th percentile over the columns.
 struct IncrementThickness {
   int index = 0;                 // 1, 2, ... in the order dispensed
   std::uint32_t particles = 0;
