@@ -9,6 +9,7 @@
 
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
+#include "io/preview.hpp"
 #include "report/run_outputs.hpp"
 #include "report/session_report.hpp"
 
@@ -49,6 +50,16 @@ void BM_ReportHtmlFromFolder(benchmark::State& bs) {
   for (auto _ : bs) report::write_session_report(dir);
 }
 BENCHMARK(BM_ReportHtmlFromFolder)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+
+// The baseline measured beside them (this host's speed drifts): preview.png, the particles-only
+// picture every run writes.
+void BM_PreviewPng(benchmark::State& bs) {
+  const Scene filled = default_dental_scene();
+  const State state = make_state(filled);
+  const fs::path file = fs::temp_directory_path() / "dentsph_bench_preview.png";
+  for (auto _ : bs) io::write_preview_png(file, state, -filled.model.gravity, filled.model.kernel.h);
+}
+BENCHMARK(BM_PreviewPng)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 
 }  // namespace
 

@@ -33,10 +33,10 @@ std::string describe_void(const nlohmann::json& v) {
   const std::string where = against == "floor" ? "against the floor"
                             : against == "wall" ? "against a wall"
                                                 : "inside the filling";
-  return fmt::format("{:.3f} mm^3 {}, {:.1f} mm below the occlusal reference, {:.1f} mm {} of the cavity's middle "
+  return fmt::format("{:.3f} mm^3 {}, {:.1f} mm {} the occlusal reference, {:.1f} mm {} of the cavity's middle "
                      "({:.2f} mm from the nearest wall or floor)",
-                     v.value("volume_mm3", 0.0), where, -z, std::abs(x), x >= 0 ? "mesial" : "distal",
-                     v.value("wall_distance_mm", 0.0));
+                     v.value("volume_mm3", 0.0), where, std::abs(z), z <= 0 ? "below" : "above", std::abs(x),
+                     x >= 0 ? "mesial" : "distal", v.value("wall_distance_mm", 0.0));
 }
 
 }  // namespace
