@@ -165,6 +165,8 @@ int main(int argc, char** argv) {
   cli::DentalOptions replay_dental;
   replay_dental.add_options(*replay, replay_scene_opt, true);
   replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
+  std::string replay_out;
+  replay->add_option("--out", replay_out, "Also write the replay as a run folder with its report (report.html)");
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -186,7 +188,7 @@ int main(int argc, char** argv) {
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
-                                   replay_dir, replay_threads);
+                                   replay_dir, replay_threads, replay_out);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "report/replay_outputs.hpp"
+
 namespace dentsph::cli {
 
 namespace {
@@ -116,9 +118,9 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   return 0;
 }
 
-int replay_recording(const Scene& scene, const std::string& dir, int threads) {
+int replay_recording(const Scene& scene, const std::string& dir, int threads, const std::filesystem::path& out_dir) {
   const Recording r = load_recording(dir);
-  const std::vector<Vec3> f = replay_steps(scene, r, threads);
+  const std::vector<Vec3> f = out_dir.empty() ? replay_steps(scene, r, threads) : report::replay_to_folder(scene, r, threads, out_dir);
   double worst = 0, peak = 0;
   std::size_t differ = 0;
   for (std::size_t k = 0; k < f.size(); ++k) {
@@ -129,6 +131,7 @@ int replay_recording(const Scene& scene, const std::string& dir, int threads) {
   fmt::print("replayed {} steps and {} events of {}: {} tool forces differ from the recording (largest difference "
              "{:.3g} N; recorded peak {:.4g} N)\n",
              f.size(), r.events.size(), dir, differ, worst, peak);
+  if (!out_dir.empty()) fmt::print("wrote {}: summary.json, tool_force.csv, report.html\n", out_dir.string());
   return differ == 0 ? 0 : 4;
 }
 

@@ -44,7 +44,9 @@ class RealtimeCommand {
 };
 
 // `dentsph replay RECORDING [SCENE]`: steps the scene on the recorded tool poses and compares
-// the tool forces with the recorded ones. Returns 0 when they agree bit for bit, 4 otherwise.
-int replay_recording(const Scene& scene, const std::string& recording_dir, int threads);
+// the tool forces with the recorded ones; with `out_dir`, also writes the replay as a run folder
+// with its report. Returns 0 when they agree bit for bit, 4 otherwise.
+int replay_recording(const Scene& scene, const std::string& recording_dir, int threads,
+                     const std::filesystem::path& out_dir = {});
 
 }  // namespace dentsph::cli

@@ -23,7 +23,8 @@ EventSample tool_switch_event(std::uint64_t step, const std::string& name) {
   return {step, kToolSwitch + std::uint32_t(it - names.begin())};
 }
 
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads) {
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads, State* final_state,
+                               const std::function<void(const State&, const EventSample&)>& on_event) {
   State state = make_state(scene);
   std::vector<Vec3> forces;
   forces.reserve(r.steps.size());
@@ -37,6 +38,7 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
       const std::uint32_t i = r.events[next_event].index;
       if (i == kButtonIncrement) {
         dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+        if (on_event) on_event(state, r.events[next_event]);
         continue;
       }
       if (i >= kToolSwitch) {
@@ -45,17 +47,20 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
           throw std::runtime_error(fmt::format("recording: event {} switches to instrument {}, but there are {}: "
                                                "replay with the version that recorded it", i, i - kToolSwitch, names.size()));
         switch_instrument(scene, state, names[i - kToolSwitch]);
+        if (on_event) on_event(state, r.events[next_event]);
         continue;
       }
       if (i >= scene.events.size())
         throw std::runtime_error(fmt::format("recording: event {} does not exist in scene '{}' ({} events): "
                                              "replay into the scene that was recorded", i, scene.name, scene.events.size()));
       apply_event(scene, state, scene.events[i]);
+      if (on_event) on_event(state, r.events[next_event]);
     }
     state.tool_pose = s.tool_pose;
     step(scene.model, state, StepOptions{threads, nullptr});
     forces.push_back(state.tool_wrench.force);
   }
+  if (final_state) *final_state = std::move(state);
   return forces;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -88,32 +89,49 @@ std::vector<IncrementThickness> ProcedureLog::thickness(const Scene& scene, cons
   return out;
 }
 
+namespace {
+
+// A recorded event as the log notes it (particles unknown); none for an index the scene lacks.
+std::optional<LoggedEvent> logged(const Scene& scene, const EventSample& r) {
+  const std::vector<std::string>& names = instrument_names();
+  LoggedEvent e;
+  e.step = r.step;
+  e.t_s = double(r.step) * scene.model.dt;
+  if (r.index == kButtonIncrement) {
+    e.kind = "dispense";
+    e.source = "button";
+  } else if (r.index >= kToolSwitch) {
+    e.kind = "switch_tool";
+    e.source = "button";
+    e.tool = r.index - kToolSwitch < names.size() ? names[r.index - kToolSwitch] : "unknown";
+  } else if (r.index < scene.events.size()) {
+    const ProcedureEvent& ev = scene.events[r.index];
+    e.source = "procedure";
+    e.kind = ev.kind == ProcedureEvent::Kind::dispense ? "dispense" : "switch_tool";
+    e.tool = ev.tool;
+  } else {
+    return std::nullopt;
+  }
+  return e;
+}
+
+}  // namespace
+
+void ProcedureLog::replayed(const Scene& scene, const State& state, const EventSample& event) {
+  std::optional<LoggedEvent> e = logged(scene, event);
+  const std::uint32_t now = material_count(state);
+  if (!e) return;
+  if (e->kind == "dispense") e->particles = std::int64_t(now) - std::int64_t(material_);
+  material_ = now;
+  events_.push_back(*e);
+}
+
 ProcedureLog log_of_recording(const Scene& scene, const Recording& recording) {
   std::uint32_t material = 0;
   for (const ParticleInit& p : scene.particles) material += p.role == Role::material;
   ProcedureLog log(material);
-  const std::vector<std::string>& names = instrument_names();
-  for (const EventSample& r : recording.events) {
-    LoggedEvent e;
-    e.step = r.step;
-    e.t_s = double(r.step) * scene.model.dt;
-    if (r.index == kButtonIncrement) {
-      e.kind = "dispense";
-      e.source = "button";
-    } else if (r.index >= kToolSwitch) {
-      e.kind = "switch_tool";
-      e.source = "button";
-      e.tool = r.index - kToolSwitch < names.size() ? names[r.index - kToolSwitch] : "unknown";
-    } else if (r.index < scene.events.size()) {
-      const ProcedureEvent& ev = scene.events[r.index];
-      e.source = "procedure";
-      e.kind = ev.kind == ProcedureEvent::Kind::dispense ? "dispense" : "switch_tool";
-      e.tool = ev.tool;
-    } else {
-      continue;
-    }
-    log.add(e);
-  }
+  for (const EventSample& r : recording.events)
+    if (const std::optional<LoggedEvent> e = logged(scene, r)) log.add(*e);
   return log;
 }
 

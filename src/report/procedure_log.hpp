@@ -45,6 +45,9 @@ class ProcedureLog {
   // The same for what a session asked for itself (a recording's events, where the particle
   // counts are not known: the increments' thickness is not measured then).
   void add(const LoggedEvent& e) { events_.push_back(e); }
+  // After a recorded event (a realtime session's, replayed) was applied to `state`: its kind from
+  // the recording, its particles from the state.
+  void replayed(const Scene& scene, const State& state, const EventSample& event);
 
   const std::vector<LoggedEvent>& events() const { return events_; }
   // Each increment's thickness in `state` (the end of the run), when every increment's

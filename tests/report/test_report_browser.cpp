@@ -159,6 +159,20 @@ TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   // The filling's six numbers and the haptic loop's six.
   EXPECT_EQ(expect_numbers_equal(dom, summary), 12);
   EXPECT_NE(dom.find("force sent to the device"), std::string::npos);
+
+  // Its replay written as a run folder: the same forces (exit 0), a report of its own, and the
+  // increment's particles known, so its thickness is measured.
+  const fs::path replayed = work() / "replayed";
+  const Result rep = dentsph("replay " + (out / "recording").string() + " --threads 1 --out " + replayed.string());
+  ASSERT_EQ(rep.code, 0) << rep.output;
+  EXPECT_NE(rep.output.find("0 tool forces differ"), std::string::npos) << rep.output;
+  const nlohmann::json rs = nlohmann::json::parse(std::ifstream(replayed / "summary.json"));
+  EXPECT_EQ(rs["steps"], summary["sim"]["steps"]);
+  EXPECT_EQ(rs["tool"]["peak_force_N"], summary["tool"]["peak_force_N"]);
+  const nlohmann::json proc = nlohmann::json::parse(std::ifstream(replayed / "procedure.json"));
+  ASSERT_FALSE(proc["increments"].empty());
+  EXPECT_GT(proc["increments"][0]["particles"].get<int>(), 100);
+  EXPECT_EQ(expect_numbers_equal(dump_dom(replayed / "report.html"), rs), 6);
 }
 
 TEST(ReportBrowser, ClassComparisonOfThreeSessionsDrawsItsCharts) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 namespace dentsph {
 
 struct Scene;
+class State;
 
 // One haptic tick.
 struct HapticSample {
@@ -72,8 +74,10 @@ Recording load_recording(const std::filesystem::path& dir);
 
 // Steps `scene` from its initial state on the recorded tool poses, applying the recorded events
 // before their steps; returns the simulated tool force after each step. Deterministic: the same
-// recording gives the same forces bit for bit (any thread count).
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1);
+// recording gives the same forces bit for bit (any thread count). `on_event` (when set) sees the
+// state after each event is applied; `final_state` (when given) receives the state at the end.
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1, State* final_state = nullptr,
+                               const std::function<void(const State&, const EventSample&)>& on_event = {});
 
 // Energy delivered to the hand, E(t_k) = sum of F . v dt over the recorded ticks (J), with v from
 // the recorded device positions (central differences). A passive rendering keeps it bounded by
