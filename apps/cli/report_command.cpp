@@ -54,7 +54,12 @@ void SessionOptions::record(const std::filesystem::path& out_dir) const {
   if (out_dir.empty()) throw std::invalid_argument("--db needs the run's folder: give --out DIR");
   report::SessionStore store(db_);
   const std::int64_t id = store.add_folder(out_dir);
-  fmt::print("session {} of {} added to the session store {}\n", id, out_dir.string(), db_);
+  if (id > 0)
+    fmt::print("session {} of {} added to the session store {}\n", id, out_dir.string(), report::masked_location(db_));
+  else
+    fmt::print("the session store {} cannot be reached: the session of {} is kept locally ({} waiting) and sent when "
+               "the store is next reached\n",
+               report::masked_location(db_), out_dir.string(), store.pending());
 }
 
 void ReportCommand::add_subcommand(CLI::App& app) {

@@ -1,126 +1,77 @@
-// The SQLite session store (session_store.hpp).
+// The session store's front (session_store.hpp): which backend, and what they share.
 #include "report/session_store.hpp"
 
-#include <sqlite3.h>
-
 #include <algorithm>
+#include <cstdlib>
 
-#include <fmt/format.h>
-
-#include "report/store_schema.hpp"
+#include "report/postgres_store.hpp"
+#include "report/store_backend.hpp"
 
 namespace dentsph::report {
 
-struct SessionStore::Impl {
-  std::string location;
-  sqlite3* db = nullptr;
+bool is_postgres_location(const std::string& l) {
+  return l.rfind("postgresql://", 0) == 0 || l.rfind("postgres://", 0) == 0;
+}
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw StoreError(fmt::format("{}: {}: {}", location, what, db ? sqlite3_errmsg(db) : "cannot open"));
-  }
-  void exec(const char* sql, const std::string& what) {
-    char* err = nullptr;
-    if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
-      const std::string msg = err ? err : "";
-      sqlite3_free(err);
-      throw StoreError(fmt::format("{}: {}: {}", location, what, msg));
+std::string masked_location(const std::string& l) {
+  const std::size_t scheme = l.find("://"), at = l.find('@');
+  if (scheme == std::string::npos || at == std::string::npos || at < scheme) return l;
+  const std::size_t colon = l.find(':', scheme + 3);
+  if (colon == std::string::npos || colon > at) return l;
+  return l.substr(0, colon + 1) + "***" + l.substr(at);
+}
+
+std::string recording_of(const SessionEntry& e) {
+  if (e.folder.empty()) return "";
+  const std::filesystem::path r = std::filesystem::path(e.folder) / "recording";
+  return std::filesystem::is_directory(r) ? r.string() : "";
+}
+
+SessionEntry entry_from_row(std::string student, std::string exercise, std::string finished_at, std::string folder,
+                            std::string report, const std::string& summary, const std::string& procedure,
+                            const std::string& location) {
+  SessionEntry e;
+  e.student = std::move(student);
+  e.exercise = std::move(exercise);
+  e.finished_at = std::move(finished_at);
+  e.folder = std::move(folder);
+  e.report = std::move(report);
+  e.summary = nlohmann::json::parse(summary, nullptr, false);
+  if (e.summary.is_discarded())
+    throw StoreError(masked_location(location) + ": a session's summary is not JSON (folder '" + e.folder +
+                     "'); add that session again");
+  if (!procedure.empty()) e.procedure = nlohmann::json::parse(procedure, nullptr, false);
+  if (e.procedure.is_discarded()) e.procedure = nullptr;
+  const std::string base = e.folder.empty() ? "session" : std::filesystem::path(e.folder).filename().string();
+  // "A. Student, 2026-11-22 23:37" (the finished_at's date and minute).
+  std::string when = e.finished_at.substr(0, std::min<std::size_t>(16, e.finished_at.size()));
+  std::replace(when.begin(), when.end(), 'T', ' ');
+  e.label = !e.student.empty() ? (when.empty() ? e.student : e.student + ", " + when) : base;
+  return e;
+}
+
+SessionStore::SessionStore(const std::string& location, const std::filesystem::path& spool_dir) : location_(location) {
+  if (is_postgres_location(location)) {
+    std::filesystem::path spool = spool_dir;
+    if (spool.empty()) {
+      if (const char* env = std::getenv("DENTSPH_STORE_SPOOL"))
+        spool = env;
+      else if (const char* home = std::getenv("HOME"))
+        spool = std::filesystem::path(home) / ".local" / "state" / "dentsph";
+      else
+        spool = std::filesystem::temp_directory_path() / "dentsph-spool";
     }
-  }
-  int version() const {
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(db, "SELECT version FROM schema_version", -1, &st, nullptr) != SQLITE_OK)
-      fail("reading the schema's version");
-    int v = 0;
-    if (sqlite3_step(st) == SQLITE_ROW) v = sqlite3_column_int(st, 0);
-    sqlite3_finalize(st);
-    return v;
-  }
-};
-
-namespace {
-
-// A prepared statement, finalised on every path.
-struct Statement {
-  sqlite3_stmt* st = nullptr;
-  Statement(const SessionStore::Impl& s, const char* sql) {
-    if (sqlite3_prepare_v2(s.db, sql, -1, &st, nullptr) != SQLITE_OK) s.fail("preparing a query");
-  }
-  ~Statement() { sqlite3_finalize(st); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-  void text(int i, const std::string& v) { sqlite3_bind_text(st, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT); }
-};
-
-std::string column(sqlite3_stmt* st, int i) {
-  const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(st, i));
-  return t ? t : "";
-}
-
-}  // namespace
-
-SessionStore::SessionStore(const std::string& location) : impl_(std::make_unique<Impl>()) {
-  impl_->location = location;
-  if (location.rfind("postgresql://", 0) == 0 || location.rfind("postgres://", 0) == 0)
-    throw StoreError(fmt::format("{}: this build's session store is SQLite only (a PostgreSQL store is not built yet); "
-                                 "give a database file, e.g. --db sessions.sqlite",
-                                 location));
-  if (sqlite3_open_v2(location.c_str(), &impl_->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
-    const std::string msg = impl_->db ? sqlite3_errmsg(impl_->db) : "out of memory";
-    sqlite3_close(impl_->db);
-    impl_->db = nullptr;
-    throw StoreError(fmt::format("{}: cannot open the session store ({}); give a writable file", location, msg));
-  }
-  sqlite3_busy_timeout(impl_->db, 5000);  // another workstation's write: wait for it
-  impl_->exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)", "not a session store (is it "
-              "another program's database?)");
-  if (impl_->version() == 0) {
-    Statement has(*impl_, "SELECT COUNT(*) FROM schema_version");
-    if (sqlite3_step(has.st) == SQLITE_ROW && sqlite3_column_int(has.st, 0) == 0)
-      impl_->exec("INSERT INTO schema_version (version) VALUES (0)", "starting the schema");
-  }
-  const int have = impl_->version();
-  if (have > current_store_version())
-    throw StoreError(fmt::format("{}: the store's schema is version {}, newer than this program's {}: use a newer "
-                                 "dentsph", location, have, current_store_version()));
-  for (const Migration& m : store_migrations()) {
-    if (m.version <= have) continue;
-    impl_->exec("BEGIN IMMEDIATE", "starting a migration");
-    try {
-      impl_->exec(m.sql, fmt::format("migration {} ({})", m.version, m.what));
-      impl_->exec(fmt::format("UPDATE schema_version SET version = {}", m.version).c_str(), "recording the migration");
-      impl_->exec("COMMIT", "committing a migration");
-    } catch (...) {
-      sqlite3_exec(impl_->db, "ROLLBACK", nullptr, nullptr, nullptr);
-      throw;
-    }
+    backend_ = open_postgres_store(location, spool);
+  } else {
+    backend_ = open_sqlite_store(location);
   }
 }
 
-SessionStore::~SessionStore() {
-  if (impl_ && impl_->db) sqlite3_close(impl_->db);
-}
+SessionStore::~SessionStore() = default;
 SessionStore::SessionStore(SessionStore&&) noexcept = default;
 SessionStore& SessionStore::operator=(SessionStore&&) noexcept = default;
 
-std::int64_t SessionStore::add(const SessionEntry& e) {
-  Statement st(*impl_,
-               "INSERT INTO sessions (student, exercise, finished_at, folder, recording, report, summary, procedure) "
-               "VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
-  const std::string recording =
-      !e.folder.empty() && std::filesystem::is_directory(std::filesystem::path(e.folder) / "recording")
-          ? (std::filesystem::path(e.folder) / "recording").string()
-          : std::string();
-  st.text(1, e.student);
-  st.text(2, e.exercise);
-  st.text(3, e.finished_at);
-  st.text(4, e.folder);
-  st.text(5, recording);
-  st.text(6, e.report);
-  st.text(7, e.summary.dump());
-  st.text(8, e.procedure.is_null() ? std::string() : e.procedure.dump());
-  if (sqlite3_step(st.st) != SQLITE_DONE) impl_->fail("adding a session");
-  return sqlite3_last_insert_rowid(impl_->db);
-}
+std::int64_t SessionStore::add(const SessionEntry& e) { return backend_->add(e); }
 
 std::int64_t SessionStore::add_folder(const std::filesystem::path& dir) {
   SessionEntry e = session_entry(dir);
@@ -130,39 +81,11 @@ std::int64_t SessionStore::add_folder(const std::filesystem::path& dir) {
 }
 
 std::vector<SessionEntry> SessionStore::find(const std::string& student, const std::string& exercise) const {
-  Statement st(*impl_,
-               "SELECT student, exercise, finished_at, folder, report, summary, procedure FROM sessions "
-               "WHERE (?1 = '' OR student = ?1) AND (?2 = '' OR exercise = ?2) ORDER BY finished_at, id");
-  st.text(1, student);
-  st.text(2, exercise);
-  std::vector<SessionEntry> out;
-  int rc;
-  while ((rc = sqlite3_step(st.st)) == SQLITE_ROW) {
-    SessionEntry e;
-    e.student = column(st.st, 0);
-    e.exercise = column(st.st, 1);
-    e.finished_at = column(st.st, 2);
-    e.folder = column(st.st, 3);
-    e.report = column(st.st, 4);
-    e.summary = nlohmann::json::parse(column(st.st, 5), nullptr, false);
-    if (e.summary.is_discarded())
-      throw StoreError(fmt::format("{}: a session's summary is not JSON (folder '{}'); add that session again",
-                                   impl_->location, e.folder));
-    const std::string proc = column(st.st, 6);
-    if (!proc.empty()) e.procedure = nlohmann::json::parse(proc, nullptr, false);
-    if (e.procedure.is_discarded()) e.procedure = nullptr;
-    const std::string base = e.folder.empty() ? "session" : std::filesystem::path(e.folder).filename().string();
-    // "A. Student, 2026-11-22 23:37" (the finished_at's date and minute).
-    std::string when = e.finished_at.substr(0, std::min<std::size_t>(16, e.finished_at.size()));
-    std::replace(when.begin(), when.end(), 'T', ' ');
-    e.label = !e.student.empty() ? (when.empty() ? e.student : e.student + ", " + when) : base;
-    out.push_back(std::move(e));
-  }
-  if (rc != SQLITE_DONE) impl_->fail("reading the sessions");
-  return out;
+  return backend_->find(student, exercise);
 }
 
-int SessionStore::schema_version() const { return impl_->version(); }
-const std::string& SessionStore::location() const { return impl_->location; }
+int SessionStore::schema_version() const { return backend_->schema_version(); }
+std::size_t SessionStore::pending() const { return backend_->pending(); }
+const std::string& SessionStore::location() const { return location_; }
 
 }  // namespace dentsph::report
