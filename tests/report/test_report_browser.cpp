@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -51,9 +52,16 @@ std::string chromium() {
 #define NEED_CHROMIUM()                                                                               \
   if (chromium().empty()) GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)"
 
+const fs::path& work();
+
 std::string browser(const std::string& args) {
-  // --no-sandbox: the tests may run as root (CI), where Chromium's sandbox refuses to start.
-  return chromium() + " --headless --no-sandbox --disable-gpu --hide-scrollbars " + args;
+  // --no-sandbox: the tests may run as root (CI), where Chromium's sandbox refuses to start. A
+  // profile of its own for each call: two browsers sharing one (tests run in parallel) would hand
+  // the page to the first and print nothing.
+  static int calls = 0;
+  const fs::path profile = work() / ("profile-" + std::to_string(::getpid()) + "-" + std::to_string(++calls));
+  return chromium() + " --headless --no-sandbox --disable-gpu --hide-scrollbars --user-data-dir=" + profile.string() +
+         " " + args;
 }
 
 // The DOM after the page's scripts ran.
@@ -90,7 +98,7 @@ Png screenshot(const fs::path& html, const fs::path& png, int w, int h) {
 Result dentsph(const std::string& args) { return shell(std::string(DENTSPH_CLI) + " " + args); }
 
 const fs::path& work() {
-  static const fs::path d = testing::fresh_dir("browser");
+  static const fs::path d = testing::fresh_dir("browser_" + std::to_string(::getpid()));
   return d;
 }
 
