@@ -271,6 +271,29 @@ TEST(Report, TwoWritersAtOnceLoseNothing) {
   EXPECT_EQ(s.find("second", "").size(), 25u);
 }
 
+TEST(Report, SceneFilesNameTheStudentAndTheExercise) {
+  nlohmann::json j = nlohmann::json::parse(std::ifstream("scenes/tool_press.json"));
+  j["student"] = "A. Student";
+  j["exercise"] = "press";
+  const Scene sc = parse_scene(j.dump(), "named.json");
+  EXPECT_EQ(sc.student, "A. Student");
+  EXPECT_EQ(sc.exercise, "press");
+  EXPECT_TRUE(parse_scene(nlohmann::json::parse(std::ifstream("scenes/tool_press.json")).dump(), "x.json").student.empty());
+  j["student"] = 3;
+  try {
+    parse_scene(j.dump(), "named.json");
+    ADD_FAILURE() << "a number as the student's name was taken";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("named.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("student"), std::string::npos) << e.what();
+  }
+  // A dental scene file takes them too.
+  const Scene dental = parse_scene(R"({"name": "d", "cavity": {"depth": 2}, "student": "B", "exercise": "class I"})",
+                                   "dental.json");
+  EXPECT_EQ(dental.student, "B");
+  EXPECT_EQ(dental.exercise, "class I");
+}
+
 TEST(Report, HtmlHelpers) {
   EXPECT_EQ(escape_html("a<b & \"c\"'"), "a&lt;b &amp; &quot;c&quot;&#39;");
   EXPECT_EQ(script_safe("{\"x\":\"</script>\"}"), "{\"x\":\"<\\/script>\"}");

@@ -233,6 +233,20 @@ TEST(ReportBrowser, MissingOrBrokenFoldersAreNamed) {
   EXPECT_NE(none.output.find("no session of student 'nobody'"), std::string::npos) << none.output;
 }
 
+TEST(ReportBrowser, ManySessionsShowTheirProgress) {
+  // No browser needed. Six folders: the comparison says how far it is (a plain line off a
+  // terminal, the last one at 100%).
+  std::string dirs;
+  for (int k = 0; k < 6; ++k) {
+    dirs += ' ';
+    dirs += testing::write_folder("browser_many" + std::to_string(k), testing::summary(0.9, 0, 1, 1, 1)).string();
+  }
+  const Result r = dentsph("report" + dirs + " --out " + (work() / "many.html").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("progress 100.0%  step 6/6"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(6 sessions)"), std::string::npos) << r.output;
+}
+
 TEST(ReportBrowser, StoreFindsAStudentsSessionsWithoutFolders) {
   NEED_CHROMIUM();
   const std::string db = (work() / "store.sqlite").string();
