@@ -34,18 +34,28 @@ std::string csv_field(const std::string& s) {
 constexpr const char* kChartsScript = R"js(
 (function () {
   const data = JSON.parse(document.getElementById('class-data').textContent);
+  // The threshold across the whole plot (a line dataset on a bar chart's categories would stop at
+  // the first and last bars' middles); its dataset, empty, stands for it in the legend.
+  const threshold = {id: 'threshold', afterDatasetsDraw(chart, args, opts) {
+    if (opts.value === null || opts.value === undefined) return;
+    const y = chart.scales.y.getPixelForValue(opts.value), area = chart.chartArea, ctx = chart.ctx;
+    ctx.save(); ctx.strokeStyle = '#c0392b'; ctx.lineWidth = 1.5; ctx.setLineDash([6, 4]);
+    ctx.beginPath(); ctx.moveTo(area.left, y); ctx.lineTo(area.right, y); ctx.stroke(); ctx.restore();
+  }};
   let drawn = 0;
   for (const c of data.charts) {
     const canvas = document.getElementById('chart-' + c.id);
     const colours = c.verdicts.map(v => v === 'good' ? '#4caf50' : v === 'needs work' ? '#ef8a2b' : '#bbbbbb');
     const sets = [{type: 'bar', label: c.label + ' (' + c.unit + ')', data: c.values, backgroundColor: colours}];
     if (c.threshold !== null)
-      sets.push({type: 'line', label: c.rule, data: c.values.map(() => c.threshold), borderColor: '#c0392b',
-                 borderDash: [6, 4], borderWidth: 1.5, pointRadius: 0, fill: false});
-    new Chart(canvas, {data: {labels: data.labels, datasets: sets},
+      sets.push({type: 'line', label: c.rule, data: c.values.map(() => null), borderColor: '#c0392b',
+                 backgroundColor: '#c0392b', borderDash: [6, 4], borderWidth: 1.5, pointRadius: 0});
+    new Chart(canvas, {data: {labels: data.labels, datasets: sets}, plugins: [threshold],
       options: {animation: false, responsive: false,
-        scales: {y: {beginAtZero: true, title: {display: true, text: c.unit}}},
-        plugins: {legend: {position: 'bottom'}, title: {display: true, text: c.label}}}});
+        scales: {y: {beginAtZero: true, max: c.unit === '%' ? 100 : undefined,
+                     suggestedMax: c.threshold === null ? undefined : 1.1 * c.threshold,
+                     title: {display: true, text: c.unit}}},
+        plugins: {legend: {position: 'bottom'}, title: {display: true, text: c.label}, threshold: {value: c.threshold}}}});
     canvas.setAttribute('data-plotted', String(sets.length));
     ++drawn;
   }
