@@ -6,6 +6,10 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libstb-dev
+  # the tutor's report: the plotting library bundled into report.html, the session store (SQLite,
+  # and PostgreSQL's client library), the browser its tests render the report in, and the
+  # PostgreSQL server its store tests start
+  libjs-chart.js libsqlite3-dev libpq-dev chromium postgresql
   # dentsph-viewer, and its tests under a virtual display with Mesa's software OpenGL
   libglfw3-dev libepoxy-dev libimgui-dev libglm-dev xvfb xauth libgl1-mesa-dri libglx-mesa0
 )

@@ -21,6 +21,7 @@
 #include "dental_options.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
+#include "report_command.hpp"
 
 namespace {
 
@@ -69,10 +70,11 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
 }
 
 int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
-            cli::RealtimeCommand& rt) {
+            cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
-  const Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  session.apply(sc);
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
@@ -88,6 +90,7 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOption
   fmt::print("peak tool force: {:.4g} N simulated, {:.4g} N on a haptic device (force scale {:.4g})\n",
              s.peak_tool_force_N, s.peak_tool_force_N * s.force_scale, s.force_scale);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
+  if (!opt.out_dir.empty()) fmt::print("report for a tutor: {}\n", (opt.out_dir / "report.html").string());
   if (s.force_violation_steps > 0)
     fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "
                "{:.3g} s)\n",
@@ -127,6 +130,10 @@ int main(int argc, char** argv) {
   run->add_option("--threads", opt.threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024))->capture_default_str();
   cli::RealtimeCommand realtime;
   realtime.add_options(*run);
+  cli::SessionOptions session;
+  session.add_options(*run);
+  cli::ReportCommand report;
+  report.add_subcommand(app);
   std::string run_backend = "cpu", bench_backend = "cpu", replay_backend = "cpu";
   cli::add_backend_option(*run, run_backend);
 
@@ -160,6 +167,8 @@ int main(int argc, char** argv) {
   cli::add_backend_option(*replay, replay_backend,
                           "Where the replay steps: the recording's backend reproduces its forces bit for bit, another "
                           "agrees within the backends' parity tolerance");
+  std::string replay_out;
+  replay->add_option("--out", replay_out, "Also write the replay as a run folder with its report (report.html)");
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -170,13 +179,16 @@ int main(int argc, char** argv) {
     if (*run) {
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
-      return cmd_run(run_scene, run_dental, opt, quiet, realtime);
+      const int rc = cmd_run(run_scene, run_dental, opt, quiet, realtime, session);
+      if (rc == 0) session.record(opt.out_dir);
+      return rc;
     }
     if (*validate) return cmd_validate(validate_scene);
+    if (report.chosen()) return report.run();
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
-                                   replay_dir, replay_threads, parse_backend(replay_backend));
+                                   replay_dir, replay_threads, parse_backend(replay_backend), replay_out);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const CudaUnavailable& e) {
     fmt::print(stderr, "error: --backend cuda: {}\n", e.what());

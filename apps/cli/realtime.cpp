@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "report/replay_outputs.hpp"
+
 namespace dentsph::cli {
 
 namespace {
@@ -117,14 +119,17 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   return 0;
 }
 
-int replay_recording(const Scene& scene, const std::string& dir, int threads, Backend backend) {
+int replay_recording(const Scene& scene, const std::string& dir, int threads, Backend backend,
+                     const std::filesystem::path& out_dir) {
   const Recording r = load_recording(dir);
-  const std::vector<Vec3> f = replay_steps(scene, r, threads, backend);
+  const std::vector<Vec3> f = out_dir.empty() ? replay_steps(scene, r, threads, backend)
+                                              : report::replay_to_folder(scene, r, threads, out_dir, backend);
   const ReplayComparison c = compare_replay(f, r, kBackendParityTolerance);
   const bool exact = r.backend == backend_name(backend);
   fmt::print("replayed {} steps and {} events of {} on {} (recorded on {}): {} tool forces differ from the recording "
              "(largest difference {:.3g} N; recorded peak {:.4g} N)\n",
              f.size(), r.events.size(), dir, backend_name(backend), r.backend, c.differ, c.largest, c.peak);
+  if (!out_dir.empty()) fmt::print("wrote {}: summary.json, tool_force.csv, report.html\n", out_dir.string());
   if (exact) return c.differ == 0 ? 0 : 4;
   fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} relative, or of the "
              "peak where forces are small)\n",

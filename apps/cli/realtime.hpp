@@ -43,9 +43,11 @@ class RealtimeCommand {
   const CLI::Option* threads_option_ = nullptr;
 };
 
-// `dentsph replay RECORDING [SCENE] [--backend B]`: steps the scene on the recorded tool poses
-// and compares the tool forces with the recorded ones. Returns 0 when they agree (bit for bit on
-// the recording's backend, within kBackendParityTolerance on another), 4 otherwise.
-int replay_recording(const Scene& scene, const std::string& recording_dir, int threads, Backend backend);
+// `dentsph replay RECORDING [SCENE] [--backend B] [--out DIR]`: steps the scene on the recorded
+// tool poses and compares the tool forces with the recorded ones; with `out_dir`, also writes the
+// replay as a run folder with its report. Returns 0 when they agree (bit for bit on the
+// recording's backend, within kBackendParityTolerance on another), 4 otherwise.
+int replay_recording(const Scene& scene, const std::string& recording_dir, int threads, Backend backend,
+                     const std::filesystem::path& out_dir = {});
 
 }  // namespace dentsph::cli

@@ -22,12 +22,13 @@
 #include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
+#include "report/viewer_report.hpp"
 
 namespace {
 
-// What a run of the viewer did, for scripts and tests.
+// What a run of the viewer did, for scripts and tests; and its report for a tutor beside it.
 void write_summary(const std::string& file, const dentsph::viewer::ViewerResult& r,
-                   const std::optional<dentsph::RealtimeResult>& realtime) {
+                   const std::optional<dentsph::RealtimeResult>& realtime, const dentsph::Scene& scene) {
   using nlohmann::json;
   std::uint32_t material = 0;
   for (dentsph::Role role : r.last.role) material += role == dentsph::Role::material;
@@ -44,9 +45,17 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
   if (r.last.assessment) j["assessment"] = json::parse(dentsph::assessment_json(*r.last.assessment));
   if (realtime) j["realtime"] = json::parse(dentsph::realtime_json(*realtime));
   if (!r.last.message.empty()) j["message"] = r.last.message;
-  std::ofstream out(file);
-  out << j.dump(2) << "\n";
-  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary (--summary)", file));
+  {
+    std::ofstream out(file);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary (--summary)", file));
+  }
+  std::vector<dentsph::Vec3> positions(r.last.xyz.size() / 3);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    positions[i] = {r.last.xyz[3 * i], r.last.xyz[3 * i + 1], r.last.xyz[3 * i + 2]};
+  const auto report = dentsph::report::write_viewer_report(file, scene, positions, r.last.role, j,
+                                                           realtime ? &*realtime : nullptr);
+  fmt::print("wrote {}\n", report.string());
 }
 
 }  // namespace
@@ -114,7 +123,7 @@ int main(int argc, char** argv) {
                r.frames, r.fps_median, r.frame_p50_ms, r.frame_p99_ms, r.sim_steps, r.sim_steps_per_second);
     if (!screenshot.empty() && !r.closed_by_user && !r.timed_out) fmt::print("wrote {}\n", screenshot);
     if (session.realtime_result()) fmt::print("\n{}", realtime_report(*session.realtime_result()));
-    if (!summary_file.empty()) write_summary(summary_file, r, session.realtime_result());
+    if (!summary_file.empty()) write_summary(summary_file, r, session.realtime_result(), session.scene());
     if (r.closed_by_user) fmt::print("viewer: closed before the end; the simulation stopped cleanly\n");
     if (r.timed_out) {
       fmt::print(stderr, "error: gave up after {:.0f} s (--timeout) before the frames and the script were done\n",

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dentsph/tooth.hpp"
 #include "dentsph/vec3.hpp"
@@ -45,12 +46,25 @@ struct AssessParams {
   real min_void_mm3 = 0;      // mm^3, enclosed regions smaller than this are not voids
 };
 
+// Where an enclosed void lies, for a tutor: in the tooth frame, in mm.
+struct VoidPlace {
+  Vec3 centre_mm;              // mean of its cavity voxels: x mesio-distal, y bucco-lingual, z
+                               // along the long axis (0 at the occlusal reference, < 0 below)
+  real volume_mm3 = 0;         // its cavity voxels
+  real wall_distance_mm = 0;   // from its centre to the nearest wall or floor of the cavity
+  // "floor" or "wall" when it touches the preparation (its centre within its equivalent radius
+  // plus a spacing of it; floor where that surface faces up the long axis within 45 degrees),
+  // otherwise "bulk" (inside the filling).
+  std::string against;
+};
+
 // The metrics of one state. Volumes in mm^3 (the unit a dentist reads), forces in N.
 struct Assessment {
   real fill_fraction = 0;     // filled cavity voxels / cavity voxels, in [0, 1]
   int void_count = 0;         // enclosed empty regions reaching into the cavity
   real void_volume_mm3 = 0;   // their volume inside the cavity
   real largest_void_mm3 = 0;  // the largest of them
+  std::vector<VoidPlace> voids;  // each of them, in the order found
   real overfill_mm3 = 0;      // filled voxels outside the cavity and the tooth, in the band
   std::uint32_t leaked_particles = 0;    // deeper than leak_depth in the tooth, or off the domain
   std::uint32_t lost_particles = 0;      // non-finite, or farther than lost_distance

@@ -120,6 +120,7 @@ struct LoopTiming {
 
 struct HapticReport {
   double target_rate_hz = 0;
+  DeviceProfile profile;                  // the force limits the loop kept to
   bool realtime_priority = false;         // the haptic thread got SCHED_FIFO
   LoopTiming timing;
   double force_age_p50_us = 0, force_age_p99_us = 0, force_age_max_us = 0;  // now - stamp of the pose the

@@ -206,6 +206,22 @@ Assessment CavityAssessor::assess(const State& state, const Model& model, const 
   a.void_count = voids.count;
   a.void_volume_mm3 = voids.cavity_voxels * v3 / mm3;
   a.largest_void_mm3 = voids.largest * v3 / mm3;
+  for (const Voids::Region& r : voids.regions) {
+    VoidPlace v;
+    const Vec3 local = g.origin + Vec3{(r.i + 0.5) * g.edge, (r.j + 0.5) * g.edge, (r.k + 0.5) * g.edge};
+    v.centre_mm = local / mm;
+    v.volume_mm3 = r.cavity_voxels * v3 / mm3;
+    // In the cavity the prepared tooth's distance is the distance to its walls and floor; its
+    // gradient there points away from the nearest of them.
+    const SurfacePoint wall = m.tooth.distance(fr.to_world(local));
+    v.wall_distance_mm = std::max<real>(0, wall.distance) / mm;
+    const real radius_mm = std::cbrt(3 * v.volume_mm3 / (4 * 3.14159265358979323846));
+    if (v.wall_distance_mm > radius_mm + p.spacing / mm)
+      v.against = "bulk";
+    else
+      v.against = dot(wall.normal, fr.z) > std::sqrt(0.5) ? "floor" : "wall";
+    a.voids.push_back(v);
+  }
   a.overfill_mm3 = filled_air * v3 / mm3;
   a.peak_tool_force_N = forces.peak_N;
   a.mean_tool_force_N = forces.mean_N();

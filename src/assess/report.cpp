@@ -44,6 +44,12 @@ std::string assessment_json(const Assessment& a) {
   j["void_count"] = a.void_count;
   j["void_volume_mm3"] = number(a.void_volume_mm3);
   j["largest_void_mm3"] = number(a.largest_void_mm3);
+  j["voids"] = nlohmann::json::array();
+  for (const VoidPlace& v : a.voids)
+    j["voids"].push_back({{"centre_mm", {number(v.centre_mm.x), number(v.centre_mm.y), number(v.centre_mm.z)}},
+                          {"volume_mm3", number(v.volume_mm3)},
+                          {"wall_distance_mm", number(v.wall_distance_mm)},
+                          {"against", v.against}});
   j["overfill_mm3"] = number(a.overfill_mm3);
   j["leaked_particles"] = a.leaked_particles;
   j["lost_particles"] = a.lost_particles;

@@ -12,16 +12,21 @@ namespace {
 constexpr std::uint8_t kSeen = 2;
 
 // Marks every empty voxel 6-connected to those on `stack` as seen; returns how many cavity
-// voxels it marked (the ones on the stack included).
-std::uint32_t flood(const VoxelGrid& g, std::vector<std::uint8_t>& mark,
+// voxels it marked (the ones on the stack included) and the sum of their indices.
+Voids::Region flood(const VoxelGrid& g, std::vector<std::uint8_t>& mark,
                     std::vector<std::uint32_t>& stack) {
   const std::size_t sx = 1, sy = std::size_t(g.n[0]), sz = sy * std::size_t(g.n[1]);
-  std::uint32_t cavity = 0;
+  Voids::Region cavity;
   while (!stack.empty()) {
     const std::uint32_t v = stack.back();
     stack.pop_back();
-    cavity += (g.cell[v] & kClassMask) == kCavity;
     const int i = int(v % sy), j = int((v / sy) % std::size_t(g.n[1])), k = int(v / sz);
+    if ((g.cell[v] & kClassMask) == kCavity) {
+      ++cavity.cavity_voxels;
+      cavity.i += i;
+      cavity.j += j;
+      cavity.k += k;
+    }
     auto visit = [&](bool inside, std::size_t u) {
       if (inside && mark[u] == kEmpty) {
         mark[u] = kSeen;
@@ -69,11 +74,16 @@ Voids find_voids(const VoxelGrid& g, std::vector<std::uint8_t>& mark,
     if (mark[v] != kEmpty) continue;
     mark[v] = kSeen;
     stack.push_back(std::uint32_t(v));
-    const std::uint32_t cavity = flood(g, mark, stack);
+    Voids::Region region = flood(g, mark, stack);
+    const std::uint32_t cavity = region.cavity_voxels;
     if (cavity < min_voxels) continue;
     ++out.count;
     out.cavity_voxels += cavity;
     out.largest = std::max(out.largest, cavity);
+    region.i /= cavity;
+    region.j /= cavity;
+    region.k /= cavity;
+    out.regions.push_back(region);
   }
   return out;
 }

@@ -15,6 +15,12 @@ struct Voids {
   int count = 0;                    // components holding at least min_cavity_voxels
   std::uint32_t cavity_voxels = 0;  // cavity voxels in them
   std::uint32_t largest = 0;        // cavity voxels in the largest
+  // Each void: its cavity voxels and their mean voxel index (x, y, z), in the order found.
+  struct Region {
+    std::uint32_t cavity_voxels = 0;
+    double i = 0, j = 0, k = 0;
+  };
+  std::vector<Region> regions;
 };
 
 // `mark` ([g.size()]): kSolid where a voxel is tooth or filled, kEmpty where it is cavity or

@@ -25,7 +25,8 @@ EventSample tool_switch_event(std::uint64_t step, const std::string& name) {
   return {step, kToolSwitch + std::uint32_t(it - names.begin())};
 }
 
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads, Backend backend) {
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads, Backend backend, State* final_state,
+                               const std::function<void(const State&, const EventSample&)>& on_event) {
   // The recorded session ran whatever its time step; a replay repeats it, diverging or not.
   Simulation sim(scene, {backend, threads, true});
   const State& state = sim.state();
@@ -42,6 +43,7 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
       const std::uint32_t i = r.events[next_event].index;
       if (i == kButtonIncrement) {
         sim.dispense(volume, paste);
+        if (on_event) on_event(sim.synced(), r.events[next_event]);
         continue;
       }
       if (i >= kToolSwitch) {
@@ -50,16 +52,19 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
           throw std::runtime_error(fmt::format("recording: event {} switches to instrument {}, but there are {}: "
                                                "replay with the version that recorded it", i, i - kToolSwitch, names.size()));
         sim.switch_instrument(names[i - kToolSwitch]);
+        if (on_event) on_event(sim.synced(), r.events[next_event]);
         continue;
       }
       if (i >= scene.events.size())
         throw std::runtime_error(fmt::format("recording: event {} does not exist in scene '{}' ({} events): "
                                              "replay into the scene that was recorded", i, scene.name, scene.events.size()));
       sim.apply_event(i);
+      if (on_event) on_event(sim.synced(), r.events[next_event]);
     }
     sim.step(s.tool_pose);
     forces.push_back(state.tool_wrench.force);
   }
+  if (final_state) *final_state = sim.synced();
   return forces;
 }
 

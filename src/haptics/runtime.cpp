@@ -24,6 +24,8 @@
 #include "haptics/sim_loop.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
+#include "report/run_outputs.hpp"
+#include "report/session_assessment.hpp"
 
 namespace dentsph {
 
@@ -108,6 +110,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   const bool priority = res.haptic.realtime_priority;
   res.haptic = haptic.report();
   res.haptic.realtime_priority = priority;
+  res.haptic.profile = opt.profile;
   res.sim = sim.report();
   res.consumer = consumer.report();
   res.device_name = device.name();
@@ -125,6 +128,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   RunSummary& sum = res.run;
   sum = core.summary();
   sum.force_scale = force_scale;
+  if (scene.tooth) sum.assessment_json = report::session_assessment_json(scene, core.synced(), res.recording);
   sum.wall_time_s = wall;
   sum.steps_per_second = res.sim.steps_per_second;
   sum.realtime_json = realtime_json(res);
@@ -133,6 +137,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
     io::write_summary(opt.out_dir / "summary.json", sum);
     save_recording(opt.out_dir / "recording", res.recording);
     io::write_preview_png(opt.out_dir / "preview.png", core.synced(), -scene.model.gravity, scene.model.kernel.h);
+    report::finish_run(opt.out_dir, scene, core.synced(), report::log_of_recording(scene, res.recording));
   }
   return res;
 }

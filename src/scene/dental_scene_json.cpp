@@ -67,7 +67,7 @@ CavityParams read_cavity(const Reader& c) {
 }
 
 Scene parse_dental_scene(const Reader& root) {
-  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics"});
+  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise"});
   const std::string name = root.string("name", "the scene's name, e.g. \"class2_fill\"");
   if (name.empty()) root.fail("name", "is empty", "give the scene a name");
   (void)root.optional_string("description", "a description of the scene");
@@ -103,6 +103,7 @@ Scene parse_dental_scene(const Reader& root) {
   sc.name = name;
   sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
   read_haptics(root, sc);
+  read_session_names(root, sc);
   return sc;
 }
 

@@ -27,6 +27,8 @@ Json parse_json(const std::string& text, const std::string& source);
 std::string read_text_file(const std::filesystem::path& file, std::string_view what);
 // "haptics" of the top level ({"force_scale"}) into `scene`, keeping its default when absent.
 void read_haptics(const Reader& root, Scene& scene);
+// The optional "student" and "exercise" of the top level (the report's and the session store's).
+void read_session_names(const Reader& root, Scene& scene);
 
 // ---- dental scene files (dental_scene_json.cpp) -------------------------------------------------
 

@@ -187,6 +187,11 @@ void read_haptics(const Reader& root, Scene& scene) {
   }
 }
 
+void read_session_names(const Reader& root, Scene& sc) {
+  sc.student = root.optional_string("student", "who runs the scene, e.g. \"A. Student\" (the report's title)").value_or("");
+  sc.exercise = root.optional_string("exercise", "the exercise, e.g. \"class I, lower molar\"").value_or("");
+}
+
 }  // namespace dentsph::scene
 
 namespace dentsph {
@@ -197,7 +202,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   const Reader root(json, "", source, "a scene");
   if (is_dental_scene(root)) return parse_dental_scene(root);
   root.only({"name", "description", "simulation", "adhesion", "materials", "roles", "blocks",
-             "tool", "output", "run", "haptics"});
+             "tool", "output", "run", "haptics", "student", "exercise"});
 
   Scene sc;
   sc.source = source;
@@ -229,6 +234,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   sc.output = read_output(root);
   sc.duration = read_duration(root);
   read_haptics(root, sc);
+  read_session_names(root, sc);
 
   sc.params.domain_min = domain.min;
   sc.params.domain_max = domain.max;

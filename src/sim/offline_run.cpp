@@ -15,6 +15,7 @@
 #include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
+#include "report/run_outputs.hpp"
 
 namespace dentsph {
 
@@ -73,8 +74,10 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   // A GPU backend keeps the particles on the GPU: each step reads back only the wrench and the
   // diagnostics; the particles come down for snapshots, events and the end of the run.
   const State& state = sim.state();
+  // The procedure's log: each event as applied (the increments' particles, for their thickness).
+  report::ProcedureLog procedure(state);
   for (std::uint64_t k = 0; k < total; ++k) {
-    sim.apply_due_events();
+    sim.apply_due_events([&](std::size_t i) { procedure.applied(sim.synced(), scene.events[i]); });
     const real t_forces = state.time;
     const bool going = sim.step(sim.keyframe_pose());
     if (csv) csv->add(t_forces, state.tool_wrench);
@@ -100,6 +103,8 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   if (!opt.out_dir.empty()) {
     io::write_summary(opt.out_dir / "summary.json", sum);
     io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
+    csv.reset();  // flushed and closed: the report reads it
+    report::finish_run(opt.out_dir, scene, state, procedure);
   }
   return sum;
 }

@@ -238,6 +238,14 @@ TEST(Assess, HoleOfKnownVolumeIsOneVoidOfThatVolume) {
   const Assessment full = assess(c, c.world);
   EXPECT_NEAR((full.fill_fraction - a.fill_fraction) * a.cavity_volume_mm3, a.void_volume_mm3,
               1e-9);
+  // Where it is: its centre within a voxel of the hole's, 1.5 mm from the floor and more than
+  // 1 mm from the walls (the deep cavity is 4 mm wide): inside the filling, not against a wall.
+  ASSERT_EQ(a.voids.size(), 1u);
+  EXPECT_NEAR(norm(a.voids[0].centre_mm - centre / mm), 0, a.voxel_mm);
+  EXPECT_DOUBLE_EQ(a.voids[0].volume_mm3, a.void_volume_mm3);
+  EXPECT_NEAR(a.voids[0].wall_distance_mm, 1.5, 0.1);
+  EXPECT_EQ(a.voids[0].against, "bulk");
+  EXPECT_TRUE(full.voids.empty());
 
   // Two holes of two spacings, 3 mm apart along the cavity: two voids, each about its volume.
   world = c.world;
@@ -245,6 +253,10 @@ TEST(Assess, HoleOfKnownVolumeIsOneVoidOfThatVolume) {
   const int r2 = remove_ball(c, world, {1.5 * mm, 0, -1.5 * mm}, 2 * s);
   const Assessment two = assess(c, world);
   EXPECT_EQ(two.void_count, 2);
+  ASSERT_EQ(two.voids.size(), 2u);  // found in voxel order: mesial x < 0 first
+  EXPECT_NEAR(two.voids[0].centre_mm.x, -1.5, 0.1);
+  EXPECT_NEAR(two.voids[1].centre_mm.x, 1.5, 0.1);
+  EXPECT_NEAR(two.voids[0].volume_mm3 + two.voids[1].volume_mm3, two.void_volume_mm3, 1e-12);
   EXPECT_NEAR(ball_radius(two.largest_void_mm3 * mm3), expected_hole_radius(std::max(r1, r2)),
               s / 8);
   EXPECT_NEAR(ball_radius(two.void_volume_mm3 * mm3 / 2), expected_hole_radius((r1 + r2) / 2),
@@ -284,6 +296,25 @@ TEST(Assess, VoidsUnderTheMinimumVolumeAreNotCounted) {
   EXPECT_EQ(small.fill_fraction, a.fill_fraction);  // still empty, just not a void
   p.min_void_mm3 = a.void_volume_mm3 - 0.01;
   EXPECT_EQ(CavityAssessor(c.tooth, p).assess(st, c.model).void_count, 1);
+}
+
+TEST(Assess, VoidAgainstTheFloorOrAWallSaysSo) {
+  // Holes of two spacings touching the 3 mm deep cavity's floor and its mesial wall.
+  const Case& c = deep_case();
+  std::vector<Vec3> world = c.world;
+  remove_ball(c, world, {0, 0, -2.9 * mm}, 2 * s);
+  const Assessment floor = assess(c, world);
+  ASSERT_EQ(floor.voids.size(), 1u);
+  EXPECT_EQ(floor.voids[0].against, "floor");
+  EXPECT_LT(floor.voids[0].wall_distance_mm, 0.6);
+  world = c.world;
+  remove_ball(c, world, {-2.9 * mm, 0, -1.5 * mm}, 2 * s);
+  const Assessment wall = assess(c, world);
+  ASSERT_EQ(wall.voids.size(), 1u);
+  EXPECT_EQ(wall.voids[0].against, "wall");
+  const std::string j = assessment_json(wall);
+  EXPECT_NE(j.find("\"against\": \"wall\""), std::string::npos) << j;
+  EXPECT_NE(j.find("\"centre_mm\""), std::string::npos) << j;
 }
 
 TEST(Assess, HoleAtAnOffsetLatticeIsFoundAlike) {

@@ -188,6 +188,16 @@ TEST(ViewerGui, RendersTheHapticRuntimeWithAScriptedDevice) {
   EXPECT_LE(h["max_force_N"].get<double>(), 9.0);  // the Falcon profile's limit
   EXPECT_GT(j["realtime"]["sim"]["steps"].get<int>(), 0);
   EXPECT_GT(j["sim"]["steps"].get<int>(), 0);  // the viewer's snapshots came from the runtime's simulation
+  // The report beside the summary: a run folder with the runtime's sections, the recording and
+  // the pictures (rendered in a browser by test_report_browser).
+  const fs::path report = sum.parent_path() / (sum.stem().string() + "_report");
+  EXPECT_TRUE(fs::exists(report / "report.html")) << r.out;
+  EXPECT_TRUE(fs::exists(report / "tooth_cut.png"));
+  EXPECT_TRUE(fs::exists(report / "recording" / "steps.csv"));
+  const auto rs = nlohmann::json::parse(slurp(report / "summary.json"));
+  EXPECT_EQ(rs["haptic"]["ticks"], h["ticks"]);
+  EXPECT_EQ(rs["assessment"], j["assessment"]);
+  EXPECT_NE(slurp(report / "report.html").find("id=\"haptic\""), std::string::npos);
 }
 
 // The GPU's algorithm behind the window (--backend cuda-emulation, the CUDA backend's stage bodies

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 namespace dentsph {
 
 struct Scene;
+class State;
 
 // One haptic tick.
 struct HapticSample {
@@ -76,7 +78,11 @@ Recording load_recording(const std::filesystem::path& dir);
 // before their steps, on `backend`; returns the simulated tool force after each step.
 // Deterministic: the same recording gives the same forces bit for bit on the backend that
 // recorded it (any thread count); another backend agrees within its parity tolerance.
-std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1, Backend backend = Backend::cpu);
+// `on_event` (when set) sees the state after each event is applied; `final_state` (when given)
+// receives the state at the end.
+std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1, Backend backend = Backend::cpu,
+                               State* final_state = nullptr,
+                               const std::function<void(const State&, const EventSample&)>& on_event = {});
 
 // Replayed tool forces against a recording's.
 struct ReplayComparison {

@@ -1,0 +1,211 @@
+// The tutor's criteria and their verdicts (criteria.hpp).
+#include "report/criteria.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace dentsph::report {
+
+namespace {
+
+Verdict judge(bool good) { return good ? Verdict::good : Verdict::needs_work; }
+
+Criterion make(std::string id, std::string label, std::string key, std::optional<double> value, std::string shown,
+               std::string rule, std::string advice) {
+  Criterion c;
+  c.id = std::move(id);
+  c.label = std::move(label);
+  c.key = std::move(key);
+  c.value = value;
+  c.shown = value ? std::move(shown) : std::string("not measured");
+  c.rule = std::move(rule);
+  c.advice = std::move(advice);
+  return c;
+}
+
+std::string describe_void(const nlohmann::json& v) {
+  const auto c = v.value("centre_mm", nlohmann::json::array());
+  const double x = c.size() == 3 && c[0].is_number() ? c[0].get<double>() : 0;
+  const double z = c.size() == 3 && c[2].is_number() ? c[2].get<double>() : 0;
+  const std::string against = v.value("against", "");
+  const std::string where = against == "floor" ? "against the floor"
+                            : against == "wall" ? "against a wall"
+                                                : "inside the filling";
+  return fmt::format("{:.3f} mm^3 {}, {:.1f} mm {} the occlusal reference, {:.1f} mm {} of the cavity's middle "
+                     "({:.2f} mm from the nearest wall or floor)",
+                     v.value("volume_mm3", 0.0), where, std::abs(z), z <= 0 ? "below" : "above", std::abs(x),
+                     x >= 0 ? "mesial" : "distal", v.value("wall_distance_mm", 0.0));
+}
+
+}  // namespace
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::good: return "good";
+    case Verdict::needs_work: return "needs work";
+    case Verdict::not_measured: return "not measured";
+  }
+  return "?";
+}
+
+std::optional<double> number_at(const nlohmann::json& j, const std::string& path) {
+  const nlohmann::json* at = &j;
+  std::size_t a = 0;
+  while (true) {
+    const std::size_t b = path.find('.', a);
+    const std::string key = path.substr(a, b == std::string::npos ? std::string::npos : b - a);
+    if (!at->is_object()) return std::nullopt;
+    const auto it = at->find(key);
+    if (it == at->end()) return std::nullopt;
+    at = &*it;
+    if (b == std::string::npos) break;
+    a = b + 1;
+  }
+  if (!at->is_number()) return std::nullopt;
+  return at->get<double>();
+}
+
+double device_limit_N(const nlohmann::json& summary, const Thresholds& t) {
+  return number_at(summary, "haptic.profile.max_force_N").value_or(t.default_device_limit_N);
+}
+
+std::string device_limit_name(const nlohmann::json& summary) {
+  if (const auto limit = number_at(summary, "haptic.profile.max_force_N")) {
+    const std::string name = summary["haptic"]["profile"].value("name", "the device");
+    return fmt::format("the {} profile's {:.3g} N", name, *limit);
+  }
+  return "9 N, the Novint Falcon's (the default device profile)";
+}
+
+std::vector<Criterion> filling_criteria(const nlohmann::json& s, const nlohmann::json& procedure, const Thresholds& t) {
+  std::vector<Criterion> out;
+  const auto fill = number_at(s, "assessment.fill_fraction");
+  Criterion c = make("fill", "Cavity filled", "assessment.fill_fraction", fill,
+                     fill ? fmt::format("{:.1f} %", 100 * *fill) : "", fmt::format("{:.0f} % or more", 100 * t.fill_min),
+                     "Dispense enough paste and condense each increment into the line angles before the next.");
+  if (fill) c.verdict = judge(*fill >= t.fill_min);
+  out.push_back(c);
+
+  const auto voids = number_at(s, "assessment.void_count");
+  const auto void_mm3 = number_at(s, "assessment.void_volume_mm3");
+  c = make("voids", "Voids (enclosed gaps)", "assessment.void_count", voids,
+           voids ? fmt::format("{:.0f} ({:.3f} mm^3)", *voids, void_mm3.value_or(0)) : "", "none",
+           "Press each increment down and against the walls before adding the next; do not bridge over gaps.");
+  if (voids) c.verdict = judge(*voids == 0);
+  if (s.contains("assessment") && s["assessment"].contains("voids") && s["assessment"]["voids"].is_array())
+    for (const nlohmann::json& v : s["assessment"]["voids"]) c.details.push_back(describe_void(v));
+  out.push_back(c);
+
+  const auto over = number_at(s, "assessment.overfill_mm3");
+  const auto cavity = number_at(s, "assessment.cavity_volume_mm3");
+  c = make("overfill", "Overfill above the margin", "assessment.overfill_mm3", over,
+           over ? fmt::format("{:.2f} mm^3", *over) : "",
+           cavity ? fmt::format("at most {:.0f} % of the cavity ({:.2f} mm^3)", 100 * t.overfill_max_share,
+                                t.overfill_max_share * *cavity)
+                  : fmt::format("at most {:.0f} % of the cavity", 100 * t.overfill_max_share),
+           "Dispense less in the last increment, and condense it to the margin rather than heaping it.");
+  if (over && cavity) c.verdict = judge(*over <= t.overfill_max_share * *cavity);
+  out.push_back(c);
+
+  const auto leaked = number_at(s, "assessment.leaked_particles");
+  const auto lost = number_at(s, "assessment.lost_particles");
+  c = make("leaked", "Paste leaked or lost", "assessment.leaked_particles", leaked,
+           leaked ? fmt::format("{:.0f} particles leaked, {:.0f} lost", *leaked, lost.value_or(0)) : "", "none",
+           "Press more gently: paste forced through the lining (or flung away) is lost to the filling.");
+  if (leaked) c.verdict = judge(*leaked == 0 && lost.value_or(0) == 0);
+  out.push_back(c);
+
+  // The thickest increment by the 90th percentile of its columns.
+  std::optional<double> thickest;
+  std::vector<std::string> layers;
+  if (procedure.is_object() && procedure.contains("increments") && procedure["increments"].is_array() &&
+      !procedure["increments"].empty())
+    for (const nlohmann::json& inc : procedure["increments"]) {
+      const double p90 = inc.value("thickness_p90_mm", 0.0);
+      thickest = std::max(thickest.value_or(0.0), p90);
+      layers.push_back(fmt::format("increment {}: {} particles, {:.2f} mm thick (median), {:.2f} mm (90th percentile)",
+                                   inc.value("index", 0), inc.value("particles", 0), inc.value("thickness_median_mm", 0.0),
+                                   p90));
+    }
+  c = make("increments", "Thickest increment", "procedure:increments", thickest,
+           thickest ? fmt::format("{:.2f} mm", *thickest) : "", fmt::format("{:.1f} mm or less", t.increment_max_mm),
+           "Place thinner increments: a layer over 2 mm does not cure through and shrinks more.");
+  if (thickest) c.verdict = judge(*thickest <= t.increment_max_mm);
+  c.details = layers;
+  out.push_back(c);
+
+  const double limit = device_limit_N(s, t);
+  const std::optional<double> peak = number_at(s, "assessment.peak_device_force_N").has_value()
+                                         ? number_at(s, "assessment.peak_device_force_N")
+                                         : number_at(s, "tool.peak_device_force_N");
+  c = make("peak_force", "Peak force on the instrument",
+           number_at(s, "assessment.peak_device_force_N") ? "assessment.peak_device_force_N" : "tool.peak_device_force_N",
+           peak, peak ? fmt::format("{:.3g} N", *peak) : "", fmt::format("at most {}", device_limit_name(s)),
+           "Condense with less force: the device cannot render more than its limit, and the paste leaks under it.");
+  if (peak) c.verdict = judge(*peak <= limit);
+  out.push_back(c);
+
+  const auto mean = number_at(s, "assessment.mean_device_force_N");
+  c = make("mean_force", "Mean force while in contact", "assessment.mean_device_force_N", mean,
+           mean ? fmt::format("{:.3g} N", *mean) : "",
+           fmt::format("at most {:.0f} % of the device's limit ({:.3g} N)", 100 * t.mean_force_max_share,
+                       t.mean_force_max_share * limit),
+           "Ease off between strokes: a steady hard press tires the hand and pushes paste out of the cavity.");
+  if (mean) c.verdict = judge(*mean <= t.mean_force_max_share * limit);
+  out.push_back(c);
+  return out;
+}
+
+std::vector<Criterion> haptic_criteria(const nlohmann::json& s, const Thresholds& t) {
+  std::vector<Criterion> out;
+  if (!s.contains("haptic")) return out;
+  const double target = number_at(s, "haptic.target_rate_hz").value_or(1000);
+  const auto rate = number_at(s, "haptic.rate_hz");
+  Criterion c = make("haptic_rate", "Haptic loop rate", "haptic.rate_hz", rate, rate ? fmt::format("{:.1f} Hz", *rate) : "",
+                     fmt::format("within {:.0f} % of {:.0f} Hz", 100 * t.rate_tolerance, target),
+                     "The computer could not keep the haptic loop's rate: close other programs, or use fewer threads.");
+  if (rate) c.verdict = judge(std::abs(*rate - target) <= t.rate_tolerance * target);
+  out.push_back(c);
+
+  const auto p99 = number_at(s, "haptic.period_p99_us");
+  c = make("haptic_period_p99", "Period, 99th percentile", "haptic.period_p99_us", p99,
+           p99 ? fmt::format("{:.0f} us", *p99) : "",
+           fmt::format("at most {:.0f} us ({:.1f} periods)", t.period_p99_max_share * 1e6 / target, t.period_p99_max_share),
+           "The haptic thread was delayed: run it with real-time priority (root or CAP_SYS_NICE).");
+  if (p99) c.verdict = judge(*p99 <= t.period_p99_max_share * 1e6 / target);
+  out.push_back(c);
+
+  const auto misses = number_at(s, "haptic.deadline_misses");
+  const double ticks = number_at(s, "haptic.ticks").value_or(0);
+  c = make("haptic_misses", "Missed deadlines", "haptic.deadline_misses", misses,
+           misses ? fmt::format("{:.0f} of {:.0f} ticks", *misses, ticks) : "",
+           fmt::format("at most {:.1f} per 1000 ticks", 1000 * t.deadline_miss_max_share),
+           "Ticks started late: the force felt rough. Close other programs or use fewer simulation threads.");
+  if (misses) c.verdict = judge(*misses <= t.deadline_miss_max_share * std::max(1.0, ticks));
+  out.push_back(c);
+
+  const auto age = number_at(s, "haptic.force_age_p99_us");
+  c = make("haptic_force_age", "Force age, 99th percentile", "haptic.force_age_p99_us", age,
+           age ? fmt::format("{:.2f} ms", *age / 1000) : "", fmt::format("at most {:.0f} ms", t.force_age_p99_max_us / 1000),
+           "The simulation lagged the hand: the force felt late. Use the coupling mode or a faster machine.");
+  if (age) c.verdict = judge(*age <= t.force_age_p99_max_us);
+  out.push_back(c);
+
+  const auto trips = number_at(s, "haptic.watchdog.trips");
+  c = make("haptic_watchdog", "Watchdog trips", "haptic.watchdog.trips", trips, trips ? fmt::format("{:.0f}", *trips) : "",
+           "none", "The force was ramped to zero when the device or the simulation went quiet: check the connection.");
+  if (trips) c.verdict = judge(*trips == 0);
+  out.push_back(c);
+
+  const auto dropped = number_at(s, "haptic.recording_dropped_ticks");
+  c = make("haptic_recording", "Ticks missing from the recording", "haptic.recording_dropped_ticks", dropped,
+           dropped ? fmt::format("{:.0f}", *dropped) : "", "none",
+           "The session outlasted the recording's memory: its replay is incomplete.");
+  if (dropped) c.verdict = judge(*dropped == 0);
+  out.push_back(c);
+  return out;
+}
+
+}  // namespace dentsph::report

@@ -1,0 +1,21 @@
+// `dentsph replay RECORDING --out DIR`: the replayed session written as a run folder, so that it
+// gets the same report as an offline run: summary.json (with the assessment), tool_force.csv,
+// preview.png and, through finish_run, the pictures, procedure.json (each increment's particles
+// known here, so their thickness is measured) and report.html.
+#pragma once
+
+#include "dentsph/backend.hpp"
+
+#include <filesystem>
+#include <vector>
+
+#include "dentsph/haptics/recording.hpp"
+#include "dentsph/scene.hpp"
+
+namespace dentsph::report {
+
+// Replays `recording` into `scene` (replay_steps) and writes `dir`; returns the tool forces.
+std::vector<Vec3> replay_to_folder(const Scene& scene, const Recording& recording, int threads,
+                                   const std::filesystem::path& dir, Backend backend = Backend::cpu);
+
+}  // namespace dentsph::report

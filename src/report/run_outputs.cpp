@@ -1,0 +1,76 @@
+// The end of a run's outputs (run_outputs.hpp).
+#include "report/run_outputs.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "report/session_report.hpp"
+
+namespace dentsph::report {
+
+namespace {
+
+nlohmann::json read_summary(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the run's summary", file.string()));
+  return nlohmann::json::parse(in);
+}
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+              std::span<const Role> roles, const nlohmann::json& summary) {
+  if (!scene.tooth) return;
+  PictureOptions o;
+  o.spacing = scene.material_spacing > 0 ? scene.material_spacing : default_tooth_spacing;
+  if (summary.contains("assessment") && summary["assessment"].contains("voids"))
+    for (const nlohmann::json& v : summary["assessment"]["voids"]) {
+      const auto c = v.value("centre_mm", nlohmann::json::array());
+      if (c.size() != 3 || !c[0].is_number() || !c[1].is_number() || !c[2].is_number()) continue;
+      o.markers.push_back(scene.tooth->frame().to_world(Vec3{c[0].get<double>(), c[1].get<double>(), c[2].get<double>()} * 1e-3));
+      o.marker_radii.push_back(std::cbrt(3 * v.value("volume_mm3", 0.0) / (4 * 3.14159265358979)) * 1e-3);
+    }
+  write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles), o);
+}
+
+}  // namespace
+
+void stamp_summary(const std::filesystem::path& dir, const Scene& scene) {
+  const std::filesystem::path file = dir / "summary.json";
+  nlohmann::json j = read_summary(file);
+  nlohmann::json session = {{"finished_at", utc_now()}};
+  if (!scene.student.empty()) session["student"] = scene.student;
+  if (!scene.exercise.empty()) session["exercise"] = scene.exercise;
+  j["session"] = session;
+  std::ofstream out(file);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary", file.string()));
+}
+
+void finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+                std::span<const Role> roles, const ProcedureLog& log) {
+  stamp_summary(dir, scene);
+  pictures(dir, scene, positions, roles, read_summary(dir / "summary.json"));
+  write_procedure_json(dir / "procedure.json", scene, log, {});
+  write_session_report(dir);
+}
+
+void finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log) {
+  stamp_summary(dir, scene);
+  pictures(dir, scene, state.pos, state.role, read_summary(dir / "summary.json"));
+  write_procedure_json(dir / "procedure.json", scene, log, log.thickness(scene, state));
+  write_session_report(dir);
+}
+
+}  // namespace dentsph::report

@@ -1,0 +1,307 @@
+// The report without a browser: a run folder read back (and refused, naming the file, when
+// broken), the criteria's verdicts at their thresholds, the page's numbers as the files hold
+// them, the bundled plotting library, the class comparison's table and CSV, the procedure's log
+// and increments, and the session store (migrations, queries, two writers at once).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include <sqlite3.h>
+
+#include "dentsph/dental.hpp"
+#include "dentsph/scene.hpp"
+#include "report/chartjs.hpp"
+#include "report/class_report.hpp"
+#include "report/criteria.hpp"
+#include "report/html.hpp"
+#include "report/procedure_log.hpp"
+#include "report/session_folder.hpp"
+#include "report/session_report.hpp"
+#include "report/session_store.hpp"
+#include "report/store_schema.hpp"
+#include "report_support.hpp"
+
+namespace dentsph::report {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::summary;
+using testing::write_folder;
+
+const Criterion& by_id(const std::vector<Criterion>& cs, const std::string& id) {
+  for (const Criterion& c : cs)
+    if (c.id == id) return c;
+  throw std::runtime_error("no criterion " + id);
+}
+
+TEST(Report, CriteriaJudgeAtTheirThresholds) {
+  const nlohmann::json proc = {{"increments", {{{"index", 1}, {"thickness_p90_mm", 2.0}}}}};
+  auto good = filling_criteria(summary(0.95, 0, 0.25 * 32.5, 9.0, 4.5), proc);
+  for (const Criterion& c : good) EXPECT_EQ(c.verdict, Verdict::good) << c.id << " " << c.shown;
+  const nlohmann::json thick = {{"increments", {{{"index", 1}, {"thickness_p90_mm", 2.01}}}}};
+  auto bad = filling_criteria(summary(0.949, 1, 0.26 * 32.5, 9.01, 4.51), thick);
+  for (const Criterion& c : bad)
+    if (c.id != "leaked") {
+      EXPECT_EQ(c.verdict, Verdict::needs_work) << c.id << " " << c.shown;
+    }
+  EXPECT_EQ(by_id(bad, "fill").shown, "94.9 %");
+  EXPECT_EQ(by_id(bad, "voids").details.size(), 1u);
+  EXPECT_NE(by_id(bad, "voids").details[0].find("against the floor, 1.8 mm below"), std::string::npos)
+      << by_id(bad, "voids").details[0];
+  // Without an assessment or increments: not measured, never good.
+  const auto none = filling_criteria(nlohmann::json{{"steps", 1}}, nullptr);
+  EXPECT_EQ(by_id(none, "fill").verdict, Verdict::not_measured);
+  EXPECT_EQ(by_id(none, "increments").verdict, Verdict::not_measured);
+  // A realtime session is judged against its device's profile.
+  nlohmann::json rt = summary(1, 0, 0, 3.0, 1.0);
+  rt["haptic"] = {{"profile", {{"name", "touch"}, {"max_force_N", 3.3}}}, {"target_rate_hz", 1000.0}, {"rate_hz", 995.0},
+                  {"ticks", 10000}, {"deadline_misses", 11}, {"period_p99_us", 1400.0}, {"force_age_p99_us", 2000.0},
+                  {"watchdog", {{"trips", 0}}}, {"recording_dropped_ticks", 0}};
+  EXPECT_EQ(device_limit_N(rt), 3.3);
+  EXPECT_EQ(by_id(filling_criteria(rt, nullptr), "mean_force").verdict, Verdict::good);  // 1.0 <= 1.65
+  const auto h = haptic_criteria(rt);
+  EXPECT_EQ(by_id(h, "haptic_rate").verdict, Verdict::good);
+  EXPECT_EQ(by_id(h, "haptic_misses").verdict, Verdict::needs_work);  // 11 > 10 of 10000
+  EXPECT_EQ(by_id(h, "haptic_period_p99").verdict, Verdict::good);
+  EXPECT_TRUE(haptic_criteria(summary(1, 0, 0, 1, 1)).empty());
+}
+
+TEST(Report, PageCarriesTheSummarysNumbersExactly) {
+  const nlohmann::json s = summary(0.9812345678901234, 1, 3.3333333333333335, 4.209053706180593, 1.1593196175395701);
+  const fs::path d = write_folder("page", s);
+  const fs::path file = write_session_report(d);
+  std::ifstream in(file);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Every criterion with a number: data-value is the file's number, to the last bit.
+  const std::regex cell("data-key=\"([A-Za-z0-9_.:]+)\" data-value=\"([^\"]+)\">([^<]*)<");
+  int checked = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), cell); it != std::sregex_iterator(); ++it) {
+    const std::string key = (*it)[1], value = (*it)[2];
+    if (key.rfind("procedure:", 0) == 0) continue;
+    ASSERT_TRUE(number_at(s, key)) << key;
+    EXPECT_EQ(std::stod(value), *number_at(s, key)) << key;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6);  // fill, voids, overfill, leaked, peak, mean
+  for (const char* shown : {">98.1 %<", ">1 (0.125 mm^3)<", ">3.33 mm^3<", ">4.21 N<", ">1.16 N<", ">0.88 mm<"})
+    EXPECT_NE(html.find(shown), std::string::npos) << shown;
+  // Self-contained: the library inline, no address to fetch anything from.
+  EXPECT_NE(html.find(chartjs_source()), std::string::npos);
+  EXPECT_EQ(html.find("src=\"http"), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  // The plot's markers: the increment and the instrument switch.
+  EXPECT_NE(html.find("\"label\":\"increment 1\""), std::string::npos);
+  EXPECT_NE(html.find("\"label\":\"instrument: flat_plugger\""), std::string::npos);
+  EXPECT_NE(html.find("A. Student, class I"), std::string::npos);
+}
+
+TEST(Report, BundledPlottingLibraryIsDebiansFileWhole) {
+  std::ifstream in("/usr/share/javascript/chart.js/chart.min.js", std::ios::binary);
+  if (!in) GTEST_SKIP() << "libjs-chart.js is not installed here (the build read it where it was)";
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(chartjs_source(), file);
+  EXPECT_NE(file.find(std::string("Chart.js v") + std::string(chartjs_version())), std::string::npos);
+}
+
+TEST(Report, BrokenFoldersAreNamedWithTheFix) {
+  auto refused = [](const fs::path& d, const std::vector<std::string>& phrases) {
+    try {
+      read_session(d);
+      ADD_FAILURE() << d << " was read";
+    } catch (const SessionError& e) {
+      for (const std::string& p : phrases) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+  };
+  refused("/nonexistent/run", {"/nonexistent/run", "no such folder", "--out"});
+  const fs::path empty = testing::fresh_dir("empty");
+  refused(empty, {empty.string(), "no summary.json"});
+  const fs::path broken = write_folder("broken", summary(1, 0, 0, 1, 1));
+  std::ofstream(broken / "summary.json") << "{\"steps\": 3, ";
+  refused(broken, {"summary.json", "not valid JSON", "run it again"});
+  const fs::path cut = write_folder("cut", summary(1, 0, 0, 1, 1));
+  std::ofstream(cut / "tool_force.csv", std::ios::app) << "0.5,1,2\n";
+  refused(cut, {"tool_force.csv", "line 202", "3 columns"});
+  const fs::path garbage = write_folder("garbage", summary(1, 0, 0, 1, 1));
+  std::ofstream(garbage / "tool_force.csv", std::ios::app) << "0.5,1,x,0,0,0,0\n";
+  refused(garbage, {"tool_force.csv", "line 202, column 3", "not a number"});
+  std::ofstream(garbage / "summary.json") << "[1, 2]";
+  refused(garbage, {"summary.json", "not a dentsph run summary"});
+}
+
+TEST(Report, DecimationKeepsThePeaks) {
+  Series s{"f", {}, {}};
+  for (int k = 0; k < 100000; ++k) {
+    s.t.push_back(k * 1e-4);
+    s.f.push_back(k == 71234 ? 9.5 : (k == 4321 ? -1.0 : std::sin(k * 1e-3)));
+  }
+  const Series d = decimate(s, 1000);
+  EXPECT_LE(d.t.size(), 2000u);
+  EXPECT_EQ(*std::max_element(d.f.begin(), d.f.end()), 9.5);
+  EXPECT_EQ(*std::min_element(d.f.begin(), d.f.end()), -1.0);
+  EXPECT_TRUE(std::is_sorted(d.t.begin(), d.t.end()));
+}
+
+TEST(Report, ClassComparisonTableAndCsv) {
+  std::vector<SessionEntry> sessions;
+  const double fills[] = {0.99, 0.80, 0.97};
+  for (int k = 0; k < 3; ++k) {
+    nlohmann::json s = summary(fills[k], k == 1, 1.0, 2.0 + k, 1.0);
+    s["session"]["student"] = "student " + std::to_string(k);
+    sessions.push_back(session_entry(write_folder("class" + std::to_string(k), s)));
+  }
+  EXPECT_EQ(sessions[1].label, "student 1");
+  const std::string csv = class_report_csv(sessions);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_NE(csv.find("student 1,student 1,class I,2026-01-02T03:04:05Z,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0.8,needs work,1.0,needs work,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0.99,good,0.0,good,"), std::string::npos) << csv;
+  const std::string html = class_report_html(sessions, "Class of 2026 & friends");
+  EXPECT_NE(html.find("Class of 2026 &amp; friends"), std::string::npos);
+  EXPECT_EQ(std::count(html.begin(), html.end(), '\n') > 10, true);
+  for (const char* id : {"chart-fill", "chart-voids", "chart-overfill", "chart-increments", "chart-peak_force"})
+    EXPECT_NE(html.find(id), std::string::npos) << id;
+  EXPECT_NE(html.find("data-value=\"0.8\">80.0 %"), std::string::npos);
+}
+
+TEST(Report, IncrementThicknessFromTheFinalState) {
+  // The built-in scene's paste, 1600 particles filling the 2 mm deep cavity and heaped above it,
+  // as one increment: at least the cavity's depth thick, at most the paste's whole height.
+  const Scene scene = default_dental_scene();
+  const State state = make_state(scene);
+  double lo = 1e9, hi = -1e9;
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (state.role[i] == Role::material) {
+      const double z = scene.tooth->frame().to_local(state.pos[i]).z;
+      lo = std::min(lo, z), hi = std::max(hi, z);
+    }
+  const double height_mm = (hi - lo + scene.material_spacing) * 1e3;
+  ProcedureLog log(0u);
+  log.add({0, 0.0, "dispense", "procedure", "", state.count(Role::material)});
+  const auto t = log.thickness(scene, state);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].particles, state.count(Role::material));
+  EXPECT_GT(t[0].median_mm, 2.0);
+  EXPECT_LE(t[0].p90_mm, height_mm + 1e-9);
+  EXPECT_GE(t[0].p90_mm, t[0].median_mm);
+  // Split in two by id: two thinner layers, each about half.
+  ProcedureLog two(0u);
+  const std::uint32_t half = state.count(Role::material) / 2;
+  two.add({0, 0.0, "dispense", "procedure", "", half});
+  two.add({10, 0.1, "dispense", "procedure", "", state.count(Role::material) - half});
+  const auto t2 = two.thickness(scene, state);
+  ASSERT_EQ(t2.size(), 2u);
+  EXPECT_LT(t2[0].median_mm, 0.75 * t[0].median_mm);
+  // Counts not known (a recording's button increments), or not adding up: not measured.
+  ProcedureLog unknown(0u);
+  unknown.add({0, 0.0, "dispense", "button", "", -1});
+  EXPECT_TRUE(unknown.thickness(scene, state).empty());
+  ProcedureLog wrong(0u);
+  wrong.add({0, 0.0, "dispense", "procedure", "", 5});
+  EXPECT_TRUE(wrong.thickness(scene, state).empty());
+}
+
+TEST(Report, StoreMigratesFindsAndKeepsSessions) {
+  const fs::path d = testing::fresh_dir("store");
+  const std::string db = (d / "sessions.sqlite").string();
+  std::vector<fs::path> folders;
+  for (int k = 0; k < 3; ++k) {
+    nlohmann::json s = summary(0.9 + 0.03 * k, 0, 1.0, 2.0, 1.0);
+    s["session"] = {{"student", k == 2 ? "B" : "A"}, {"exercise", k == 0 ? "class II" : "class I"},
+                    {"finished_at", "2026-01-0" + std::to_string(3 - k) + "T10:00:00Z"}};
+    folders.push_back(write_folder("store" + std::to_string(k), s));
+  }
+  {
+    SessionStore store(db);
+    EXPECT_EQ(store.schema_version(), current_store_version());
+    for (const fs::path& f : folders) store.add_folder(f);
+  }
+  const SessionStore again(db);  // reopened: nothing migrated twice, everything kept
+  EXPECT_EQ(again.schema_version(), current_store_version());
+  const auto a = again.find("A", "");
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[0].finished_at, "2026-01-02T10:00:00Z");  // oldest first
+  EXPECT_EQ(a[0].exercise, "class I");
+  EXPECT_EQ(a[0].summary, nlohmann::json::parse(std::ifstream(folders[1] / "summary.json")));
+  EXPECT_EQ(a[0].procedure["increments"][0]["thickness_p90_mm"], 0.875);
+  EXPECT_EQ(a[0].folder, fs::absolute(folders[1]).lexically_normal().string());
+  EXPECT_EQ(again.find("", "class I").size(), 2u);
+  EXPECT_EQ(again.find("A", "class II").size(), 1u);
+  EXPECT_TRUE(again.find("C", "").empty());
+}
+
+TEST(Report, StoreRefusesWhatItCannotUse) {
+  const fs::path d = testing::fresh_dir("store_refusals");
+  auto refused = [](const std::string& location, const std::string& phrase) {
+    try {
+      SessionStore s(location);
+      ADD_FAILURE() << location << " opened";
+    } catch (const StoreError& e) {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  refused((d / "no" / "such" / "dir.sqlite").string(), "cannot open the session store");
+  // A store written by a newer version.
+  const std::string newer = (d / "newer.sqlite").string();
+  { SessionStore s(newer); }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(newer.c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "UPDATE schema_version SET version = 99", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  refused(newer, "newer than this program's");
+}
+
+TEST(Report, TwoWritersAtOnceLoseNothing) {
+  const fs::path d = testing::fresh_dir("store_writers");
+  const std::string db = (d / "s.sqlite").string();
+  { SessionStore init(db); }
+  const fs::path folder = write_folder("store_writer", summary(1, 0, 0, 1, 1));
+  auto writer = [&](const std::string& student) {
+    SessionStore s(db);
+    SessionEntry e = session_entry(folder);
+    e.student = student;
+    for (int k = 0; k < 25; ++k) s.add(e);
+  };
+  std::thread a(writer, "first"), b(writer, "second");
+  a.join();
+  b.join();
+  const SessionStore s(db);
+  EXPECT_EQ(s.find("first", "").size(), 25u);
+  EXPECT_EQ(s.find("second", "").size(), 25u);
+}
+
+TEST(Report, SceneFilesNameTheStudentAndTheExercise) {
+  nlohmann::json j = nlohmann::json::parse(std::ifstream("scenes/tool_press.json"));
+  j["student"] = "A. Student";
+  j["exercise"] = "press";
+  const Scene sc = parse_scene(j.dump(), "named.json");
+  EXPECT_EQ(sc.student, "A. Student");
+  EXPECT_EQ(sc.exercise, "press");
+  EXPECT_TRUE(parse_scene(nlohmann::json::parse(std::ifstream("scenes/tool_press.json")).dump(), "x.json").student.empty());
+  j["student"] = 3;
+  try {
+    parse_scene(j.dump(), "named.json");
+    ADD_FAILURE() << "a number as the student's name was taken";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("named.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("student"), std::string::npos) << e.what();
+  }
+  // A dental scene file takes them too.
+  const Scene dental = parse_scene(R"({"name": "d", "cavity": {"depth": 2}, "student": "B", "exercise": "class I"})",
+                                   "dental.json");
+  EXPECT_EQ(dental.student, "B");
+  EXPECT_EQ(dental.exercise, "class I");
+}
+
+TEST(Report, HtmlHelpers) {
+  EXPECT_EQ(escape_html("a<b & \"c\"'"), "a&lt;b &amp; &quot;c&quot;&#39;");
+  EXPECT_EQ(script_safe("{\"x\":\"</script>\"}"), "{\"x\":\"<\\/script>\"}");
+  EXPECT_EQ(base64({}), "");
+  EXPECT_EQ(base64({'f'}), "Zg==");
+  EXPECT_EQ(base64({'f', 'o'}), "Zm8=");
+  EXPECT_EQ(base64({'f', 'o', 'o', 'b', 'a', 'r'}), "Zm9vYmFy");
+}
+
+}  // namespace
+}  // namespace dentsph::report
