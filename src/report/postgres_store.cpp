@@ -47,7 +47,7 @@ class PostgresStore final : public StoreBackend {
   }
 
   std::vector<SessionEntry> find(const std::string& student, const std::string& exercise) const override {
-    if (!const_cast<PostgresStore*>(this)->reach())
+    if (!reach())
       throw StoreError(fmt::format("{}: the server cannot be reached ({}); start it or check the address",
                                    masked_location(location_), last_error_));
     const char* params[] = {student.c_str(), exercise.c_str()};
@@ -65,14 +65,14 @@ class PostgresStore final : public StoreBackend {
   }
 
   int schema_version() const override {
-    if (!const_cast<PostgresStore*>(this)->reach())
+    if (!reach())
       throw StoreError(fmt::format("{}: the server cannot be reached ({})", masked_location(location_), last_error_));
     Result r(PQexec(conn_, "SELECT version FROM schema_version"));
     return r.ok() && PQntuples(r.r) > 0 ? std::atoi(PQgetvalue(r.r, 0, 0)) : 0;
   }
 
   std::size_t pending() const override {
-    return std::filesystem::exists(spool_file_) ? const_cast<PostgresStore*>(this)->spool().all().size() : 0;
+    return std::filesystem::exists(spool_file_) ? spool().all().size() : 0;
   }
 
  private:
@@ -80,7 +80,7 @@ class PostgresStore final : public StoreBackend {
     throw StoreError(fmt::format("{}: {}: {}", masked_location(location_), what, conn_ ? PQerrorMessage(conn_) : ""));
   }
 
-  SqliteStore& spool() {
+  SqliteStore& spool() const {
     if (!spool_) {
       std::filesystem::create_directories(spool_file_.parent_path());
       spool_ = std::make_unique<SqliteStore>(spool_file_.string());
@@ -90,7 +90,7 @@ class PostgresStore final : public StoreBackend {
 
   // Connected (connecting, migrating and sending the spool when not yet): false when the server
   // cannot be reached.
-  bool reach() {
+  bool reach() const {
     if (conn_ && PQstatus(conn_) == CONNECTION_OK) return true;
     if (conn_) PQfinish(conn_);
     const char* keys[] = {"dbname", "connect_timeout", nullptr};
@@ -109,7 +109,7 @@ class PostgresStore final : public StoreBackend {
     return true;
   }
 
-  void exec(const std::string& sql, const std::string& what) {
+  void exec(const std::string& sql, const std::string& what) const {
     Result r(PQexec(conn_, sql.c_str()));
     if (!r.ok()) {
       const std::string msg = PQerrorMessage(conn_);
@@ -120,7 +120,7 @@ class PostgresStore final : public StoreBackend {
 
   // The schema brought to the current version in one transaction, under an advisory lock so that
   // workstations opening the store at once migrate it once.
-  void migrate() {
+  void migrate() const {
     exec("BEGIN", "starting the schema");
     exec("SELECT pg_advisory_xact_lock(730317)", "locking the schema");
     exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)", "creating the schema's version");
@@ -142,7 +142,7 @@ class PostgresStore final : public StoreBackend {
   }
 
   // The new row's id, or 0 when the connection was lost (the caller spools the session).
-  std::int64_t insert(const SessionEntry& e) {
+  std::int64_t insert(const SessionEntry& e) const {
     const std::string summary = e.summary.dump(), procedure = e.procedure.is_null() ? "" : e.procedure.dump();
     const std::string recording = recording_of(e);
     const char* params[] = {e.student.c_str(),   e.exercise.c_str(), e.finished_at.c_str(), e.folder.c_str(),
@@ -166,7 +166,7 @@ class PostgresStore final : public StoreBackend {
   }
 
   // What the spool holds, oldest first, each removed once the server has it.
-  void send_spool() {
+  void send_spool() const {
     if (!std::filesystem::exists(spool_file_)) return;
     for (const auto& [id, e] : spool().all()) {
       if (!insert(e)) return;  // lost again: the rest waits
@@ -176,9 +176,10 @@ class PostgresStore final : public StoreBackend {
 
   std::string location_;
   std::filesystem::path spool_file_;
-  PGconn* conn_ = nullptr;
-  std::string last_error_;
-  std::unique_ptr<SqliteStore> spool_;
+  // The connection, made (again) when a query needs it: a const query may connect.
+  mutable PGconn* conn_ = nullptr;
+  mutable std::string last_error_;
+  mutable std::unique_ptr<SqliteStore> spool_;
 };
 
 }  // namespace
