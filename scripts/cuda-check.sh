@@ -6,13 +6,14 @@
 #                                  that a bare CUDA machine lacks, and the kernels' resource report
 #                                  into .device/ (ignored by git; about 20 MiB)
 #   scripts/cuda-check.sh device   on the GPU machine, from the repository root, with .device/
-#                                  carried along: the device tests, compute-sanitizer memcheck and
-#                                  racecheck on the parity tests, and the benchmark; everything
-#                                  written to $OUT (at most 8 files), a summary printed last
-#   scripts/cuda-check.sh device [tests] [sanitize] [bench] [tune] [--quick]
-#                                  only those parts (default: all four, about 9 minutes at most,
-#                                  under the device's 10-minute limit for one command); --quick:
-#                                  a short benchmark sweep
+#                                  carried along: the device tests, the haptic runtime on the GPU
+#                                  and its replay, compute-sanitizer memcheck and racecheck on the
+#                                  parity tests, and the benchmark; everything written to $OUT (at
+#                                  most 8 files), a summary printed last
+#   scripts/cuda-check.sh device [tests] [realtime] [sanitize] [bench] [tune] [--quick]
+#                                  only those parts (default: all five, about 10 minutes at most:
+#                                  leave out tune, or give --quick, to stay under the device's
+#                                  10-minute limit for one command); --quick: a short benchmark sweep
 #
 # A device session: `scripts/cuda-check.sh pack` here, then one device call running
 # `bash scripts/cuda-check.sh device` with carry [".device"]; copy $OUT/<gpu>.json and .txt into
@@ -47,11 +48,11 @@ device() {
   for a in "$@"; do
     case "$a" in
       --quick) quick=--quick ;;
-      tests | sanitize | bench | tune) parts+=("$a") ;;
-      *) echo "unknown part '$a': choose tests, sanitize, bench, tune (and --quick)"; exit 2 ;;
+      tests | realtime | sanitize | bench | tune) parts+=("$a") ;;
+      *) echo "unknown part '$a': choose tests, realtime, sanitize, bench, tune (and --quick)"; exit 2 ;;
     esac
   done
-  [ ${#parts[@]} -eq 0 ] && parts=(tests sanitize bench tune)
+  [ ${#parts[@]} -eq 0 ] && parts=(tests realtime sanitize bench tune)
   want() { [[ " ${parts[*]} " == *" $1 "* ]]; }
   : "${OUT:=/tmp/dentsph-cuda-out}"
   mkdir -p "$OUT"
@@ -76,6 +77,22 @@ device() {
   echo "device tests: exit $tests_rc ($((SECONDS - t0)) s); $(grep -E '^\[  (PASSED|FAILED|SKIPPED) +\] [0-9]+ test' "$OUT/test_cuda.log" | tr '\n' ' ')" | tee -a "$summary"
   grep -m1 -E 'skipped, no GPU|Failure' -A3 "$OUT/test_cuda.log" | tee -a "$summary"
 
+  fi
+
+  if want realtime; then
+  # 1b. The haptic runtime stepping on the GPU (the built-in procedure, a scripted device, 0.5 s),
+  # its recording replayed bit for bit on the GPU and within the parity tolerance on the CPU. Its
+  # outputs stay in /tmp (the summary says what happened); about a minute at most.
+  local rt=/tmp/dentsph-realtime
+  t0=$SECONDS
+  timeout 40 "$bin/dentsph" run --realtime --backend cuda --device scripted --duration 0.5 -q --out "$rt" \
+    >"$rt.log" 2>&1
+  echo "realtime on cuda: exit $? ($((SECONDS - t0)) s); $(grep -m1 '^simulation' "$rt.log")" | tee -a "$summary"
+  for b in cuda cpu; do
+    timeout 40 "$bin/dentsph" replay "$rt/recording" --backend "$b" >>"$rt.log" 2>&1
+    echo "replay on $b: exit $? (0: bit for bit on cuda, within the parity tolerance on cpu); $(tail -1 "$rt.log")" |
+      tee -a "$summary"
+  done
   fi
 
   if want sanitize; then

@@ -40,9 +40,9 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
 SimSession::~SimSession() { stop(); }
 
 void SimSession::reset() {
-  sim_.reset();  // one stepper at a time (a GPU's memory)
-  sim_.emplace(scene_, SimulationOptions{opt_.backend, opt_.threads, false});
-  if (paste_edited_) sim_->set_paste(scene_.model, paste_);  // the paste as edited, not as the scene gave it
+  auto fresh = std::make_unique<Simulation>(scene_, SimulationOptions{opt_.backend, opt_.threads, false});
+  if (paste_edited_) fresh->set_paste(scene_.model, paste_);  // the paste as edited, not as the scene gave it
+  sim_ = std::move(fresh);  // only once it stands: a reset that fails keeps the running simulation
   tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
   diverged_ = false;
@@ -129,7 +129,11 @@ void SimSession::apply(const Command& c, Simulation& sim, std::vector<EventSampl
         message_ = "the haptic runtime does not reset: close the window and start again";
         return;
       }
-      reset();
+      try {
+        reset();
+      } catch (const std::exception& e) {
+        message_ = fmt::format("reset refused: {}", e.what());
+      }
       return;
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;

@@ -137,7 +137,7 @@ class SimSession {
 
   Scene scene_;
   SessionOptions opt_;
-  std::optional<Simulation> sim_;  // the session's own loop's (and the first snapshot's)
+  std::unique_ptr<Simulation> sim_;  // the session's own loop's (and the first snapshot's)
   std::optional<CavityAssessor> assessor_;
   real paste_mass_ = 0;
   real force_scale_ = 1;  // device N per simulated N: the scene's, or the runtime's override

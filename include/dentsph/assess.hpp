@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dentsph/force_stats.hpp"
 #include "dentsph/tooth.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -18,20 +19,6 @@ namespace dentsph {
 
 class State;
 struct Model;
-
-// The tool force over a procedure, accumulated by the run loop (or the viewer) once per step.
-// The mean is taken over the time in contact (|F| > 0): the tool is lifted between presses, and
-// an average over the whole run would mostly measure how long it was lifted.
-struct ForceStats {
-  real peak_N = 0;      // N, largest |F| seen
-  real impulse_Ns = 0;  // N s, integral of |F| over time
-  real contact_s = 0;   // s, time with |F| > 0
-  real elapsed_s = 0;   // s, all time added
-
-  // The force on the tool after a step of `dt` seconds.
-  void add(const Vec3& force, real dt);
-  real mean_N() const { return contact_s > 0 ? impulse_Ns / contact_s : 0; }  // N, in contact
-};
 
 struct AssessParams {
   real spacing = default_tooth_spacing;  // m, material particle spacing: a particle is spacing^3

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dentsph/assess.hpp"
+#include "dentsph/force_stats.hpp"
 #include "dentsph/backend.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/scene.hpp"

@@ -10,6 +10,7 @@
 
 #include "dentsph/model.hpp"
 #include "dentsph/state.hpp"
+#include "physics/bond_rules.hpp"
 #include "physics/pair_terms.hpp"
 
 namespace dentsph::bonds {
@@ -24,16 +25,16 @@ struct Events {
 
 // Counts the break of the bond of moving particle i to j (once per pair).
 inline void count_break(const State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
-  if (s.id[i] < s.id[j] || s.role[j] == Role::boundary) ++ev.broken;
+  if (bond_rules::counts_event(s.id[i], s.id[j], s.role[j])) ++ev.broken;
 }
 
 // Removes the partners of moving particle i that are now beyond B.
 inline void break_stretched(const Model& model, State& s, std::uint32_t i, Events& ev) {
-  const real B2 = model.adhesion.B * model.adhesion.B;
+  const bond_rules::Thresholds t = bond_rules::thresholds(model.adhesion);
   const std::uint32_t id = s.id[i];
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
     const std::uint32_t j = s.index_of_id[s.bonds.partner(id, b)];
-    if (norm2(s.pos[i] - s.pos[j]) > B2) {
+    if (bond_rules::stretched(norm2(s.pos[i] - s.pos[j]), t)) {
       count_break(s, i, j, ev);
       s.bonds.remove_at(id, b);
     }
@@ -49,7 +50,7 @@ inline bool can_bond(const State& s, std::uint32_t i, std::uint32_t j) {
 // Whether moving particle i may bond to j, whose squared distance is r2: closer than A, and a
 // pair that may bond at all (bonded already or not).
 inline bool may_form(const Model& model, const State& s, std::uint32_t i, std::uint32_t j, real r2) {
-  return j != i && r2 < model.adhesion.A * model.adhesion.A && can_bond(s, i, j);
+  return bond_rules::may_form(i, j, r2, bond_rules::thresholds(model.adhesion), s.role[i], s.role[j], s.Ka[i], s.Ka[j]);
 }
 
 // Bonds moving particle i to j, known not to be bonded yet (counts the overflow of a full list).
@@ -57,7 +58,7 @@ inline void form(State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
   const std::uint32_t a = s.id[i], b = s.id[j];
   if (!s.bonds.try_add(a, b))
     ++ev.overflowed;
-  else if (a < b || s.role[j] == Role::boundary)
+  else if (bond_rules::counts_event(a, b, s.role[j]))
     ++ev.formed;
 }
 

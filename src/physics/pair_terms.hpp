@@ -8,15 +8,17 @@
 
 namespace dentsph::pair {
 
-// What a pair term needs to know about one side.
-struct Side {
-  Vec3 pos;
-  Vec3 vel;
-  real vol;  // m^3, m / rho
-  real pressure;
-  real mu;
-  real Ka;
-};
+// What a pair term needs to know about one side: position, velocity, volume m / rho (m^3),
+// pressure, viscosity and adhesion strength. The grid step's density pass keeps one such record
+// per particle (State's PairData, GridIndex::pair_data), so the two are one type.
+using Side = PairData;
+
+// One particle's Side from arrays indexed by particle that are named as a State names them (pos,
+// vel, volume, pressure, mu, Ka): the State on the CPU, a view of the GPU's arrays there.
+template <class Particles>
+DENTSPH_HD inline Side side_of(const Particles& p, std::uint32_t i) {
+  return {p.pos[i], p.vel[i], p.volume[i], p.pressure[i], p.mu[i], p.Ka[i]};
+}
 
 // Pressure (eq. 5, Mueller's symmetrised form) plus viscosity (eq. 4), for 0 < r < h.
 // d = r_i - r_j, r = |d|.

@@ -32,13 +32,13 @@ void compute_forces_all_pairs(const Model& model, State& s) {
       s.force[i] = {};
       continue;
     }
-    const pair::Side si = side_of(s, i);
+    const pair::Side si = pair::side_of(s, i);
     Vec3 f;
     for (std::uint32_t j = 0; j < n; ++j) {
       if (j == i) continue;
       const Vec3 d = si.pos - s.pos[j];
       const real r = norm(d);
-      const pair::Side sj = side_of(s, j);
+      const pair::Side sj = pair::side_of(s, j);
       f += pair::pressure_viscosity(si, sj, d, r, model.kernel);
       if (s.bonds.has(s.id[i], s.id[j])) f += pair::adhesion(si, sj, d, r, model.adhesion, model.kernel);
     }

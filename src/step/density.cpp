@@ -8,6 +8,7 @@
 #endif
 
 #include "physics/kernels.hpp"
+#include "physics/pair_terms.hpp"
 #include "step/grid.hpp"
 #include "step/pressure.hpp"
 #include "step/stages.hpp"
@@ -193,7 +194,7 @@ void compute_density(const Model& model, State& s, int threads, bool build_lists
     else
       s.rho[i] = build_lists ? density_and_neighbours(model, s, i) : density_from_list(model, s, i);
     pressure_of(s, i);  // 4. pressure: particle i's own density is all it needs
-    s.grid.pair_data[i] = {s.pos[i], s.vel[i], s.volume[i], s.pressure[i], s.mu[i], s.Ka[i]};
+    s.grid.pair_data[i] = pair::side_of(s, std::uint32_t(i));
   }
 }
 

@@ -26,7 +26,7 @@ struct NeighbourBuffer {
 // Adhesion on moving particle i from its bonded partners; breaks the bonds stretched past B.
 Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::Side& si, const Sides& sides,
                      bonds::Events& ev) {
-  const real B2 = model.adhesion.B * model.adhesion.B;
+  const bond_rules::Thresholds t = bond_rules::thresholds(model.adhesion);
   const std::uint32_t id = s.id[i];
   Vec3 f;
   for (int b = s.bonds.count(id) - 1; b >= 0; --b) {
@@ -34,7 +34,7 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::
     const std::uint32_t j = s.index_of_id[other];
     const Vec3 d = si.pos - sides.pos(j);
     const real r2 = norm2(d);
-    if (r2 > B2) {
+    if (bond_rules::stretched(r2, t)) {
       bonds::count_break(s, i, j, ev);
       s.bonds.remove_at(id, b);
     } else {
@@ -76,7 +76,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
   const GridIndex& g = s.grid;
   const Sides sides(s);
   const pair::Side si = sides[i];
-  const real A2 = model.adhesion.A * model.adhesion.A;
+  const bond_rules::Thresholds t = bond_rules::thresholds(model.adhesion);
   // Bonds first: one pass breaks those stretched past B and adds the adhesion of the rest. Bonds
   // formed below (r < A) add nothing this step: W_adh is zero below A.
   Vec3 f = bonded_adhesion(model, s, i, si, sides, ev);
@@ -96,7 +96,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       const real r2 = norm2(d);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(r2), k);
       close[n_close] = j;
-      n_close += r2 < A2 ? 1 : 0;
+      n_close += bond_rules::close_enough(r2, t) ? 1 : 0;
     }
     form_bonds(s, i, close, n_close, ev);
     return f;
@@ -114,7 +114,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       const Vec3 d = si.pos - sides.pos(j);
       f += pair::pressure_viscosity(si, sides[j], d, std::sqrt(nb.r2[q]), k);
       close[n_close] = j;
-      n_close += nb.r2[q] < A2 ? 1 : 0;
+      n_close += bond_rules::close_enough(nb.r2[q], t) ? 1 : 0;
     }
     form_bonds(s, i, close, n_close, ev);
     nb.n = 0;

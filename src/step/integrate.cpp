@@ -1,9 +1,11 @@
-// Stage 6: semi-implicit (symplectic) Euler for material particles, a = f / rho + g,
-// v += dt a, r += dt v (MODEL.md). Boundary particles stay; tool particles take the rigid
-// transform of the new tool pose, with the velocity that move implies.
+// Stage 6 over the particles (the law of one particle: physics/integrate.hpp): semi-implicit
+// (symplectic) Euler for material particles, a = f / rho + g, v += dt a, r += dt v (MODEL.md).
+// Boundary particles stay; tool particles take the rigid transform of the new tool pose, with the
+// velocity that move implies. The step's diagnostics and clock.
 #include <algorithm>
 #include <cmath>
 
+#include "physics/integrate.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {
@@ -13,31 +15,16 @@ void integrate(const Model& model, State& s, int threads) {
   real a2max = 0, v2max = 0;
   std::uint64_t non_finite = 0;
   const std::int64_t n = s.size();
+  const auto tool = [&s](const Vec3& anchor) { return s.tool_pose.apply(anchor); };
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite)
   for (std::int64_t i = 0; i < n; ++i) {
-    switch (s.role[i]) {
-      case Role::material: {
-        const Vec3 a = s.force[i] / s.rho[i] + model.gravity;
-        s.vel[i] += a * dt;
-        s.pos[i] += s.vel[i] * dt;
-        const real a2 = norm2(a), v2 = norm2(s.vel[i]);
-        if (!std::isfinite(a2) || !std::isfinite(v2) || !is_finite(s.pos[i])) {
-          ++non_finite;
-        } else {
-          a2max = std::max(a2max, a2);
-          v2max = std::max(v2max, v2);
-        }
-        break;
-      }
-      case Role::boundary:
-        s.vel[i] = {};
-        break;
-      case Role::tool: {
-        const Vec3 p = s.tool_pose.apply(s.anchor[i]);
-        s.vel[i] = (p - s.pos[i]) / dt;
-        s.pos[i] = p;
-        break;
-      }
+    const physics::Motion m = physics::integrate(s.role[i], s.pos[i], s.vel[i], s.force[i], s.rho[i], s.anchor[i],
+                                                 model.gravity, dt, tool);
+    if (!m.finite) {
+      ++non_finite;
+    } else {
+      a2max = std::max(a2max, m.a2);
+      v2max = std::max(v2max, m.v2);
     }
   }
   s.diagnostics.max_accel = std::sqrt(a2max);

@@ -123,7 +123,9 @@ inline void gpu_parity_run(const GpuFactory& make, const GpuScene& scene, bool a
     ASSERT_EQ(g.steps, ref.steps);
     ASSERT_EQ(g.time, ref.time);
     ASSERT_EQ(g.tool_pose_applied.position, pose.position);
-    if (k == 0) ASSERT_EQ(g.pos, stale) << "step() alone moves no host particle";
+    if (k == 0) {
+      ASSERT_EQ(g.pos, stale) << "step() alone moves no host particle";
+    }
     if ((k + 1) % check_every == 0 || k + 1 == steps) {
       gpu->sync_to_host(g);
       compare_states(g, ref, k, tol);

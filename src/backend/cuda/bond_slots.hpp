@@ -6,7 +6,7 @@
 #pragma once
 
 #include "backend/cuda/view.hpp"
-#include "physics/pair_terms.hpp"
+#include "physics/bond_rules.hpp"
 
 namespace dentsph::gpu {
 
@@ -26,14 +26,14 @@ DENTSPH_HD inline void remove_bond(const StepView& v, std::uint32_t id, std::uin
 
 // Counts the break of the bond of moving particle i to j (sorted indices), once per pair.
 DENTSPH_HD inline void count_break(const StepView& v, std::uint32_t i, std::uint32_t j, BondEvents& ev) {
-  if (v.p.id[i] < v.p.id[j] || v.p.role[j] == Role::boundary) ++ev.broken;
+  if (bond_rules::counts_event(v.p.id[i], v.p.id[j], v.p.role[j])) ++ev.broken;
 }
 
 // Bonds moving particle i to j (sorted indices, squared distance r2) if they are closer than A,
 // may bond and are not bonded yet.
-DENTSPH_HD inline void try_form(const StepView& v, std::uint32_t i, std::uint32_t j, real r2, BondEvents& ev) {
-  if (j == i || !(r2 < v.adhesion.A * v.adhesion.A)) return;
-  if (!pair::can_bond(v.p.role[i], v.p.role[j], v.p.Ka[i], v.p.Ka[j])) return;
+DENTSPH_HD inline void try_form(const StepView& v, std::uint32_t i, std::uint32_t j, real r2,
+                                const bond_rules::Thresholds& t, BondEvents& ev) {
+  if (!bond_rules::may_form(i, j, r2, t, v.p.role[i], v.p.role[j], v.p.Ka[i], v.p.Ka[j])) return;
   const std::uint32_t a = v.p.id[i], b = v.p.id[j];
   if (bonded(v, a, b)) return;
   if (v.bond_count[a] >= std::uint32_t(v.bond_capacity)) {
@@ -41,7 +41,7 @@ DENTSPH_HD inline void try_form(const StepView& v, std::uint32_t i, std::uint32_
     return;
   }
   v.bond_partner[std::size_t(a) * v.bond_capacity + v.bond_count[a]++] = b;
-  if (a < b || v.p.role[j] == Role::boundary) ++ev.formed;
+  if (bond_rules::counts_event(a, b, v.p.role[j])) ++ev.formed;
 }
 
 }  // namespace dentsph::gpu

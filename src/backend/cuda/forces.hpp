@@ -9,8 +9,14 @@
 
 namespace dentsph::gpu {
 
+// The view's arrays that a pair::Side gathers, under the names a State gives them.
+struct SideArrays {
+  const Vec3 *pos, *vel;
+  const real *volume, *pressure, *mu, *Ka;
+};
+
 DENTSPH_HD inline pair::Side side_of(const StepView& v, std::uint32_t i) {
-  return {v.p.pos[i], v.p.vel[i], v.volume[i], v.pressure[i], v.p.mu[i], v.p.Ka[i]};
+  return pair::side_of(SideArrays{v.p.pos, v.p.vel, v.volume, v.pressure, v.p.mu, v.p.Ka}, i);
 }
 
 DENTSPH_HD inline void forces_body(const StepView& v, std::uint32_t i, BondEvents& ev) {
@@ -19,7 +25,7 @@ DENTSPH_HD inline void forces_body(const StepView& v, std::uint32_t i, BondEvent
     return;
   }
   const pair::Side si = side_of(v, i);
-  const real B2 = v.adhesion.B * v.adhesion.B;
+  const bond_rules::Thresholds t = bond_rules::thresholds(v.adhesion);
   const std::uint32_t id = v.p.id[i];
   Vec3 f;
   // Bonds first: break those stretched past B, add the adhesion of the rest. Bonds formed below
@@ -28,7 +34,7 @@ DENTSPH_HD inline void forces_body(const StepView& v, std::uint32_t i, BondEvent
     const std::uint32_t j = v.index_of_id[v.bond_partner[std::size_t(id) * v.bond_capacity + b]];
     const Vec3 d = si.pos - v.p.pos[j];
     const real r2 = norm2(d);
-    if (r2 > B2) {
+    if (bond_rules::stretched(r2, t)) {
       count_break(v, i, j, ev);
       remove_bond(v, id, std::uint32_t(b));
     } else {
@@ -41,7 +47,7 @@ DENTSPH_HD inline void forces_body(const StepView& v, std::uint32_t i, BondEvent
     const real r2 = norm2(d);
     if (j == i || r2 >= h2) return;
     f += pair::pressure_viscosity(si, side_of(v, j), d, std::sqrt(r2), v.kernel);
-    try_form(v, i, j, r2, ev);  // A < h: every pair to bond is here
+    try_form(v, i, j, r2, t, ev);  // A < h: every pair to bond is here
   });
   v.force[i] = f;
 }

@@ -1,7 +1,7 @@
 // ForceStats: the tool force over a procedure, step by step.
 #include <algorithm>
 
-#include "dentsph/assess.hpp"
+#include "dentsph/force_stats.hpp"
 
 namespace dentsph {
 

@@ -1,0 +1,54 @@
+// Stage 6's law for one particle (MODEL.md, "Integration"): semi-implicit (symplectic) Euler for
+// material, a = f / rho + g, v += dt a, r += dt v; boundary particles at rest; tool particles moved
+// to the rigid transform of the new tool pose with the velocity that move implies. Written once
+// for the CPU step (step/integrate.cpp) and the CUDA stage body (backend/cuda/integrate.hpp); each
+// passes its own transform of the tool pose (a quaternion on the CPU, a matrix on the GPU).
+#pragma once
+
+#include <cmath>
+
+#include "dentsph/config.hpp"
+#include "dentsph/state.hpp"
+#include "dentsph/vec3.hpp"
+
+namespace dentsph::physics {
+
+// What integrating one particle tells the step's diagnostics: its squared acceleration and speed,
+// and whether it stayed finite (material only; zero and finite for the others).
+struct Motion {
+  real a2 = 0, v2 = 0;
+  bool finite = true;
+};
+
+// One particle of `role` over dt: `force` is its force density (N/m^3), `anchor` its place in the
+// tool frame and `tool(anchor)` where the new tool pose puts it.
+template <class ToolTransform>
+DENTSPH_HD inline Motion integrate(Role role, Vec3& pos, Vec3& vel, const Vec3& force, real rho, const Vec3& anchor,
+                                   const Vec3& gravity, real dt, const ToolTransform& tool) {
+  Motion m;
+  switch (role) {
+    case Role::material: {
+      const Vec3 a = force / rho + gravity;
+      const Vec3 v = vel + a * dt;
+      const Vec3 p = pos + v * dt;
+      vel = v;
+      pos = p;
+      m.a2 = norm2(a);
+      m.v2 = norm2(v);
+      m.finite = std::isfinite(m.a2) && std::isfinite(m.v2) && is_finite(p);
+      break;
+    }
+    case Role::boundary:
+      vel = {};
+      break;
+    case Role::tool: {
+      const Vec3 p = tool(anchor);
+      vel = (p - pos) / dt;
+      pos = p;
+      break;
+    }
+  }
+  return m;
+}
+
+}  // namespace dentsph::physics
