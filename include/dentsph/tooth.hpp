@@ -301,7 +301,8 @@ ToothScene line_tooth(PreparedTooth tooth, real spacing = default_tooth_spacing)
 // Which tooth, how it is oriented and which cavity is carved into it (the command line's and
 // dental scene files' choice, include/dentsph/dental.hpp).
 struct ToothSpec {
-  std::filesystem::path mesh;     // STL, OBJ or PLY in mm; empty: the built-in crown
+  std::filesystem::path mesh;     // STL, OBJ or PLY; empty: the built-in crown
+  MeshUnits units = MeshUnits::millimetres;  // of the mesh file's coordinates
   CavityParams cavity;            // the preparation; default: the built-in Class I
   std::optional<Vec3> long_axis;  // towards the crown, in the mesh's coordinates; none: found
                                   // from the mesh (the built-in crown: its own, +z)
