@@ -14,6 +14,7 @@
 
 #include "dentsph/bench.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
@@ -66,6 +67,18 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
+// --steps and --duration: at most limits::max_run_steps steps (the scene's own run.duration was
+// checked when it was read).
+void check_run_length(const Scene& sc, const RunOptions& opt) {
+  if (opt.steps > limits::max_run_steps)
+    throw std::invalid_argument(fmt::format("--steps {}: over the limit of {} steps of one run; give fewer steps",
+                                            opt.steps, limits::max_run_steps));
+  if (opt.steps == 0 && opt.duration > 0)
+    if (const std::string problem = limits::run_length_problem(opt.duration, sc.model.dt); !problem.empty())
+      throw std::invalid_argument(fmt::format("--duration {}: {}; give at most {:.4g} s", opt.duration, problem,
+                                              double(limits::max_run_steps) * sc.model.dt));
+}
+
 int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
             cli::RealtimeCommand& rt) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
@@ -77,6 +90,7 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOption
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
+  check_run_length(sc, opt);
   if (!quiet) opt.on_progress = cli::ProgressReporter();
   const RunSummary s = run_offline(sc, opt);
   fmt::print("\n{} steps ({:.4g} s simulated) in {:.2f} s: {:.0f} steps/s\n", s.steps, s.sim_time_s, s.wall_time_s,

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/limits.hpp"
+
 namespace dentsph::cli {
 
 namespace {
@@ -92,6 +94,10 @@ std::unique_ptr<Device> RealtimeCommand::make_device(const Scene& scene, const R
 
 int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
   if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
+  if (double(offline.duration) > limits::max_realtime_s)
+    throw std::invalid_argument(fmt::format("--duration {}: a realtime run lasts at most {:.0f} s of wall time; give a "
+                                            "shorter --duration (or leave it out: the run then ends at {:.0f} s)",
+                                            offline.duration, limits::max_realtime_s, limits::max_realtime_s));
   RealtimeOptions o = options(scene, double(offline.duration), offline.threads, offline.allow_unstable, offline.out_dir);
   o.stop = &g_stop;
   std::signal(SIGINT, on_signal);

@@ -2,14 +2,12 @@
 // cavity that does not fit the tooth, broken procedure files. Runs the built `dentsph` binary.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_process.hpp"
 #include "test_tooth_support.hpp"
 
 namespace dentsph {
@@ -17,23 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result dentsph_cli(const std::string& args) {
-  const std::string cmd = std::string(DENTSPH_CLI) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = testing::CliResult;
+using testing::dentsph_cli;
 
 void expect_refused(const std::string& args, const std::vector<std::string>& phrases) {
   const Result r = dentsph_cli(args);
