@@ -18,6 +18,7 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
 
@@ -84,6 +85,11 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOption
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
   const Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
+  if (rt.enabled())
+    cli::prepare_output_dir(opt.out_dir, "--out", {"recording"});
+  else
+    cli::prepare_output_dir(opt.out_dir, "--out");
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
@@ -177,9 +183,16 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  // A command line CLI11 refuses (a missing scene file, an unknown option, a value out of range)
+  // exits 2 as every other refusal does (CLI11's own codes are 100 and up); --help exits 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (*run) {
+      if (out_dir.empty()) cli::prepare_output_dir(out_dir, "--out");  // refused: writes nothing
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
       if (realtime.enabled() && opt.backend != Backend::cpu)

@@ -111,7 +111,11 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-bye", o.bye, "Leave without saying bye");
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // a refused command line exits 2, as every refusal (CLI11's codes are 100 and up)
+  }
 
   // Like a device SDK's servo thread: real-time priority where allowed (root or CAP_SYS_NICE).
   sched_param sp{};

@@ -162,5 +162,24 @@ TEST(Cli, ADentalSceneFileIsValidatedAndRun) {
   EXPECT_EQ(read_json(out / "summary.json").at("cavity").at("class"), "class2");
 }
 
+// --mesh-units m reads a mesh written in metres; other units, or units without a mesh, are refused.
+TEST(Cli, MeshUnitsReadAMeshInMetres) {
+  constexpr real mm = 1e-3;
+  const fs::path f = dir() / "block_in_m.stl";
+  testing::write_ascii_stl(f, testing::box_mesh({0, 0, 0}, {10 * mm, 9 * mm, 12 * mm}), 1.0);
+  expect_refused("run --mesh " + f.string() + " --steps 1 -q", {"block_in_m.stl", "--mesh-units m"});
+  const Result ok = dentsph_cli("run --mesh " + f.string() + " --mesh-units m --steps 1 --threads 1 -q --out " +
+                                (dir() / "units_out").string());
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_EQ(read_json(dir() / "units_out" / "summary.json").at("steps"), 1);
+  const Result cm = dentsph_cli("run --mesh " + f.string() + " --mesh-units cm --steps 1 -q");
+  EXPECT_EQ(cm.code, 2) << cm.output;
+  EXPECT_NE(cm.output.find("--mesh-units"), std::string::npos) << cm.output;
+  const Result alone = dentsph_cli("run --mesh-units m --steps 1 -q");
+  EXPECT_EQ(alone.code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--mesh-units m: the built-in crown has no units to give; add --mesh"), std::string::npos)
+      << alone.output;
+}
+
 }  // namespace
 }  // namespace dentsph

@@ -5,15 +5,20 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/recording.hpp"
 #include "dentsph/limits.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/tools.hpp"
@@ -248,6 +253,128 @@ TEST(Robustness, TheMemoryEstimateBoundsARealState) {
   EXPECT_NE(limits::memory_problem(1000, 20'000'000, 64, true, std::uint64_t(1) << 30).find("over the 1 GiB"),
             std::string::npos);
   EXPECT_LE(limits::memory_limit_bytes(), limits::max_scene_bytes);
+}
+
+// ---- class 7: lost work --------------------------------------------------------------------------
+
+// `run --realtime --out DIR` with an unwritable DIR ran the whole session and failed at its end,
+// losing the recording; `--out ""` exited 0 and wrote nothing.
+TEST(Robustness, AnOutputFolderThatCannotBeWrittenIsRefusedBeforeTheRunStarts) {
+  const fs::path blocker = write("not_a_folder", "a file where the output folder should go");
+  for (const fs::path& out : {blocker, blocker / "sub"}) {
+    for (const std::string run : {"run -q --realtime --duration 3 --threads 1", "run -q --steps 20 --threads 1"}) {
+      const testing::CliResult r = dentsph_cli(run + " --out " + out.string(), kCliTimeout);
+      EXPECT_EQ(r.code, 2) << run << "\n" << r.output;
+      EXPECT_NE(r.output.find("--out " + out.string()), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("nothing was run"), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find(" steps ("), std::string::npos) << "the run started:\n" << r.output;
+    }
+  }
+  expect_cli_refused("run -q --steps 5 --out \"\"", {"--out \"\"", "an empty path writes nothing"});
+  expect_cli_refused("run -q --realtime --duration 1 --out \"\"", {"--out \"\"", "an empty path writes nothing"});
+  // A folder that can be made is made, and the run writes into it.
+  const fs::path fresh = dir() / "made" / "by" / "run";
+  const testing::CliResult ok = dentsph_cli("run -q --steps 5 --threads 1 --out " + fresh.string(), kCliTimeout);
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_TRUE(fs::is_regular_file(fresh / "summary.json"));
+  for (const auto& e : fs::directory_iterator(fresh))
+    EXPECT_EQ(e.path().filename().string().find(".dentsph_write_check"), std::string::npos) << "the check's file is removed";
+}
+
+// ---- class 8: messages ---------------------------------------------------------------------------
+
+bool has_long_number(const std::string& text) {
+  int digits = 0;
+  for (char c : text) {
+    digits = std::isdigit(static_cast<unsigned char>(c)) ? digits + 1 : 0;
+    if (digits >= 20) return true;
+  }
+  return false;
+}
+
+// A cavity width of 1e308 printed a 310-digit width and advised a rounding of -8.3e307 mm; `run`
+// on a missing scene exited 105 (CLI11's code, where the README says 2); `replay` of a recording
+// holding a NaN pose said "1 tool forces differ (largest difference 0 N)".
+TEST(Robustness, MessagesAreShortAndTrue) {
+  for (const std::string option : {"--cavity-width", "--cavity-length", "--cavity-depth", "--cavity-rounding"}) {
+    const testing::CliResult r = dentsph_cli("run -q --steps 1 " + option + " 1e308", kCliTimeout);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(option + " 1e+308"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("< 50 mm, got 1e+308"), std::string::npos) << r.output;
+    EXPECT_FALSE(has_long_number(r.output)) << r.output;
+    EXPECT_LT(r.output.size(), 400u) << r.output;
+  }
+  json cavity = {{"name", "wide"}, {"cavity", {{"width", 1e308}}}};
+  expect_refused(cavity, {"s.json: cavity.width: must be > 0 mm and < 50 mm, got 1e+308", "e.g. 3"});
+  EXPECT_FALSE(has_long_number(refusal(cavity)));
+  // The tooth library refuses absurd magnitudes first too, with a short message.
+  for (real CavityParams::*member : {&CavityParams::width, &CavityParams::rounding, &CavityParams::min_wall}) {
+    ToothSpec spec;
+    spec.cavity.*member = 1e308;
+    try {
+      (void)prepare_tooth(spec);
+      ADD_FAILURE() << "accepted";
+    } catch (const CavityError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("must be under 50 mm (no tooth is that large)"), std::string::npos) << msg;
+      EXPECT_FALSE(has_long_number(msg)) << msg;
+    }
+  }
+
+  // A missing scene file: exit 2, naming it.
+  const testing::CliResult missing = dentsph_cli("run -q " + (dir() / "no_such_scene.json").string(), kCliTimeout);
+  EXPECT_EQ(missing.code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("no_such_scene.json"), std::string::npos) << missing.output;
+  EXPECT_EQ(dentsph_cli("run --no-such-option", kCliTimeout).code, 2);
+  EXPECT_EQ(dentsph_cli("run --help", kCliTimeout).code, 0);
+
+  // A recording holding a NaN pose is refused when it is read, naming the file, the line and the
+  // column, instead of replaying NaN forces into a comparison.
+  Recording rec;
+  rec.mode = "coupling";
+  rec.haptic_rate_hz = 1000;
+  const Scene sc = default_dental_procedure();
+  for (std::uint64_t k = 0; k < 3; ++k) rec.steps.push_back({k, 0.001 * double(k), sc.tool.at(0), {}});
+  const fs::path good = dir() / "recording_ok";
+  save_recording(good, rec);
+  const testing::CliResult replayed = dentsph_cli("replay " + good.string(), kCliTimeout);
+  EXPECT_NE(replayed.output.find("replayed 3 steps"), std::string::npos) << replayed.output;
+  for (const auto& [column, value, phrase] :
+       {std::tuple{3, "nan", "column 3 (x): 'nan' is not a finite number"},
+        std::tuple{7, "inf", "column 7 (qx): 'inf' is not a finite number"},
+        std::tuple{1, "-1", "column 1 (step): -1 is not a whole number"},
+        std::tuple{6, "0.5", "columns 6 to 9 (qw, qx, qy, qz): the orientation has length"}}) {
+    const fs::path bad = dir() / fmt::format("recording_bad_{}", column);
+    save_recording(bad, rec);
+    std::vector<std::string> lines;
+    {
+      std::ifstream in(bad / "steps.csv");
+      for (std::string l; std::getline(in, l);) lines.push_back(l);
+    }
+    std::vector<std::string> cells;
+    std::stringstream ss(lines[2]);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    cells[std::size_t(column - 1)] = value;
+    lines[2] = fmt::format("{}", fmt::join(cells, ","));
+    std::ofstream out(bad / "steps.csv");
+    for (const std::string& l : lines) out << l << "\n";
+    out.close();
+    try {
+      (void)load_recording(bad);
+      ADD_FAILURE() << "accepted " << value;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("steps.csv: line 3, " + std::string(phrase)), std::string::npos) << e.what();
+    }
+    const testing::CliResult r = dentsph_cli("replay " + bad.string(), kCliTimeout);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(phrase), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("differ"), std::string::npos) << r.output;
+  }
+  // session.json's numbers are checked too.
+  const fs::path bad_session = dir() / "recording_bad_session";
+  save_recording(bad_session, rec);
+  std::ofstream(bad_session / "session.json") << R"({"mode": "coupling", "dispense_volume": -1})";
+  EXPECT_THROW((void)load_recording(bad_session), std::runtime_error);
 }
 
 }  // namespace
