@@ -96,7 +96,7 @@ TEST(DentalSceneFile, TheMeshUnitsAreReadAndChecked) {
   ASSERT_TRUE(in_mm.tooth);
   EXPECT_NEAR(in_mm.tooth->report().occlusal_point.z, 12 * mm, 1e-6);
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
-      {R"({"name": "x", "tooth": {"mesh": "teeth/block_m.stl"}})", {"scene.json: tooth.mesh", "0.01 mm across", "tooth.units"}},
+      {R"({"name": "x", "tooth": {"mesh": "teeth/block_m.stl"}})", {"scene.json: tooth.mesh", "0.012 mm across", "tooth.units \"m\""}},
       {R"({"name": "x", "tooth": {"mesh": "teeth/block.stl", "units": "m"}})", {"scene.json: tooth.mesh", "tooth.units"}},
       {R"({"name": "x", "tooth": {"mesh": "teeth/block.stl", "units": "cm"}})", {"scene.json: tooth.units", "\"cm\"", "give \"mm\""}},
       {R"({"name": "x", "tooth": {"units": "m"}})", {"scene.json: tooth.units", "without a mesh", "add tooth.mesh"}},
