@@ -102,6 +102,18 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
   o.stop = &g_stop;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  if (!quiet) {
+    // Where the device is in the scene (docs/haptic-protocol.md, "Frames and units").
+    const Vec3& at = o.workspace.origin;
+    fmt::print("device     origin at ({:.4g}, {:.4g}, {:.4g}) m in the scene, {:.4g} scene m per device m, axes the "
+               "scene's",
+               at.x, at.y, at.z, o.workspace.scale);
+    if (scene.tooth) {
+      const Vec3 in = -scene.tooth->frame().z + Vec3{0, 0, 0};  // no "-0.000"
+      fmt::print("; into the cavity: ({:.3f}, {:.3f}, {:.3f})", in.x, in.y, in.z);
+    }
+    fmt::print("\n");
+  }
   const std::unique_ptr<Device> device = make_device(scene, o, quiet);
   std::fflush(stdout);
   const RealtimeResult r = run_realtime(scene, *device, o);

@@ -50,6 +50,14 @@ inline constexpr double max_realtime_s = 3600;
 // Steps a realtime run records (the tool pose and force of each, 96 bytes): the run ends here.
 inline constexpr std::uint64_t max_recorded_steps = 20'000'000;
 
+// ---- increments on request (the device's button 1, the viewer's D key) ---------------------------
+
+// Presses of the device's button 1 counted in any one second (more are refused and counted).
+inline constexpr int max_dispense_presses_per_s = 4;
+// The paste an increment may bring the scene to, in cavity volumes (a tooth's cavity holds one;
+// without a tooth: the grid domain's volume).
+inline constexpr real max_material_per_cavity = 2;
+
 // ---- shared checks: "" when fine, else the problem (the caller adds the field and the fix) -----
 
 // A lattice spacing (m) for a kernel of support h (m): finite, within [h * min_spacing_per_h, h];

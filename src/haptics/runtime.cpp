@@ -80,7 +80,10 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   empty.positions.resize(std::size_t(state.size()) * 2 + 1024);  // room for dispensed increments
   haptics::RuntimeShared shared(empty);
   haptics::HapticLoop haptic(device, opt, shared);
-  haptics::SimLoop sim(scene, state, opt, force_scale, shared);
+  // The simulation's virtual coupling hears of a new device session from the haptic loop.
+  RealtimeOptions sim_opt = opt;
+  sim_opt.coupling.sessions = &shared.sessions;
+  haptics::SimLoop sim(scene, state, sim_opt, force_scale, shared);
   haptics::ConsumerLoop consumer(opt, shared);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
