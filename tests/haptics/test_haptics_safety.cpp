@@ -61,12 +61,15 @@ TEST(HapticSafety, AnAbsurdPoseIsRefusedAndTheForceHolds) {
       ASSERT_LE(norm(s.device_position), 0.06) << s.t;
       ASSERT_LE(norm(s.proxy_position - s.device_position), 0.03) << "the proxy stays with the device, at " << s.t;
     }
-    // The force changes no faster after the pose than while the hand held still before it.
+    // The force changes no faster after the pose than while the hand held still before it. (A
+    // loaded host delays poses past the watchdog's timeout at times: ticks where the watchdog
+    // was acting are not the pose's doing, and are left out.)
     auto largest_change = [&](double a, double b) {
       double m = 0;
       const auto& h = r.recording.haptic;
       for (std::size_t k = 10; k < h.size(); ++k)
-        if (h[k].t >= a && h[k].t < b) m = std::max(m, double(norm(h[k].force - h[k - 10].force)));
+        if (h[k].t >= a && h[k].t < b && h[k].gain == 1 && h[k - 10].gain == 1)
+          m = std::max(m, double(norm(h[k].force - h[k - 10].force)));
       return m;
     };
     const double before = largest_change(0.8, 0.99), after = largest_change(0.99, 1.2);
@@ -88,9 +91,11 @@ TEST(HapticSafety, AClientInMillimetresIsRefusedNotFollowed) {
   const nlohmann::json d = realtime_sections(r)["device"];
   EXPECT_GT(d["implausible"].get<double>(), 0.9 * c["poses_sent"].get<double>());
   // Only poses near the origin moving slower than a hand were taken (at the motion's start and end:
-  // a hundredth of a millimetre a millisecond), never the "metres" of the rest.
+  // a hundredth of a millimetre a millisecond), never the "metres" of the rest: the tool was never
+  // thrown (the force stays under the device's limit; before, it was held at 9 N).
   for (const HapticSample& s : r.recording.haptic) ASSERT_LE(norm(s.device_position), 0.02) << s.t;
-  EXPECT_LT(r.haptic.max_force_N, 1.5);
+  EXPECT_EQ(r.haptic.magnitude_limited_ticks, 0u);
+  std::printf("largest force %.3f N\n", r.haptic.max_force_N);
 }
 
 // A client that connected right after another's goodbye inherited the old tool position with no
@@ -138,9 +143,11 @@ TEST(HapticSafety, ANewClientStartsWithItsOwnToolAndTheForceRampsIn) {
   }
   std::printf("second session: largest force %.4g N (the first hand's reached %.4g N)\n", largest,
               a_report["max_force_N"].get<double>());
-  // B's tool is its own, above the paste: it does not feel A's tool in the paste.
-  EXPECT_LT(largest, 0.3);
-  EXPECT_LT(b_report["max_force_N"].get<double>(), 0.3);
+  // B's tool is its own, above the paste: it does not feel A's tool in the paste (0.38 N when the
+  // renderer still ramped from A's proxy; before sessions reset the proxy, B got A's tool, up to
+  // 9 N in 9 ms).
+  EXPECT_LT(largest, 0.1);
+  EXPECT_LT(b_report["max_force_N"].get<double>(), 0.1);
 }
 
 // ---- class 6: lock-out ---------------------------------------------------------------------------
