@@ -21,6 +21,8 @@ void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool wit
   };
   add(app.add_option("--mesh", mesh_, "The tooth: a scanned tooth (STL, OBJ or PLY, in mm); default: the built-in crown")
           ->check(CLI::ExistingFile));
+  add(app.add_option("--mesh-units", units_, "The --mesh file's units: mm (default) or m")
+          ->check(CLI::IsMember({"mm", "m"})));
   if (with_procedure)
     add(app.add_option("--procedure", procedure_,
                        "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one"));
@@ -51,6 +53,11 @@ ToothSpec DentalOptions::tooth() const {
       if (o->get_name() == name) return o->count() > 0;
     return false;
   };
+  if (given("--mesh-units")) {
+    if (mesh_.empty())
+      throw std::invalid_argument(fmt::format("--mesh-units {}: the built-in crown has no units to give; add --mesh", units_));
+    spec.units = units_ == "m" ? MeshUnits::metres : MeshUnits::millimetres;
+  }
   if (given("--cavity")) {
     const std::optional<CavityClass> k = cavity_class_from_name(kind_);
     if (!k)

@@ -33,7 +33,7 @@ class DentalOptions {
   Scene filled_scene() const;
 
  private:
-  std::string mesh_, procedure_, kind_, side_;
+  std::string mesh_, units_ = "mm", procedure_, kind_, side_;
   std::vector<double> values_;  // one per cavity_fields() entry; given where its option was used
   std::vector<double> long_axis_, mesial_;
   std::vector<CLI::Option*> options_;

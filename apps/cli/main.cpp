@@ -16,9 +16,11 @@
 #include "backend_option.hpp"
 #include "dentsph/bench.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
 #include "report_command.hpp"
@@ -69,18 +71,36 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
+// --steps and --duration: at most limits::max_run_steps steps (the scene's own run.duration was
+// checked when it was read).
+void check_run_length(const Scene& sc, const RunOptions& opt) {
+  if (opt.steps > limits::max_run_steps)
+    throw std::invalid_argument(fmt::format("--steps {}: over the limit of {} steps of one run; give fewer steps",
+                                            opt.steps, limits::max_run_steps));
+  if (opt.steps == 0 && opt.duration > 0)
+    if (const std::string problem = limits::run_length_problem(opt.duration, sc.model.dt); !problem.empty())
+      throw std::invalid_argument(fmt::format("--duration {}: {}; give at most {:.4g} s", opt.duration, problem,
+                                              double(limits::max_run_steps) * sc.model.dt));
+}
+
 int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
             cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
   Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
   session.apply(sc);
+  // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
+  if (rt.enabled())
+    cli::prepare_output_dir(opt.out_dir, "--out", {"recording"});
+  else
+    cli::prepare_output_dir(opt.out_dir, "--out");
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
   if (opt.steps == 0 && opt.duration <= 0 && sc.duration <= 0)
     throw std::invalid_argument(fmt::format(
         "{}: no run length: give --steps N or --duration SECONDS, or set run.duration in the scene", sc.source));
+  check_run_length(sc, opt);
   if (!quiet) opt.on_progress = cli::ProgressReporter();
   const RunSummary s = run_offline(sc, opt);
   fmt::print("\n{} steps ({:.4g} s simulated) in {:.2f} s: {:.0f} steps/s\n", s.steps, s.sim_time_s, s.wall_time_s,
@@ -174,9 +194,16 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  // A command line CLI11 refuses (a missing scene file, an unknown option, a value out of range)
+  // exits 2 as every other refusal does (CLI11's own codes are 100 and up); --help exits 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (*run) {
+      if (out_dir.empty()) cli::prepare_output_dir(out_dir, "--out");  // refused: writes nothing
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
       const int rc = cmd_run(run_scene, run_dental, opt, quiet, realtime, session);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/limits.hpp"
 #include "report/replay_outputs.hpp"
 
 namespace dentsph::cli {
@@ -94,11 +95,27 @@ std::unique_ptr<Device> RealtimeCommand::make_device(const Scene& scene, const R
 
 int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool quiet) {
   if (offline.steps > 0) throw std::invalid_argument("--steps does not apply to --realtime: give --duration SECONDS of wall time");
+  if (double(offline.duration) > limits::max_realtime_s)
+    throw std::invalid_argument(fmt::format("--duration {}: a realtime run lasts at most {:.0f} s of wall time; give a "
+                                            "shorter --duration (or leave it out: the run then ends at {:.0f} s)",
+                                            offline.duration, limits::max_realtime_s, limits::max_realtime_s));
   RealtimeOptions o = options(scene, double(offline.duration), offline.threads, offline.allow_unstable, offline.out_dir);
   o.backend = offline.backend;
   o.stop = &g_stop;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  if (!quiet) {
+    // Where the device is in the scene (docs/haptic-protocol.md, "Frames and units").
+    const Vec3& at = o.workspace.origin;
+    fmt::print("device     origin at ({:.4g}, {:.4g}, {:.4g}) m in the scene, {:.4g} scene m per device m, axes the "
+               "scene's",
+               at.x, at.y, at.z, o.workspace.scale);
+    if (scene.tooth) {
+      const Vec3 in = -scene.tooth->frame().z + Vec3{0, 0, 0};  // no "-0.000"
+      fmt::print("; into the cavity: ({:.3f}, {:.3f}, {:.3f})", in.x, in.y, in.z);
+    }
+    fmt::print("\n");
+  }
   const std::unique_ptr<Device> device = make_device(scene, o, quiet);
   std::fflush(stdout);
   const RealtimeResult r = run_realtime(scene, *device, o);

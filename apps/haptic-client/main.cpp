@@ -2,8 +2,11 @@
 // It plays a haptic device: at a fixed rate it sends a pose (a scripted motion in the device
 // frame), and reads the forces dentsph sends back, checking each one (finite, within the limit,
 // answering a pose it sent). A program written with a haptic SDK does the same with the device's
-// pose and renders the force. Faults can be injected (dropped, duplicated, reordered, truncated
-// and garbage packets, a silence) to exercise the runtime; --report writes what it saw as JSON.
+// pose and renders the force. It numbers its poses as the protocol says (+1 per pose; its hello,
+// heartbeats and bye carry the newest pose's number). Faults can be injected (dropped,
+// duplicated, reordered, truncated and garbage packets, a silence, a restart of its numbering,
+// an absurd pose, positions in the wrong units, a button toggled too fast) to exercise the
+// runtime; --report writes what it saw as JSON.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <pthread.h>
@@ -50,7 +53,13 @@ struct Options {
   double pause_at_s = -1, pause_for_s = 0;
   std::vector<double> press_button_at_s;  // button 1 (dispense) down for press_button_for_s from each
   double press_button_for_s = 0.1;
-  bool bye = true;
+  bool bye = true, hello = false;
+  double restart_at_s = -1;        // number the poses from 1 again (same socket), as a restarted client
+  double heartbeat_every_s = 0;    // heartbeats between poses
+  double scale = 1;                // positions sent times this (1000: a client sending millimetres)
+  double spike_at_s = -1, spike_m = 0;  // one pose at this time with x = spike_m
+  double toggle_button_hz = 0;     // button 1 toggled at this rate the whole run
+  double start_after_s = 0;        // wait this long before the first message
   unsigned seed = 1;
   std::string report;
 };
@@ -109,9 +118,25 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_flag("!--no-bye", o.bye, "Leave without saying bye");
+  app.add_flag("--hello", o.hello, "Say hello before the first pose (and at --restart-at): a new session");
+  app.add_option("--restart-at", o.restart_at_s, "Number the poses from 1 again at this time (s), as a restarted client");
+  app.add_option("--heartbeat-every", o.heartbeat_every_s, "Send a heartbeat this often (s) between poses")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--scale", o.scale, "Send positions times this (1000: a client that sends millimetres)")
+      ->capture_default_str();
+  app.add_option("--spike-at", o.spike_at_s, "Send one absurd pose at this time (s)...");
+  app.add_option("--spike-m", o.spike_m, "... with x this many metres");
+  app.add_option("--toggle-button-hz", o.toggle_button_hz, "Toggle button 1 at this rate (Hz) the whole run")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--start-after", o.start_after_s, "Wait this long (s) before the first message")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // a refused command line exits 2, as every refusal (CLI11's codes are 100 and up)
+  }
 
   // Like a device SDK's servo thread: real-time priority where allowed (root or CAP_SYS_NICE).
   sched_param sp{};
@@ -133,9 +158,11 @@ int main(int argc, char** argv) {
   std::mt19937 rng(o.seed);
   std::uniform_real_distribution<double> u(0, 1);
   Stats st;
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.start_after_s));
   std::vector<std::uint64_t> sent_stamp(1 << 16, 0);  // timestamp of each sequence (mod 65536)
   std::uint32_t seq = 0, last_ack = 0;
-  bool have_ack = false;
+  bool have_ack = false, restarted = false;
+  std::uint64_t forces_after_restart = 0;
   std::vector<std::uint8_t> held;  // a pose held back to be sent after the next one
   std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
   std::array<std::uint8_t, 2048> in{};
@@ -167,6 +194,10 @@ int main(int argc, char** argv) {
         continue;
       }
       ++st.forces;
+      if (restarted) {
+        if (proto::sequence_newer(f.pose_sequence, seq)) continue;  // answers a pose of the session before
+        ++forces_after_restart;
+      }
       const double mag = std::sqrt(f.force[0] * f.force[0] + f.force[1] * f.force[1] + f.force[2] * f.force[2]);
       st.max_force_N = std::max(st.max_force_N, mag);
       if (mag > o.limit_N) ++st.over_limit;
@@ -181,10 +212,22 @@ int main(int argc, char** argv) {
     }
   };
 
+  // hello, heartbeat and bye: the header alone, carrying the newest pose's number (docs/haptic-protocol.md).
+  auto send_header = [&](proto::Type type) {
+    proto::Header h;
+    h.type = type;
+    h.sequence = seq;
+    h.timestamp_ns = now_ns();
+    send(std::span<const std::uint8_t>(buf.data(), proto::encode_header_only(h, buf)));
+  };
+  std::uint64_t hellos = 0, heartbeats_sent = 0, restarts = 0, spikes = 0;
+  if (o.hello) send_header(proto::Type::hello), ++hellos;
+
   const auto period = std::chrono::nanoseconds(std::int64_t(1e9 / o.rate_hz));
   const auto start = Clock::now();
   auto next = start;
-  bool paused_done = false;
+  bool paused_done = false, spiked = false;
+  double next_heartbeat = o.heartbeat_every_s;
   for (;;) {
     std::this_thread::sleep_until(next);
     next += period;
@@ -198,14 +241,32 @@ int main(int argc, char** argv) {
       next = Clock::now();
       continue;
     }
+    if (o.restart_at_s >= 0 && !restarted && t >= o.restart_at_s) {
+      restarted = true;
+      ++restarts;
+      seq = 0;
+      have_ack = false;
+      if (o.hello) send_header(proto::Type::hello), ++hellos;
+    }
+    if (o.heartbeat_every_s > 0 && t >= next_heartbeat) {
+      send_header(proto::Type::heartbeat);
+      ++heartbeats_sent;
+      next_heartbeat += o.heartbeat_every_s;
+    }
     proto::PosePacket p;
     p.header.sequence = ++seq;
     p.header.timestamp_ns = now_ns();
     sent_stamp[seq & 0xffff] = p.header.timestamp_ns;
     const auto x = motion(o, t);
-    std::copy(x.begin(), x.end(), p.position);
+    for (int a = 0; a < 3; ++a) p.position[a] = o.scale * x[std::size_t(a)];
+    if (o.spike_at_s >= 0 && !spiked && t >= o.spike_at_s) {
+      spiked = true;
+      ++spikes;
+      p.position[0] = o.spike_m;
+    }
     for (const double at : o.press_button_at_s)
       if (t >= at && t < at + o.press_button_for_s) p.buttons |= proto::kButtonDispense;
+    if (o.toggle_button_hz > 0 && std::fmod(t * o.toggle_button_hz, 1.0) < 0.5) p.buttons |= proto::kButtonDispense;
     const std::size_t n = proto::encode(p, buf);
     ++st.poses_sent;
     const std::span<const std::uint8_t> pkt(buf.data(), n);
@@ -244,13 +305,7 @@ int main(int argc, char** argv) {
     receive();
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  if (o.bye) {
-    proto::Header h;
-    h.type = proto::Type::bye;
-    h.sequence = ++seq;
-    h.timestamp_ns = now_ns();
-    send(std::span<const std::uint8_t>(buf.data(), proto::encode_header_only(h, buf)));
-  }
+  if (o.bye) send_header(proto::Type::bye);
   ::close(fd);
 
   nlohmann::json j = {{"poses_sent", st.poses_sent},     {"dropped", st.dropped},
@@ -263,7 +318,9 @@ int main(int argc, char** argv) {
                       {"echo_mismatches", st.echo_mismatch},
                       {"ack_lag_p50", quantile(st.lags, 0.5)}, {"ack_lag_p99", quantile(st.lags, 0.99)},
                       {"ack_lag_max", st.lags.empty() ? 0.0 : *std::max_element(st.lags.begin(), st.lags.end())},
-                      {"rtt_p50_us", quantile(st.rtts_us, 0.5)}, {"rtt_p99_us", quantile(st.rtts_us, 0.99)}};
+                      {"rtt_p50_us", quantile(st.rtts_us, 0.5)}, {"rtt_p99_us", quantile(st.rtts_us, 0.99)},
+                      {"hellos_sent", hellos}, {"heartbeats_sent", heartbeats_sent}, {"restarts", restarts},
+                      {"spikes", spikes}, {"forces_after_restart", forces_after_restart}};
   if (o.report.empty())
     fmt::print("{}\n", j.dump(2));
   else

@@ -96,7 +96,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-fps", vo.max_fps, "Frames per second at most; 0: as fast as possible (to measure)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // a refused command line exits 2, as every refusal (CLI11's codes are 100 and up)
+  }
   vo.vsync = !no_vsync;
   if (!screenshot.empty() && vo.frames == 0) vo.frames = 1;
   vo.screenshot = screenshot;

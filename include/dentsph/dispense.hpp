@@ -42,9 +42,17 @@ real increment_volume_or_default(const Scene& scene, real requested);
 // The direction increments drop along: the tooth's axis (its frame's z), or +z without a tooth.
 Vec3 increment_axis(const Scene& scene);
 
+// The paste in `state`: the sum of its material particles' volumes at rest (m / rho0), m^3.
+real material_volume(const State& state);
+// The most paste increments may bring a scene to (m^3): limits::max_material_per_cavity times the
+// cavity's volume, or the grid domain's volume without a tooth.
+real max_material_volume(const Scene& scene);
+
 // Adds (between steps) a ball of `volume` m^3 of `paste` on the line along `up` through the
 // tooth's origin (or the middle of the domain without a tooth), its lowest point two spacings
-// above the highest material on that axis. Returns the number of particles added.
+// above the highest material on that axis. Returns the number of particles added: 0 when the
+// increment is refused, because the paste would then exceed max_material_volume (however often a
+// button is pressed, the cavity holds only so much) or the state limits::max_particles.
 std::size_t dispense_increment(const Scene& scene, State& state, real volume, const Vec3& up,
                                const IncrementPaste& paste);
 

@@ -26,6 +26,12 @@
 
 namespace dentsph {
 
+namespace haptics {
+struct SessionStart;
+template <class T>
+class TripleBuffer;
+}  // namespace haptics
+
 enum class ForceMode {
   direct,    // the paper's: the tool moves with the device, the tool force is rendered
   coupling,  // virtual coupling: the tool is a proxy tied to the device by a spring and damper;
@@ -42,6 +48,9 @@ struct CouplingParams {
   double damping_N_s_per_m = 2;      // relative velocity of proxy and device
   double proxy_mass_kg = 0.05;
   double proxy_drag_N_s_per_m = 2;   // proxy against the world (dissipates energy)
+  // Set by the runtime, not a user's setting: where the haptic loop announces a new device
+  // session (DeviceSample::session), at which the proxy is put where the device is.
+  haptics::TripleBuffer<haptics::SessionStart>* sessions = nullptr;
 };
 
 struct WatchdogParams {
@@ -129,6 +138,9 @@ struct HapticReport {
   double max_force_step_N = 0;            // largest change between consecutive ticks
   std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
   std::uint64_t non_finite_poses = 0;     // device poses refused (the previous pose is kept)
+  std::uint64_t sessions = 0;             // device sessions started (DeviceSample::session)
+  std::uint64_t dispense_presses = 0;     // presses of button 1 counted (handed to the simulation)
+  std::uint64_t dispense_presses_refused = 0;  // presses over limits::max_dispense_presses_per_s
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
 };

@@ -42,8 +42,14 @@ void replace_tool_particles(State& state, const Model& model, const std::vector<
 void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material);
 
 // An increment of material: lattice points of `spacing` in a sphere of the given volume (m^3)
-// around `centre`, at least one particle.
+// around `centre`, at least one particle. Throws std::invalid_argument, before making any, when
+// increment_points_bound is over limits::max_particles or the volume or spacing is not finite and
+// positive.
 std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
                                              const Material& material);
+// At least the number of particles material_increment makes for `volume` and `spacing` (every
+// lattice point within R of the centre owns a cube of the lattice inside R + s: 4/3 pi (R + s)^3 /
+// s^3); infinity for a volume or spacing that is not finite and positive.
+double increment_points_bound(real volume, real spacing);
 
 }  // namespace dentsph

@@ -163,6 +163,10 @@ enum class ProximalSide { mesial, distal };
 // walls diverge occlusally by `taper_deg` each, so the outline grows where the cusps rise
 // above z = 0. Every internal line and point angle is rounded with `rounding`. Defaults: the
 // built-in scene's Class I.
+// The largest length a cavity parameter may have (m): no tooth is larger than about 15 mm, so a
+// larger one is a mistake of units or a typo, refused before anything is carved.
+inline constexpr real max_cavity_length = 50e-3;
+
 struct CavityParams {
   CavityClass kind = CavityClass::class_1;
   real width = 3.0e-3;     // m, bucco-lingual (frame y) outline of the occlusal box at z = 0
@@ -301,7 +305,8 @@ ToothScene line_tooth(PreparedTooth tooth, real spacing = default_tooth_spacing)
 // Which tooth, how it is oriented and which cavity is carved into it (the command line's and
 // dental scene files' choice, include/dentsph/dental.hpp).
 struct ToothSpec {
-  std::filesystem::path mesh;     // STL, OBJ or PLY in mm; empty: the built-in crown
+  std::filesystem::path mesh;     // STL, OBJ or PLY; empty: the built-in crown
+  MeshUnits units = MeshUnits::millimetres;  // of the mesh file's coordinates
   CavityParams cavity;            // the preparation; default: the built-in Class I
   std::optional<Vec3> long_axis;  // towards the crown, in the mesh's coordinates; none: found
                                   // from the mesh (the built-in crown: its own, +z)

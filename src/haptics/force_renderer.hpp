@@ -21,6 +21,12 @@ class ForceRenderer {
   void add(const SimOutput& o, std::int64_t now_ns);
   // The force on the hand at now_ns for the device at x moving at v (device frame).
   Vec3 render(const Vec3& x, const Vec3& v, std::int64_t now_ns) const;
+  // Forgets the simulation's outputs (a new device session): no force until the next one, which
+  // is then taken as it is, not approached from the previous session's proxy or force.
+  void restart() {
+    force_ = proxy_x_ = proxy_v_ = ForceInterpolator{};
+    started_ = false;
+  }
   // The proxy (coupling) or the device (direct) position now.
   Vec3 tool_position(const Vec3& x, std::int64_t now_ns) const {
     return mode_ == ForceMode::coupling && started_ ? proxy_x_.at(now_ns) : x;

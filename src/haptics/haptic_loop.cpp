@@ -84,9 +84,10 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const Quat& q = fresh.pose.orientation;
   if (got && !(is_finite(fresh.pose.position) && std::isfinite(q.w + q.x + q.y + q.z))) ++rep_.non_finite_poses;
   else if (got) {
+    if (fresh.session != sample_.session) start_session(fresh, now);
     // Button 1's presses are counted here, at the device's rate, so that the simulation loop,
     // which sees only the newest command, misses none between two of its steps.
-    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) ++dispense_presses_;
+    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) count_press(now);
     sample_ = fresh;
     const Vec3 x = sample_.pose.position;
     const double ddt = sample_.device_time_s - prev_device_time_;
@@ -105,7 +106,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   // ---- newest simulation output ------------------------------------------------------------------
   if (shared_.output.update()) {
     const SimOutput& o = shared_.output.front();
-    if (o.valid && (!have_sim_ || o.step != last_step_)) {
+    // Outputs of steps that used a command from before the device's session started answer the
+    // previous hand: not rendered.
+    if (o.valid && (!have_sim_ || o.step != last_step_) && o.command_stamp_ns >= session_start_ns_) {
       SimOutput clean = o;
       if (!is_finite(o.force_N) || !is_finite(o.proxy_position) || !is_finite(o.proxy_velocity)) {
         clean.force_N = clean.proxy_velocity = {};
@@ -174,6 +177,34 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   } else {
     ++dropped_;
   }
+}
+
+void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
+  ++rep_.sessions;
+  velocity_ = {};
+  have_prev_ = false;
+  sample_.buttons = fresh.buttons;  // a button held as the session starts is not a press
+  watchdog_.restart();
+  renderer_.restart();
+  have_sim_ = false;
+  session_start_ns_ = now;
+  SessionStart& s = shared_.sessions.back();
+  s.session = fresh.session;
+  s.device_position = fresh.pose.position;
+  shared_.sessions.publish();
+}
+
+void HapticLoop::count_press(std::int64_t now) {
+  // press_ns_ holds the last max_dispense_presses_per_s counted presses, oldest at next_press_.
+  const std::int64_t oldest = press_ns_[next_press_];
+  if (rep_.dispense_presses >= press_ns_.size() && now - oldest < 1'000'000'000) {
+    ++rep_.dispense_presses_refused;
+    return;
+  }
+  press_ns_[next_press_] = now;
+  next_press_ = (next_press_ + 1) % press_ns_.size();
+  ++rep_.dispense_presses;
+  ++dispense_presses_;
 }
 
 HapticReport HapticLoop::report() const {

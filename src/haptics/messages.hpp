@@ -18,6 +18,13 @@ struct ToolCommand {
   bool valid = false;
 };
 
+// Haptic -> simulation (virtual coupling): a new device session started with the device at
+// `device_position` (device frame); the proxy is put there (VirtualCoupling::step).
+struct SessionStart {
+  std::uint32_t session = 0;
+  Vec3 device_position;
+};
+
 // Simulation -> haptic: the newest tool force.
 struct SimOutput {
   Vec3 force_N;                    // device N: force_scale * simulated tool force

@@ -50,7 +50,8 @@ std::size_t expected_size(Type t) {
     case Type::pose: return kPoseBytes;
     case Type::force: return kForceBytes;
     case Type::heartbeat:
-    case Type::bye: return kHeaderBytes;
+    case Type::bye:
+    case Type::hello: return kHeaderBytes;
   }
   return 0;
 }
@@ -111,7 +112,7 @@ DecodeError decode_header(std::span<const std::uint8_t> in, Header& h) {
   ReaderLE r{in.data() + 4};
   if (r.uint<std::uint8_t>() != kVersion) return DecodeError::bad_version;
   const std::uint8_t type = r.uint<std::uint8_t>();
-  if (type < std::uint8_t(Type::pose) || type > std::uint8_t(Type::bye)) return DecodeError::bad_type;
+  if (type < std::uint8_t(Type::pose) || type > std::uint8_t(Type::hello)) return DecodeError::bad_type;
   h.type = Type(type);
   h.payload_bytes = r.uint<std::uint16_t>();
   h.sequence = r.uint<std::uint32_t>();

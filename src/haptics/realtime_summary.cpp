@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/haptics.hpp"
+#include "dentsph/limits.hpp"
 
 namespace dentsph {
 
@@ -31,6 +32,9 @@ std::string realtime_json(const RealtimeResult& r) {
                              {"rate_limited_ticks", h.rate_limited_ticks},
                              {"non_finite_rejected", h.non_finite_rejected},
                              {"non_finite_poses", h.non_finite_poses}}},
+                 {"sessions", h.sessions},
+                 {"dispense_presses", h.dispense_presses},
+                 {"dispense_presses_refused", h.dispense_presses_refused},
                  {"watchdog", {{"trips", h.watchdog_trips},
                                {"sim_stale_ticks", h.sim_stale_ticks},
                                {"pose_stale_ticks", h.pose_stale_ticks},
@@ -63,13 +67,14 @@ std::string realtime_report(const RealtimeResult& r) {
       "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
       "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
-      "dispensed by the button\n"
+      "dispensed by the button ({} presses over {} a second refused)\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
       r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
       h.watchdog_trips, h.zero_gain_ticks, r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
-      r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, r.consumer.frames, r.consumer.rate_hz);
+      r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, h.dispense_presses_refused,
+      limits::max_dispense_presses_per_s, r.consumer.frames, r.consumer.rate_hz);
 }
 
 }  // namespace dentsph

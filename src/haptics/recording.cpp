@@ -1,4 +1,6 @@
 // A session's recording as three CSV files (17 significant digits: doubles read back exactly).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -31,36 +33,73 @@ struct File {
 std::string v3(const Vec3& v) { return fmt::format("{:.17g},{:.17g},{:.17g}", v.x, v.y, v.z); }
 std::string q4(const Quat& q) { return fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}", q.w, q.x, q.y, q.z); }
 
-// Rows of numbers after a header line that must match; errors name file, line and column.
-std::vector<std::vector<double>> read_rows(const std::filesystem::path& p, const char* header, std::size_t columns) {
+// What a column of a recording file holds.
+struct Column {
+  bool whole = false;   // a count or an index: a whole number in [0, max]
+  double max = 0;
+};
+
+// Rows of numbers after a header line that must match; errors name file, line and column. Every
+// number must be finite, whole numbers whole and in range, and the unit quaternion starting at
+// column `quat` (if any) of unit length: a recording that holds a NaN is refused here, not
+// replayed into a comparison of NaN forces.
+std::vector<std::vector<double>> read_rows(const std::filesystem::path& p, const char* header,
+                                           const std::vector<Column>& columns, int quat = -1) {
   std::ifstream in(p);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open the recording file", p.string()));
   std::string line;
   std::getline(in, line);
   if (line != header)
     throw std::runtime_error(fmt::format("{}: line 1: expected the header '{}'; is this a dentsph recording?", p.string(), header));
+  std::vector<std::string> names;
+  {
+    std::stringstream hs(header);
+    for (std::string name; std::getline(hs, name, ',');) names.push_back(name);
+  }
   std::vector<std::vector<double>> rows;
-  for (int ln = 2; std::getline(in, line); ++ln) {
+  for (std::size_t ln = 2; std::getline(in, line); ++ln) {
     if (line.empty()) continue;
     std::vector<double> row;
     std::stringstream ss(line);
     std::string cell;
     while (std::getline(ss, cell, ',')) {
+      const std::size_t c = row.size();
+      auto refuse = [&](const std::string& problem) {
+        throw std::runtime_error(fmt::format("{}: line {}, column {} ({}): {}; the recording is damaged: record the "
+                                             "session again",
+                                             p.string(), ln, c + 1, c < names.size() ? names[c] : "extra", problem));
+      };
+      double v = 0;
       try {
         std::size_t used = 0;
-        row.push_back(std::stod(cell, &used));
+        v = std::stod(cell, &used);
         if (used != cell.size()) throw std::invalid_argument(cell);
       } catch (const std::exception&) {
-        throw std::runtime_error(fmt::format("{}: line {}, column {}: '{}' is not a number", p.string(), ln,
-                                             row.size() + 1, cell));
+        refuse(fmt::format("'{}' is not a number", cell.substr(0, 40)));
       }
+      if (!std::isfinite(v)) refuse(fmt::format("'{}' is not a finite number", cell.substr(0, 40)));
+      if (c < columns.size() && columns[c].whole && !(v >= 0 && v <= columns[c].max && v == std::floor(v)))
+        refuse(fmt::format("{:.17g} is not a whole number from 0 to {:.17g}", v, columns[c].max));
+      row.push_back(v);
     }
-    if (row.size() != columns)
-      throw std::runtime_error(fmt::format("{}: line {}: {} columns, expected {}", p.string(), ln, row.size(), columns));
+    if (row.size() != columns.size())
+      throw std::runtime_error(fmt::format("{}: line {}: {} columns, expected {}", p.string(), ln, row.size(), columns.size()));
+    if (quat >= 0) {
+      const double n = std::sqrt(row[quat] * row[quat] + row[quat + 1] * row[quat + 1] + row[quat + 2] * row[quat + 2] +
+                                 row[quat + 3] * row[quat + 3]);
+      if (!(std::abs(n - 1) < 1e-6))
+        throw std::runtime_error(fmt::format("{}: line {}, columns {} to {} ({}): the orientation has length {:.6g}, not "
+                                             "1; the recording is damaged: record the session again",
+                                             p.string(), ln, quat + 1, quat + 4, "qw, qx, qy, qz", n));
+    }
     rows.push_back(std::move(row));
   }
   return rows;
 }
+
+// `n` columns of real numbers, then whole ones as given.
+std::vector<Column> reals(std::size_t n) { return std::vector<Column>(n); }
+constexpr double u32 = 4294967295.0, u53 = 9007199254740992.0;  // the largest uint32, and 2^53
 
 }  // namespace
 
@@ -101,7 +140,9 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
 
 Recording load_recording(const std::filesystem::path& dir) {
   Recording r;
-  for (const auto& row : read_rows(dir / "haptic.csv", kHapticHeader, 23)) {
+  std::vector<Column> haptic = reals(23);
+  haptic[21] = haptic[22] = {true, u32};  // status, pose_sequence
+  for (const auto& row : read_rows(dir / "haptic.csv", kHapticHeader, haptic, 4)) {
     HapticSample s;
     s.t = row[0];
     s.device_position = {row[1], row[2], row[3]};
@@ -115,7 +156,9 @@ Recording load_recording(const std::filesystem::path& dir) {
     s.pose_sequence = std::uint32_t(row[22]);
     r.haptic.push_back(s);
   }
-  for (const auto& row : read_rows(dir / "steps.csv", kStepsHeader, 12)) {
+  std::vector<Column> steps = reals(12);
+  steps[0] = {true, u53};  // step
+  for (const auto& row : read_rows(dir / "steps.csv", kStepsHeader, steps, 5)) {
     StepSample s;
     s.step = std::uint64_t(row[0]);
     s.wall_t = row[1];
@@ -123,20 +166,43 @@ Recording load_recording(const std::filesystem::path& dir) {
     s.tool_force = {row[9], row[10], row[11]};
     r.steps.push_back(s);
   }
-  for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, 2))
+  for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, {{true, u53}, {true, u32}}))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
   // The session's settings, as save_recording writes them (dispense_volume and backend are absent
   // in older recordings: the scene's default, the CPU).
   if (std::ifstream in(dir / "session.json"); in) {
+    const std::string file = (dir / "session.json").string();
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
     if (s.is_discarded() || !s.is_object())
-      throw std::runtime_error(fmt::format("{}: not a JSON object; write the recording again", (dir / "session.json").string()));
-    r.mode = s.value("mode", r.mode);
-    r.haptic_rate_hz = s.value("haptic_rate_hz", r.haptic_rate_hz);
-    r.force_scale = s.value("force_scale", r.force_scale);
-    r.haptic_dropped = s.value("haptic_dropped", r.haptic_dropped);
-    r.dispense_volume = s.value("dispense_volume", 0.0);
-    r.backend = s.value("backend", std::string("cpu"));
+      throw std::runtime_error(fmt::format("{}: not a JSON object; write the recording again", file));
+    // A number of the session: finite, at least `lo`.
+    auto number = [&](const char* key, double fallback, double lo) {
+      if (!s.contains(key)) return fallback;
+      const nlohmann::json& v = s[key];
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo)
+        throw std::runtime_error(fmt::format("{}: {}: expected a finite number of at least {}, got {}; the recording "
+                                             "is damaged: record the session again",
+                                             file, key, lo, v.dump().substr(0, 40)));
+      return v.get<double>();
+    };
+    if (s.contains("mode")) {
+      if (!s["mode"].is_string() || (s["mode"] != "direct" && s["mode"] != "coupling"))
+        throw std::runtime_error(fmt::format("{}: mode: expected \"direct\" or \"coupling\", got {}; the recording is "
+                                             "damaged: record the session again",
+                                             file, s["mode"].dump().substr(0, 40)));
+      r.mode = s["mode"].get<std::string>();
+    }
+    r.haptic_rate_hz = number("haptic_rate_hz", r.haptic_rate_hz, 0);
+    r.force_scale = number("force_scale", r.force_scale, 0);
+    r.haptic_dropped = std::uint64_t(std::min(number("haptic_dropped", double(r.haptic_dropped), 0), u53));
+    r.dispense_volume = number("dispense_volume", 0.0, 0);
+    if (s.contains("backend")) {
+      if (!s["backend"].is_string() || (s["backend"] != "cpu" && s["backend"] != "cuda" && s["backend"] != "cuda-emulation"))
+        throw std::runtime_error(fmt::format("{}: backend: expected \"cpu\", \"cuda\" or \"cuda-emulation\", got {}; the "
+                                             "recording is damaged: record the session again",
+                                             file, s["backend"].dump().substr(0, 40)));
+      r.backend = s["backend"].get<std::string>();
+    }
   }
   return r;
 }

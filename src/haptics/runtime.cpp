@@ -18,6 +18,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
+#include "dentsph/limits.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/consumer_loop.hpp"
 #include "haptics/haptic_loop.hpp"
@@ -51,6 +52,9 @@ void check_options(const RealtimeOptions& o, double force_scale) {
     bad("workspace: the scale must be positive and finite, the origin finite");
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
+  if (o.duration_s > limits::max_realtime_s)
+    bad(fmt::format("duration {} s: a realtime run lasts at most {:.0f} s of wall time", o.duration_s,
+                    limits::max_realtime_s));
   const WatchdogParams& w = o.watchdog;
   if (!(o.dispense_volume >= 0) || !std::isfinite(o.dispense_volume))
     bad(fmt::format("dispense volume {} m^3: must be non-negative and finite (0: a sixth of the cavity)", o.dispense_volume));
@@ -70,7 +74,10 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   empty.positions.resize(std::size_t(core.state().size()) * 2 + 1024);  // room for dispensed increments
   haptics::RuntimeShared shared(empty);
   haptics::HapticLoop haptic(device, opt, shared);
-  haptics::SimLoop sim(core, opt, force_scale, shared);
+  // The simulation's virtual coupling hears of a new device session from the haptic loop.
+  RealtimeOptions sim_opt = opt;
+  sim_opt.coupling.sessions = &shared.sessions;
+  haptics::SimLoop sim(core, sim_opt, force_scale, shared);
   haptics::ConsumerLoop consumer(opt, shared);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
@@ -91,8 +98,11 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   const bool reniced = opt.realtime_priority && errno == 0 && setpriority(PRIO_PROCESS, id_t(tid), -10) == 0;
   // The simulation runs on the calling thread: the State stays with its owner, and OpenMP's
   // parallel regions always start from the same thread.
+  // Without a duration the run ends with the device, or at the longest run (limits.hpp); every run
+  // ends before its recording of the steps outgrows limits::max_recorded_steps.
+  const double end_s = opt.duration_s > 0 ? opt.duration_s : limits::max_realtime_s;
   sim.run(t0, [&](std::int64_t now) {
-    return (opt.duration_s > 0 && double(now - t0) * 1e-9 >= opt.duration_s) ||
+    return double(now - t0) * 1e-9 >= end_s || state.steps >= limits::max_recorded_steps ||
            shared.device_finished.load(std::memory_order_acquire) ||
            (opt.stop && opt.stop->load(std::memory_order_relaxed));
   });

@@ -25,6 +25,7 @@ struct RuntimeShared {
   TripleBuffer<ToolCommand> command;  // haptic -> simulation
   TripleBuffer<SimOutput> output;     // simulation -> haptic
   TripleBuffer<Snapshot> snapshots;   // simulation -> consumer
+  TripleBuffer<SessionStart> sessions;  // haptic -> simulation's virtual coupling
   std::atomic<bool> stop{false};
   std::atomic<bool> device_finished{false};
 };

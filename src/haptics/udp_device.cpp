@@ -1,12 +1,15 @@
 // The network bridge (docs/haptic-protocol.md): a client on the device's computer sends poses
 // over UDP; each haptic tick drains the socket without blocking, keeps the newest pose and
 // answers it with the force. One client at a time holds the session; it ends on "bye" or after
-// session_timeout_s of silence. Everything odd is counted, nothing stops the runtime.
+// session_timeout_s without a message it accepts, and a hello (or a restart of the client's pose
+// numbers) starts a new one. Poses outside the workspace or faster than a hand are refused.
+// Everything odd is counted, nothing stops the runtime.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -30,6 +33,7 @@ constexpr int kMaxDatagramsPerTick = 256;
 struct UdpCounters {
   std::uint64_t datagrams = 0, poses = 0, duplicates = 0, reordered = 0, gaps = 0, too_old = 0;
   std::uint64_t malformed = 0, foreign = 0, heartbeats_received = 0, byes = 0, sessions = 0, timeouts = 0;
+  std::uint64_t hellos = 0, restarts = 0, outside_workspace = 0, too_fast = 0;
   std::uint64_t forces_sent = 0, heartbeats_sent = 0, send_errors = 0, receive_errors = 0;
   std::array<std::uint64_t, 7> malformed_by_reason{};
   double max_force_sent_N = 0;
@@ -94,8 +98,8 @@ class UdpDeviceImpl final : public Device {
       p.header.sequence = ++out_sequence_;
       p.header.timestamp_ns = std::uint64_t(now_ns);
       p.force[0] = cmd.force_N.x, p.force[1] = cmd.force_N.y, p.force[2] = cmd.force_N.z;
-      p.pose_sequence = newest_sequence_;
-      p.pose_timestamp_ns = newest_timestamp_;
+      p.pose_sequence = answer_sequence_;
+      p.pose_timestamp_ns = answer_timestamp_;
       p.status = cmd.status;
       p.force_age_us = cmd.force_age_us;
       if (send(proto::encode(p, out_))) {
@@ -122,17 +126,32 @@ class UdpDeviceImpl final : public Device {
     const std::uint64_t lost = c_.gaps > c_.reordered ? c_.gaps - c_.reordered : 0;
     return fmt::format(
         "{{\"port\": {}, \"datagrams\": {}, \"poses\": {}, \"duplicates\": {}, \"reordered\": {}, \"lost\": {}, "
-        "\"too_old\": {}, \"malformed\": {}, \"malformed_by_reason\": {{{}}}, \"foreign\": {}, "
-        "\"heartbeats_received\": {}, \"byes\": {}, \"sessions\": {}, \"timeouts\": {}, \"forces_sent\": {}, "
-        "\"heartbeats_sent\": {}, \"send_errors\": {}, \"receive_errors\": {}, \"max_force_sent_N\": {:.17g}}}",
-        port_, c_.datagrams, c_.poses, c_.duplicates, c_.reordered, lost, c_.too_old, c_.malformed, reasons, c_.foreign,
-        c_.heartbeats_received, c_.byes, c_.sessions, c_.timeouts, c_.forces_sent, c_.heartbeats_sent, c_.send_errors,
-        c_.receive_errors, c_.max_force_sent_N);
+        "\"too_old\": {}, \"implausible\": {}, \"implausible_by_reason\": {{\"outside the workspace\": {}, "
+        "\"faster than a hand\": {}}}, \"malformed\": {}, \"malformed_by_reason\": {{{}}}, \"foreign\": {}, "
+        "\"heartbeats_received\": {}, \"hellos\": {}, \"byes\": {}, \"sessions\": {}, \"restarts\": {}, "
+        "\"timeouts\": {}, \"forces_sent\": {}, \"heartbeats_sent\": {}, \"send_errors\": {}, "
+        "\"receive_errors\": {}, \"max_force_sent_N\": {:.17g}}}",
+        port_, c_.datagrams, c_.poses, c_.duplicates, c_.reordered, lost, c_.too_old,
+        c_.outside_workspace + c_.too_fast, c_.outside_workspace, c_.too_fast, c_.malformed, reasons, c_.foreign,
+        c_.heartbeats_received, c_.hellos, c_.byes, c_.sessions, c_.restarts, c_.timeouts, c_.forces_sent,
+        c_.heartbeats_sent, c_.send_errors, c_.receive_errors, c_.max_force_sent_N);
   }
 
  private:
   bool same_client(const sockaddr_in& a) const {
     return a.sin_addr.s_addr == client_.sin_addr.s_addr && a.sin_port == client_.sin_port;
+  }
+
+  // A new session of the client at `from`: its pose numbers start again, and the runtime is told
+  // (DeviceSample::session) to start the tool afresh.
+  void start_session(const sockaddr_in& from) {
+    session_ = true;
+    client_ = from;
+    have_pose_ = false;
+    seen_mask_ = 0;
+    old_streak_ = 0;
+    ++session_number_;
+    ++c_.sessions;
   }
 
   // One datagram; returns true when it carried a new pose.
@@ -147,64 +166,115 @@ class UdpDeviceImpl final : public Device {
       ++c_.malformed_by_reason[std::size_t(e)];
       return false;
     }
-    if (!session_) {
-      if (h.type == proto::Type::bye) return false;
-      session_ = true;  // the first valid packet opens a session
-      client_ = from;
-      have_pose_ = false;
-      seen_mask_ = 0;
-      ++c_.sessions;
-    } else if (!same_client(from)) {
+    if (session_ && !same_client(from)) {
       ++c_.foreign;
       return false;
     }
-    last_heard_ns_ = now_ns;
-    switch (h.type) {
-      case proto::Type::heartbeat: ++c_.heartbeats_received; return false;
-      case proto::Type::bye:
-        ++c_.byes;
-        session_ = false;
-        return false;
-      case proto::Type::force: return false;
-      case proto::Type::pose: break;
+    if (h.type == proto::Type::bye) {
+      if (session_) ++c_.byes, session_ = false;
+      return false;
+    }
+    if (h.type == proto::Type::hello) {
+      ++c_.hellos;
+      start_session(from);  // a new session, from the client that holds it or a first one
+      last_heard_ns_ = now_ns;
+      return false;
+    }
+    if (!session_) start_session(from);  // the first valid message opens a session
+    if (h.type == proto::Type::heartbeat) {
+      ++c_.heartbeats_received;
+      last_heard_ns_ = now_ns;
+      return false;
     }
     return accept_pose(pose, now_ns, s);
   }
 
+  // A pose in the workspace and no faster than a hand: from the pose received before it (by the
+  // client's clock, or ours when the client's does not advance: so a pose that jumps away is
+  // refused, and so is the one after it, which jumps back), and from the last one accepted
+  // (by the longer of the two clocks, so that the device catches up, at a hand's speed, with a
+  // hand that really moved while its poses were refused). Counted by reason when not.
+  bool plausible(const proto::PosePacket& p, std::int64_t now_ns) {
+    const Vec3 x{p.position[0], p.position[1], p.position[2]};
+    const Vec3 previous = received_position_;
+    const bool had_previous = have_received_;
+    const double ours_prev = double(now_ns - received_ns_) * 1e-9;
+    const double theirs_prev = double(std::int64_t(p.header.timestamp_ns - received_stamp_)) * 1e-9;
+    have_received_ = true;
+    received_position_ = x;
+    received_ns_ = now_ns;
+    received_stamp_ = p.header.timestamp_ns;
+    if (!(norm(x) <= opt_.workspace_radius_m)) {
+      ++c_.outside_workspace;
+      return false;
+    }
+    auto too_fast = [&](const Vec3& from, double dt) {
+      return norm(x - from) > opt_.max_speed_m_per_s * std::max(dt, 0.0) + opt_.jump_tolerance_m;
+    };
+    const double ours = double(now_ns - accepted_ns_) * 1e-9;
+    const double theirs = double(std::int64_t(p.header.timestamp_ns - accepted_stamp_)) * 1e-9;
+    if ((had_previous && too_fast(previous, theirs_prev > 0 && theirs_prev < 1 ? theirs_prev : ours_prev)) ||
+        (have_accepted_ && too_fast(accepted_position_, std::max(ours, theirs > 0 && theirs < 1 ? theirs : 0.0)))) {
+      ++c_.too_fast;
+      return false;
+    }
+    return true;
+  }
+
   // Sequence bookkeeping over a 64-packet window behind the newest (as in IPsec's anti-replay
   // window): newer: accepted (a jump counts the skipped ones as gaps); within the window and
-  // unseen: reordered (fills a gap, not used: a newer pose is already in hand); seen: duplicate.
+  // unseen: reordered (fills a gap, not used: a newer pose is already in hand); seen: duplicate;
+  // further behind: too old. `restart_after` duplicates or too old poses in a row, each numbered
+  // one after the previous, are a client that numbers its poses from the start again: a new session.
   bool accept_pose(const proto::PosePacket& p, std::int64_t now_ns, DeviceSample& s) {
     const std::uint32_t q = p.header.sequence;
     if (have_pose_ && !proto::sequence_newer(q, newest_sequence_)) {
       const std::uint32_t behind = newest_sequence_ - q;
-      if (behind == 0 || (behind < 64 && (seen_mask_ >> behind) & 1u)) {
-        ++c_.duplicates;
-      } else if (behind < 64) {
+      const bool duplicate = behind == 0 || (behind < 64 && (seen_mask_ >> behind) & 1u);
+      if (!duplicate && behind < 64) {
         seen_mask_ |= std::uint64_t(1) << behind;
         ++c_.reordered;
-      } else {
-        ++c_.too_old;
+        last_heard_ns_ = now_ns;
+        return false;
       }
-      return false;
+      // A duplicate or a pose too old: refused, and it does not keep the session alive; but a run
+      // of them numbered one after another is the client counting from the start again.
+      old_streak_ = old_streak_ > 0 && q == old_last_ + 1 ? old_streak_ + 1 : 1;
+      old_last_ = q;
+      if (old_streak_ < opt_.restart_after) {
+        ++(duplicate ? c_.duplicates : c_.too_old);
+        return false;
+      }
+      ++c_.restarts;
+      start_session(client_);
     }
+    old_streak_ = 0;
     if (have_pose_) {
       const std::uint32_t ahead = q - newest_sequence_;
       c_.gaps += ahead - 1;
       seen_mask_ = ahead < 64 ? (seen_mask_ << ahead) | 1u : 1u;
     } else {
       seen_mask_ = 1;
+      have_accepted_ = have_received_ = false;
     }
     have_pose_ = true;
     newest_sequence_ = q;
-    newest_timestamp_ = p.header.timestamp_ns;
     ++c_.poses;
-    s.pose.position = {p.position[0], p.position[1], p.position[2]};
+    if (!plausible(p, now_ns)) return false;  // arrived (not lost), but not used nor answered
+    last_heard_ns_ = now_ns;
+    have_accepted_ = true;
+    accepted_ns_ = now_ns;
+    accepted_stamp_ = p.header.timestamp_ns;
+    accepted_position_ = {p.position[0], p.position[1], p.position[2]};
+    answer_sequence_ = q;
+    answer_timestamp_ = p.header.timestamp_ns;
+    s.pose.position = accepted_position_;
     s.pose.orientation = Quat{p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]}.normalized();
     s.stamp_ns = now_ns;
     s.device_time_s = double(p.header.timestamp_ns) * 1e-9;
     s.sequence = q;
     s.buttons = p.buttons;
+    s.session = session_number_;
     s.valid = true;
     answer_pending_ = true;
     return true;
@@ -225,11 +295,13 @@ class UdpDeviceImpl final : public Device {
   std::uint16_t port_ = 0;
   std::array<std::uint8_t, 2048> buf_{};
   std::array<std::uint8_t, proto::kMaxPacketBytes> out_{};
-  bool session_ = false, have_pose_ = false, answer_pending_ = false;
+  bool session_ = false, have_pose_ = false, have_accepted_ = false, have_received_ = false, answer_pending_ = false;
   sockaddr_in client_{};
-  std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0;
-  std::uint32_t newest_sequence_ = 0, out_sequence_ = 0;
-  std::uint64_t newest_timestamp_ = 0, seen_mask_ = 0;
+  std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0, accepted_ns_ = 0, received_ns_ = 0;
+  std::uint32_t newest_sequence_ = 0, out_sequence_ = 0, answer_sequence_ = 0, old_last_ = 0, session_number_ = 0;
+  int old_streak_ = 0;
+  std::uint64_t answer_timestamp_ = 0, accepted_stamp_ = 0, received_stamp_ = 0, seen_mask_ = 0;
+  Vec3 accepted_position_, received_position_;
   UdpCounters c_;
 };
 

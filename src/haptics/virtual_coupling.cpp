@@ -1,5 +1,8 @@
 #include "haptics/virtual_coupling.hpp"
 
+#include "haptics/exchange.hpp"
+#include "haptics/messages.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -14,6 +17,10 @@ VirtualCoupling::VirtualCoupling(const CouplingParams& p) : p_(p) {
 }
 
 void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
+  if (p_.sessions && p_.sessions->update() && p_.sessions->front().session != session_) {
+    session_ = p_.sessions->front().session;
+    reset(p_.sessions->front().device_position);
+  }
   const double k = p_.stiffness_N_per_m, b = p_.damping_N_s_per_m, c = p_.proxy_drag_N_s_per_m, m = p_.proxy_mass_kg;
   // m (v' - v) / dt = k (xd - x - dt v') + b (vd - v') - c v' + F   (x' = x + dt v')
   const Vec3 rhs = v_ + (k * (xd - x_) + b * vd + tool_force) * (dt / m);

@@ -6,6 +6,8 @@
 // the coupling force with the device's newest position (force_renderer.cpp).
 #pragma once
 
+#include <cstdint>
+
 #include "dentsph/haptics.hpp"
 
 namespace dentsph::haptics {
@@ -23,7 +25,9 @@ class VirtualCoupling {
   explicit VirtualCoupling(const CouplingParams& p);
   void reset(const Vec3& position) { x_ = position, v_ = {}; }
   // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
-  // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state.
+  // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state. A new
+  // device session announced on CouplingParams::sessions first puts the proxy where that session's
+  // device started, at rest: a new hand does not inherit the previous one's tool.
   void step(const Vec3& device_x, const Vec3& device_v, const Vec3& tool_force, double dt);
   const Vec3& position() const { return x_; }
   const Vec3& velocity() const { return v_; }
@@ -31,6 +35,7 @@ class VirtualCoupling {
  private:
   CouplingParams p_;
   Vec3 x_, v_;
+  std::uint32_t session_ = 0;
 };
 
 }  // namespace dentsph::haptics

@@ -14,6 +14,9 @@ class Watchdog {
   // Ages in s of the newest simulation output and device pose (negative: none yet); returns the
   // gain for this tick.
   double update(double sim_age_s, double pose_age_s, double dt_s);
+  // A new device session: the gain starts again from zero and ramps up (ramp_up_s) once both are
+  // fresh, so that a new hand is never met by the full force at once.
+  void restart() { gain_ = 0; }
   bool sim_stale() const { return sim_stale_; }
   bool pose_stale() const { return pose_stale_; }
   std::uint64_t trips() const { return trips_; }

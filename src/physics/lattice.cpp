@@ -1,12 +1,20 @@
 // Particle mass for a lattice at rest density: m = rho0 / sum_j W_poly6(|r_ij|) over the lattice.
 #include <cmath>
+#include <stdexcept>
 
+#include <fmt/format.h>
+
+#include "dentsph/limits.hpp"
 #include "dentsph/scene.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {
 
 real lattice_particle_mass(real rho0, real spacing, const KernelCoeffs& kernel) {
+  // The sum visits (2 h / spacing + 1)^3 points: a spacing far under h would loop for hours.
+  if (const std::string problem = limits::spacing_problem(spacing, kernel.h); !problem.empty())
+    throw std::invalid_argument(
+        fmt::format("lattice_particle_mass: spacing {}; {}", problem, limits::spacing_fix(kernel.h)));
   const int n = int(std::ceil(kernel.h / spacing));
   real sum = 0;
   for (int i = -n; i <= n; ++i)

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/limits.hpp"
 #include "dentsph/model.hpp"
 #include "physics/kernels.hpp"
 
@@ -30,6 +31,10 @@ real adhesion_normalisation(real eps, real zeta) {
 
 Model make_model(const ModelParams& p) {
   require_finite_positive(p.dt, "dt", "give the time step in seconds, e.g. 1e-4");
+  if (p.dt < limits::min_dt)
+    fail("dt", fmt::format("{:.3g} s is under the smallest time step of {:.3g} s (a run would never end); give the time "
+                           "step in seconds, e.g. 1e-4",
+                           p.dt, limits::min_dt));
   require_finite_positive(p.h, "h", "give the kernel support in metres, about twice the particle spacing");
   if (!is_finite(p.gravity)) fail("gravity", "must be three finite numbers in m/s^2");
   const AdhesionParams& a = p.adhesion;
@@ -73,7 +78,7 @@ Model make_model(const ModelParams& p) {
   // Cells must hold every pair within h even when the grid is up to skin / 2 of motion old.
   g.cell_size = (p.h + p.neighbour_skin) / g.reach;
   const Vec3 ext = p.domain_max - p.domain_min;
-  constexpr std::int64_t max_cells = std::int64_t(1) << 22;
+  constexpr std::int64_t max_cells = limits::max_grid_cells;
   for (;;) {
     for (int ax = 0; ax < 3; ++ax)
       g.dims[ax] = int(std::clamp<real>(std::ceil(ext[ax] / g.cell_size), 2 * g.reach + 1, 4096));

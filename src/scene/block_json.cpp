@@ -6,7 +6,6 @@
 #include <tuple>
 
 #include "scene/parse.hpp"
-#include "scene/shapes.hpp"
 
 namespace dentsph::scene {
 
@@ -88,27 +87,27 @@ Shape read_shape(const Reader& b, std::string_view shape, real spacing) {
   if (shape == "box") return read_box(b);
   if (shape == "sphere") return read_sphere(b);
   if (shape == "lattice") return read_lattice(b);
-  return read_container(b, spacing);  // parse_block has refused other names
+  return read_container(b, spacing);  // plan_block has refused other names
 }
 
-// Spacing: positive, and at most h, or a particle has no neighbour inside the kernel support.
+// Spacing: at most h, or a particle has no neighbour inside the kernel support, and at least
+// h / 10 (limits.hpp), or the mass sum and the neighbour search take hours.
 real read_spacing(const Reader& b, real h) {
   const real s = b.number("spacing", "the lattice spacing in m, about h/2", Range::positive);
-  if (s > h * (1 + 1e-12))
-    b.fail("spacing",
-           fmt::format("{} m is larger than h = {} m, so particles would have no neighbours", s, h),
-           "spacing must be at most h (about h/2 is usual)");
+  if (const std::string problem = limits::spacing_problem(s, h); !problem.empty())
+    b.fail("spacing", problem, limits::spacing_fix(h));
   return s;
 }
 
-// Refuses blocks that would give no particles or too many to hold.
-void check_point_count(const Reader& b, const Shape& shape, real spacing) {
+// Refuses blocks that would give no particles or too many to hold, before they are made.
+void check_point_count(const Reader& b, const Shape& shape, real spacing, ParticleBudget* budget) {
   const double n = point_count(shape, spacing);
   if (n < 1) b.fail_here("produces zero particles", "make the shape larger than one spacing");
   if (n > double(max_block_points))
     b.fail_here(fmt::format("would produce {:.3g} particles, over the limit of {} per block", n,
                             max_block_points),
                 "use a larger spacing or a smaller shape");
+  if (budget) budget->add(b, "", n, n, "use a larger spacing or smaller shapes");
 }
 
 }  // namespace
@@ -123,34 +122,48 @@ Role parse_role(const Reader& block) {
   block.fail("role", fmt::format("unknown role \"{}\"", role), "use \"material\" or \"boundary\"");
 }
 
-std::vector<ParticleInit> parse_block(const Reader& b, const BlockContext& ctx) {
+BlockPlan plan_block(const Reader& b, const BlockContext& ctx) {
   const std::string shape_name = b.string("shape", "the shape: box, sphere, lattice or container");
   if (shape_name != "box" && shape_name != "sphere" && shape_name != "lattice" &&
       shape_name != "container")
     b.fail("shape", fmt::format("unknown shape \"{}\"", shape_name),
            "use box, sphere, lattice or container");
   b.only(fields_of(shape_name, ctx.role));
-  const real spacing = read_spacing(b, ctx.kernel.h);
-  const Shape shape = read_shape(b, shape_name, spacing);
-  check_point_count(b, shape, spacing);
+  BlockPlan plan;
+  plan.spacing = read_spacing(b, ctx.kernel.h);
+  plan.shape = read_shape(b, shape_name, plan.spacing);
+  check_point_count(b, plan.shape, plan.spacing, ctx.budget);
 
-  ParticleInit proto;
+  ParticleInit& proto = plan.proto;
   proto.role = ctx.role;
   proto.material = resolve_material(b, ctx.materials, ctx.fallback);
   // Default mass: the one that puts an interior particle of this lattice at rest density.
   proto.mass = b.optional_number("mass", "the mass of each particle in kg", Range::positive)
-                   .value_or(lattice_particle_mass(proto.material.rho0, spacing, ctx.kernel));
+                   .value_or(lattice_particle_mass(proto.material.rho0, plan.spacing, ctx.kernel));
   if (b.has("velocity") && ctx.role != Role::material)
     b.fail("velocity", "only material particles move (boundary particles are static)",
            "remove \"velocity\" from this block");
   proto.vel = b.vec3_or("velocity", {}, "the initial velocity [vx, vy, vz] in m/s");
+  return plan;
+}
 
+std::vector<ParticleInit> make_block(const BlockPlan& plan) {
   std::vector<ParticleInit> particles;
-  const std::vector<Vec3> points = sample(shape, spacing);
+  const std::vector<Vec3> points = sample(plan.shape, plan.spacing);
   particles.reserve(points.size());
-  for (const Vec3& p : points) {
-    proto.pos = p;
-    particles.push_back(proto);
+  ParticleInit p = plan.proto;
+  for (const Vec3& x : points) {
+    p.pos = x;
+    particles.push_back(p);
+  }
+  return particles;
+}
+
+std::vector<ParticleInit> make_blocks(const std::vector<BlockPlan>& plans) {
+  std::vector<ParticleInit> particles;
+  for (const BlockPlan& plan : plans) {
+    const std::vector<ParticleInit> ps = make_block(plan);
+    particles.insert(particles.end(), ps.begin(), ps.end());
   }
   return particles;
 }

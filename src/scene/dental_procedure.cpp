@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/tools.hpp"
 #include "scene/parse.hpp"
 #include "scene/paste_sites.hpp"
@@ -55,6 +56,7 @@ struct ProcedureContext {
   const DentalSceneParams& params;
   const Model& model;
   std::vector<Vec3> sites;  // increment_sites
+  scene::ParticleBudget& budget;
 };
 
 // {"volume": mm^3 | "cavity_fraction": share, "at": [x, y, z] mm}: round(volume / s^3) particles
@@ -95,6 +97,8 @@ void cavity_increment(const Reader& d, const ProcedureContext& ctx, ProcedureEve
     return std::pair{std::lround((p.z - at.z) / s), (p.x - at.x) * (p.x - at.x) + (p.y - at.y) * (p.y - at.y)};
   };
   std::stable_sort(sites.begin(), sites.end(), [&](const Vec3& a, const Vec3& b) { return key(a) < key(b); });
+  // Every increment holds all its candidate sites: thousands of increments would hold millions.
+  ctx.budget.add(d, field, double(sites.size()), double(count), "give fewer increments");
   const real m = lattice_particle_mass(ctx.params.paste.rho0, s, ctx.model.kernel);
   for (const Vec3& p : sites)
     ev.particles.push_back(make_particle(Role::material, tooth.frame().to_world(p), m, ctx.params.paste));
@@ -116,13 +120,16 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
   const real s = tooth.boundary.spacing;
   const ToothFrame& fr = tooth.tooth.frame();
   const Quat frame_q = frame_rotation(fr);
-  const ProcedureContext ctx{tooth, dp, sc.model, increment_sites(tooth.tooth, s)};
+  scene::ParticleBudget budget(sc.model.max_bonds_per_particle, sc.model.neighbour_skin > 0);
+  budget.add(root, "", double(sc.particles.size()), double(sc.particles.size()), "choose a smaller tooth");
+  const ProcedureContext ctx{tooth, dp, sc.model, increment_sites(tooth.tooth, s), budget};
 
   scene::Placement place;
   place.length_unit = "mm in the tooth frame";
   place.length_scale = mm;
   place.to_world = [&](const Pose& p) { return Pose{fr.to_world(p.position), frame_q * p.orientation}; };
   place.dispense = [&](const Reader& d, ProcedureEvent& ev) { cavity_increment(d, ctx, ev); };
+  place.budget = &budget;
 
   const std::string tool = root.optional_string("tool", "the first instrument: ball_burnisher, flat_plugger or condenser")
                                .value_or("ball_burnisher");
@@ -133,11 +140,20 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
     root.fail("tool", err.what(), "use one of the known instruments");
   }
   const real tool_mass = lattice_particle_mass(dp.wall.rho0, s, sc.model.kernel);
+  budget.add(root, "tool", double(shape.points.size()), double(shape.points.size()), "choose another instrument");
   for (const ParticleInit& p : tool_particles(shape, tool_mass, dp.wall)) sc.particles.push_back(p);
   sc.tool = scene::read_trajectory(root, place);
   if (root.has("events")) sc.events = scene::read_events(root, place, nullptr, dp.wall, sc.model.kernel);
   sc.duration = root.number_or("duration", sc.tool.keyframes.back().t,
                                "the procedure's length in s (default: the last keyframe's time)", Range::positive);
+  // The run's length: at most limits::max_run_steps steps.
+  if (const std::string problem = limits::run_length_problem(sc.duration, sc.model.dt); !problem.empty()) {
+    const std::string field =
+        root.has("duration") ? std::string("duration")
+                             : fmt::format("keyframes[{}].t", sc.tool.keyframes.size() - 1);
+    root.fail(field, fmt::format("the procedure's length: {}", problem),
+              fmt::format("end the procedure within {:.4g} s", double(limits::max_run_steps) * sc.model.dt));
+  }
   return sc;
 }
 

@@ -75,9 +75,15 @@ Scene parse_dental_scene(const Reader& root) {
   ToothSpec spec;
   if (const std::optional<Reader> t = root.optional_object(
           "tooth", "the tooth {\"mesh\": \"molar.stl\"} (mm; leave it out for the built-in crown)")) {
-    t->only({"mesh", "long_axis", "mesial"});
+    t->only({"mesh", "units", "long_axis", "mesial"});
     if (t->has("mesh"))
       spec.mesh = existing_file(*t, "mesh", "the tooth's surface (STL, OBJ or PLY in mm), e.g. \"molar.stl\"", root);
+    if (const std::optional<std::string> u = t->optional_string("units", "the mesh file's units, \"mm\" or \"m\"")) {
+      if (*u == "mm") spec.units = MeshUnits::millimetres;
+      else if (*u == "m") spec.units = MeshUnits::metres;
+      else t->fail("units", fmt::format("is \"{}\"", *u), "give \"mm\" (the default) or \"m\"");
+      if (!t->has("mesh")) t->fail("units", "is given without a mesh", "add tooth.mesh or leave units out");
+    }
     spec.long_axis = t->optional_vec3("long_axis", "the long axis towards the crown [x, y, z] in the mesh's coordinates");
     spec.mesial = t->optional_vec3("mesial", "a direction towards the tooth's mesial surface [x, y, z]");
   }

@@ -14,7 +14,9 @@
 #include "dentsph/model.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/state.hpp"
+#include "scene/budget.hpp"
 #include "scene/reader.hpp"
+#include "scene/shapes.hpp"
 
 namespace dentsph::scene {
 
@@ -74,24 +76,37 @@ struct BlockContext {
   const MaterialTable& materials;
   MaterialDefault fallback;    // the role's material
   const KernelCoeffs& kernel;  // h and the poly6 constants, for the default particle mass
+  ParticleBudget* budget = nullptr;  // counts the block's particles before they are made
 };
 
 // The role of a world block ("material" or "boundary"), from its "role" field.
 Role parse_role(const Reader& block);
 
-// The particles of one block, in the block's frame (world, or the tool frame for tool blocks).
-std::vector<ParticleInit> parse_block(const Reader& block, const BlockContext& ctx);
+// One block as read and checked, its particles counted in the context's budget but not yet made.
+struct BlockPlan {
+  Shape shape;
+  real spacing = 0;
+  ParticleInit proto;  // role, material, mass and velocity of every particle
+};
+
+// Reads and checks one block (its particles counted in ctx.budget, not yet made).
+BlockPlan plan_block(const Reader& block, const BlockContext& ctx);
+// The particles of a block, in the block's frame (world, or the tool frame for tool blocks).
+std::vector<ParticleInit> make_block(const BlockPlan& plan);
+// The particles of blocks, in order.
+std::vector<ParticleInit> make_blocks(const std::vector<BlockPlan>& plans);
 
 // ---- tool (tool_json.cpp) -----------------------------------------------------------------------
 
 struct ToolPart {
-  std::vector<ParticleInit> particles;  // tool frame, Role::tool
+  std::vector<BlockPlan> blocks;        // tool frame, Role::tool (make_blocks makes them)
   ToolTrajectory trajectory;
   std::vector<ProcedureEvent> events;   // "events": dispense and switch_tool, in time order
 };
 
-// Reads the "tool" object.
-ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel);
+// Reads the "tool" object, counting its particles and its events' in `budget`.
+ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel,
+                    ParticleBudget& budget);
 
 // Where the keyframes and events of a file land. A scene file gives world metres (the default);
 // a procedure file (procedure_json.cpp) gives millimetres in a tooth's frame.
@@ -103,6 +118,8 @@ struct Placement {
   // clearance); empty: the scene file's sphere of lattice points ({"volume", "at", "spacing"},
   // roles.material).
   std::function<void(const Reader& d, ProcedureEvent& event)> dispense;
+  // Counts every event's particles before they are made (the dispense function counts its own).
+  ParticleBudget* budget = nullptr;
 };
 
 // "keyframes" of `owner`: at least one, times strictly increasing, each placed by `placement`.

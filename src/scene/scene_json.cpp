@@ -112,35 +112,41 @@ OutputSettings read_output(const Reader& root) {
   return out;
 }
 
-real read_duration(const Reader& root) {
+// run.duration: at most limits::max_run_steps steps of dt.
+real read_duration(const Reader& root, real dt) {
   const std::optional<Reader> run = root.optional_object("run", "{\"duration\": 1.0}");
   if (!run) return 0;
   run->only({"duration"});
-  return run->number_or("duration", 0, "the default run length in s of simulated time",
-                        Range::positive);
+  const real duration = run->number_or("duration", 0, "the default run length in s of simulated time",
+                                       Range::positive);
+  if (const std::string problem = limits::run_length_problem(duration, dt); !problem.empty())
+    run->fail("duration", problem,
+              fmt::format("give at most {:.4g} s (or a larger simulation.dt)", double(limits::max_run_steps) * dt));
+  return duration;
 }
 
-std::vector<ParticleInit> read_blocks(const Reader& root, const MaterialTable& materials,
-                                      const KernelCoeffs& kernel) {
+// The blocks, read, checked and counted; made by make_blocks once every other count is in.
+std::vector<BlockPlan> read_blocks(const Reader& root, const MaterialTable& materials,
+                                   const KernelCoeffs& kernel, ParticleBudget& budget) {
   const Json& blocks = root.array("blocks",
                                   "at least one block of particles, e.g. [{\"role\": \"material\", "
                                   "\"shape\": \"box\", ...}]");
-  std::vector<ParticleInit> particles;
+  std::vector<BlockPlan> plans;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const Reader b = root.element(blocks, "blocks", i, "a block");
     const Role role = parse_role(b);
     const MaterialDefault fallback{materials.default_for(role),
                                    fmt::format("roles.{}", role_name(role))};
-    const std::vector<ParticleInit> ps = parse_block(b, {role, materials, fallback, kernel});
-    particles.insert(particles.end(), ps.begin(), ps.end());
+    plans.push_back(plan_block(b, {role, materials, fallback, kernel, &budget}));
   }
-  return particles;
+  return plans;
 }
 
 // Default domain: the bounding box of the world particles and of the tool's particles at every
 // keyframe, padded by 2h. (Between keyframes a rotating tool may leave it; the grid wraps, so
 // that costs time, never correctness.)
-Domain bounding_domain(const std::vector<ParticleInit>& world, const ToolPart& tool, real h) {
+Domain bounding_domain(const std::vector<ParticleInit>& world, const std::vector<ParticleInit>& tool_particles,
+                       const ToolTrajectory& trajectory, real h) {
   constexpr real inf = std::numeric_limits<real>::infinity();
   Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
   auto grow = [&](const Vec3& p) {
@@ -148,8 +154,8 @@ Domain bounding_domain(const std::vector<ParticleInit>& world, const ToolPart& t
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   };
   for (const ParticleInit& p : world) grow(p.pos);
-  for (const ToolKeyframe& kf : tool.trajectory.keyframes)
-    for (const ParticleInit& p : tool.particles) grow(kf.pose.apply(p.pos));
+  for (const ToolKeyframe& kf : trajectory.keyframes)
+    for (const ParticleInit& p : tool_particles) grow(kf.pose.apply(p.pos));
   const Vec3 pad{2 * h, 2 * h, 2 * h};
   return {true, lo - pad, hi + pad};
 }
@@ -220,19 +226,26 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   const KernelCoeffs kernel = build_model(sc.params, source).kernel;
 
   const MaterialTable materials = parse_materials(root);
-  sc.particles = read_blocks(root, materials, kernel);
+  // Every block, the tool and every event counted before their particles are made: the blocks'
+  // (the most) once every count is in.
+  ParticleBudget budget(sc.params.max_bonds_per_particle, sc.params.neighbour_skin > 0);
+  const std::vector<BlockPlan> world = read_blocks(root, materials, kernel, budget);
+  std::optional<ToolPart> tool;
   if (const std::optional<Reader> t =
-          root.optional_object("tool", "the tool {\"blocks\": [...], \"keyframes\": [...]}")) {
-    ToolPart tool = parse_tool(*t, materials, kernel);
-    if (!domain.given) domain = bounding_domain(sc.particles, tool, sc.params.h);
-    sc.particles.insert(sc.particles.end(), tool.particles.begin(), tool.particles.end());
-    sc.events = std::move(tool.events);
-    sc.tool = std::move(tool.trajectory);
+          root.optional_object("tool", "the tool {\"blocks\": [...], \"keyframes\": [...]}"))
+    tool = parse_tool(*t, materials, kernel, budget);
+  sc.particles = make_blocks(world);
+  if (tool) {
+    const std::vector<ParticleInit> tool_particles = make_blocks(tool->blocks);
+    if (!domain.given) domain = bounding_domain(sc.particles, tool_particles, tool->trajectory, sc.params.h);
+    sc.particles.insert(sc.particles.end(), tool_particles.begin(), tool_particles.end());
+    sc.events = std::move(tool->events);
+    sc.tool = std::move(tool->trajectory);
   } else if (!domain.given) {
-    domain = bounding_domain(sc.particles, {}, sc.params.h);
+    domain = bounding_domain(sc.particles, {}, {}, sc.params.h);
   }
   sc.output = read_output(root);
-  sc.duration = read_duration(root);
+  sc.duration = read_duration(root, sc.params.dt);
   read_haptics(root, sc);
   read_session_names(root, sc);
 

@@ -7,12 +7,13 @@
 #include <variant>
 #include <vector>
 
+#include "dentsph/limits.hpp"
 #include "dentsph/vec3.hpp"
 
 namespace dentsph::scene {
 
-// The most points one block may produce (about 1 GB of particle state beyond it).
-inline constexpr std::int64_t max_block_points = 20'000'000;
+// The most points one block may produce (dentsph/limits.hpp).
+inline constexpr std::int64_t max_block_points = std::int64_t(limits::max_block_points);
 
 // Points min + s (i, j, k), i, j, k >= 0, every coordinate <= max (+1e-9 s for rounding).
 struct BoxShape {

@@ -37,14 +37,21 @@ ToolKeyframe read_keyframe(const Reader& k, const ToolKeyframe* previous, const 
 }
 
 // The scene file's increment: {"volume": m^3, "at": [x, y, z], "spacing": m}, a sphere of lattice
-// points of roles.material (spacing default h / 2).
-std::vector<ParticleInit> sphere_increment(const Reader& d, const MaterialTable& materials, const KernelCoeffs& kernel) {
+// points of roles.material (spacing default h / 2), counted in `budget` before it is made.
+std::vector<ParticleInit> sphere_increment(const Reader& d, const MaterialTable& materials, const KernelCoeffs& kernel,
+                                           ParticleBudget* budget) {
   d.only({"volume", "at", "spacing"});
   const real volume = d.number("volume", "the increment's volume in m^3, e.g. 8e-9 (8 mm^3)", Range::positive);
   const Vec3 at = d.vec3("at", "the increment's centre [x, y, z] in m");
   const real spacing = d.number_or("spacing", kernel.h / 2, "the particle spacing in m", Range::positive);
+  if (const std::string problem = limits::spacing_problem(spacing, kernel.h); !problem.empty())
+    d.fail("spacing", problem, limits::spacing_fix(kernel.h));
   const std::optional<Material>& m = materials.default_for(Role::material);
   if (!m) d.fail_here("has no material", "set roles.material to the paste's material");
+  if (budget) {
+    const double n = increment_points_bound(volume, spacing);
+    budget->add(d, "volume", n, n, "give a smaller volume (m^3: 8e-9 is 8 mm^3)");
+  }
   return material_increment(at, volume, spacing, lattice_particle_mass(m->rho0, spacing, kernel), *m);
 }
 
@@ -67,7 +74,7 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
     if (place.dispense)
       place.dispense(*d, ev);
     else
-      ev.particles = sphere_increment(*d, *materials, kernel);
+      ev.particles = sphere_increment(*d, *materials, kernel, place.budget);
   } else {
     const Reader sw = e.object("switch_tool", "the instrument {\"name\": \"flat_plugger\"}");
     sw.only({"name", "spacing"});
@@ -76,12 +83,19 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
     const real spacing =
         place.length_scale * sw.number_or("spacing", kernel.h / 2 / place.length_scale,
                                           fmt::format("the particle spacing in {}", place.length_unit), Range::positive);
+    const char* unit = place.length_scale == 1 ? "m" : "mm";
+    if (const std::string problem = limits::spacing_problem(spacing, kernel.h, unit, place.length_scale);
+        !problem.empty())
+      sw.fail("spacing", problem, limits::spacing_fix(kernel.h, unit, place.length_scale));
     ToolShape shape;
     try {
       shape = tool_by_name(ev.tool, spacing);
     } catch (const std::invalid_argument& err) {
       sw.fail("name", err.what(), "use one of the known instruments");
     }
+    if (place.budget)
+      place.budget->add(sw, "name", double(shape.points.size()), double(shape.points.size()),
+                        "switch instruments less often");
     ev.particles = tool_particles(shape, lattice_particle_mass(tool_material.rho0, spacing, kernel), tool_material);
   }
   return ev;
@@ -105,6 +119,7 @@ ToolTrajectory read_trajectory(const Reader& owner, const Placement& place) {
 std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& place, const MaterialTable* materials,
                                         const Material& tool_material, const KernelCoeffs& kernel) {
   const Json& evs = owner.array("events", "a list of events [{\"t\": 1.0, \"dispense\": {...}}]");
+  check_event_count(owner, evs.size());
   std::vector<ProcedureEvent> events;
   for (std::size_t i = 0; i < evs.size(); ++i)
     events.push_back(read_event(owner.element(evs, "events", i, "an event"), i > 0 ? &events.back() : nullptr, place,
@@ -112,8 +127,8 @@ std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& pl
   return events;
 }
 
-ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
-                    const KernelCoeffs& kernel) {
+ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel,
+                    ParticleBudget& budget) {
   tool.only({"material", "blocks", "keyframes", "events"});
   // The tool's own material (default roles.tool) is the default of each of its blocks.
   MaterialDefault tool_material{materials.default_for(Role::tool), "roles.tool"};
@@ -126,16 +141,15 @@ ToolPart parse_tool(const Reader& tool, const MaterialTable& materials,
   const Json& blocks = tool.array("blocks",
                                   "the tool's shape as blocks in the tool frame, e.g. "
                                   "[{\"shape\": \"sphere\", ...}]");
-  const BlockContext ctx{Role::tool, materials, tool_material, kernel};
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    const std::vector<ParticleInit> ps =
-        parse_block(tool.element(blocks, "blocks", i, "a block"), ctx);
-    part.particles.insert(part.particles.end(), ps.begin(), ps.end());
-  }
+  const BlockContext ctx{Role::tool, materials, tool_material, kernel, &budget};
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    part.blocks.push_back(plan_block(tool.element(blocks, "blocks", i, "a block"), ctx));
   part.trajectory = read_trajectory(tool, Placement{});
   if (tool.has("events")) {
     if (!tool_material.material) tool.fail("events", "need the tool's material", "set tool.material or roles.tool");
-    part.events = read_events(tool, Placement{}, &materials, *tool_material.material, kernel);
+    Placement place;
+    place.budget = &budget;
+    part.events = read_events(tool, place, &materials, *tool_material.material, kernel);
   }
   return part;
 }

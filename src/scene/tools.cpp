@@ -2,11 +2,13 @@
 #include "dentsph/tools.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "dentsph/limits.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {
@@ -83,8 +85,19 @@ void switch_tool(State& state, const Model& model, const ToolShape& shape, real 
   replace_tool_particles(state, model, tool_particles(shape, mass, material));
 }
 
+double increment_points_bound(real volume, real spacing) {
+  if (!std::isfinite(volume) || !(volume > 0) || !std::isfinite(spacing) || !(spacing > 0))
+    return std::numeric_limits<double>::infinity();
+  const double R = std::cbrt(3 * double(volume) / (4 * kernels::pi)) + double(spacing);
+  return 4.0 / 3.0 * kernels::pi * (R / double(spacing)) * (R / double(spacing)) * (R / double(spacing));
+}
+
 std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
                                              const Material& material) {
+  if (const double bound = increment_points_bound(volume, spacing); !(bound <= double(limits::max_particles)))
+    throw std::invalid_argument(fmt::format(
+        "material_increment: {:.3g} m^3 at a spacing of {:.3g} m is up to {:.3g} particles, over the limit of {}",
+        volume, spacing, bound, limits::max_particles));
   const real R = std::cbrt(3 * volume / (4 * kernels::pi));
   const int n = int(std::ceil(R / spacing));
   std::vector<ParticleInit> ps;

@@ -17,7 +17,7 @@ namespace dentsph {
 namespace {
 
 constexpr real mm = 1e-3;
-constexpr real no_max = std::numeric_limits<real>::infinity();
+constexpr real no_max = max_cavity_length / mm;  // mm: no tooth is that large
 
 }  // namespace
 
@@ -51,8 +51,7 @@ std::string out_of_range(const CavityField& f, real v) {
   const bool low = f.min_inclusive ? v < f.min : v <= f.min;
   if (low || v >= f.max) {
     const std::string lower = fmt::format("{} {} {}", f.min_inclusive ? ">=" : ">", f.min, f.unit);
-    return std::isfinite(f.max) ? fmt::format("must be {} and < {} {}, got {}", lower, f.max, f.unit, v)
-                                : fmt::format("must be {}, got {}", lower, v);
+    return fmt::format("must be {} and < {} {}, got {:.4g}", lower, f.max, f.unit, v);
   }
   return {};
 }

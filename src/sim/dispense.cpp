@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dentsph/limits.hpp"
 #include "dentsph/tools.hpp"
 #include "dentsph/tooth.hpp"
 #include "physics/kernels.hpp"
@@ -50,9 +51,25 @@ real increment_volume_or_default(const Scene& scene, real requested) {
 
 Vec3 increment_axis(const Scene& scene) { return scene.tooth ? scene.tooth->frame().z : Vec3{0, 0, 1}; }
 
+real material_volume(const State& state) {
+  real v = 0;
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (state.role[i] == Role::material) v += state.mass[i] / state.rho0[i];
+  return v;
+}
+
+real max_material_volume(const Scene& scene) {
+  if (scene.tooth) return limits::max_material_per_cavity * scene.tooth->cavity_volume();
+  const Vec3 d = scene.model.domain_max - scene.model.domain_min;
+  return d.x * d.y * d.z;
+}
+
 std::size_t dispense_increment(const Scene& scene, State& state, real volume, const Vec3& up,
                                const IncrementPaste& paste) {
   const real s = increment_spacing(scene);
+  if (!(volume > 0) || material_volume(state) + volume > max_material_volume(scene) ||
+      double(state.size()) + increment_points_bound(volume, s) > double(limits::max_particles))
+    return 0;
   const real r = std::cbrt(3 * volume / (4 * kernels::pi));
   const Vec3 axis_origin =
       scene.tooth ? scene.tooth->frame().origin : 0.5 * (scene.model.domain_min + scene.model.domain_max);

@@ -79,6 +79,15 @@ std::vector<real> steps(real a, real b, real step) {
 }
 
 void check_params(const CavityParams& p) {
+  // Absurd magnitudes first, with a short message (a width of 1e308 m otherwise reached the fit
+  // checks, which printed 310-digit coordinates).
+  const std::pair<const char*, real> lengths[] = {
+      {"width", p.width},         {"length", p.length},       {"depth", p.depth},
+      {"rounding", p.rounding},   {"min_wall", p.min_wall},   {"min_floor", p.min_floor},
+      {"box_width", p.box_width}, {"box_depth", p.box_depth}, {"box_axial_depth", p.box_axial_depth}};
+  for (const auto& [name, v] : lengths)
+    if (std::isfinite(v) && std::abs(v) >= max_cavity_length)
+      bad_param(name, v * 1e3, fmt::format("must be under {:.0f} mm (no tooth is that large)", max_cavity_length * 1e3));
   auto positive = [](const char* name, real v) {
     if (!(v > 0) || !std::isfinite(v)) bad_param(name, v * 1e3, "must be > 0");
   };

@@ -63,7 +63,7 @@ ToothScene prepare_tooth(const ToothSpec& spec) {
     mesh = std::move(crown.mesh);
     found = crown.frame;
   } else {
-    mesh = load_mesh(spec.mesh).mesh;
+    mesh = load_mesh(spec.mesh, spec.units).mesh;
     found = find_tooth_frame(mesh);
   }
   const ToothFrame frame = given_frame(found, spec);

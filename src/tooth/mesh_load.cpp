@@ -13,6 +13,27 @@
 
 namespace dentsph {
 
+namespace {
+
+// Every face of the file names vertices it has (assimp's validation says so too; this check does
+// not depend on which of its steps ran).
+void check_face_indices(const aiScene& scene, const std::string& name) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (!mesh || (mesh->mNumFaces > 0 && !mesh->mFaces) || (mesh->mNumVertices > 0 && !mesh->mVertices))
+      throw MeshError(fmt::format("{}: mesh {} is incomplete; the file is damaged: export it again", name, m));
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          throw MeshError(fmt::format("{}: face {} refers to vertex {} of {}; the file is damaged: export it again",
+                                      name, f, face.mIndices[k], mesh->mNumVertices));
+    }
+  }
+}
+
+}  // namespace
+
 LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
   const std::string name = file.string();
   std::error_code ec;
@@ -29,15 +50,25 @@ LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
     throw MeshError(fmt::format("{}: is empty (0 bytes); export the mesh again", name));
 
   Assimp::Importer importer;
-  // Points and lines are split off (SortByPType) and ignored: only triangles bound a solid.
-  const aiScene* scene =
-      importer.ReadFile(name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_SortByPType | aiProcess_PreTransformVertices);
+  // Read first with no processing but assimp's own validation, which refuses a face that names a
+  // vertex the file does not have (the later steps would index past the vertex array: a crash or
+  // a garbage vertex); then the processing. Points and lines are split off (SortByPType) and
+  // ignored: only triangles bound a solid.
+  const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
+  const std::string why = importer.GetErrorString();
+  if (!scene && why.find("Validation failed") != std::string::npos)
+    throw MeshError(fmt::format("{}: is damaged ({}); export it again", name, why));
   if (!scene || !scene->mRootNode)
     throw MeshError(
         fmt::format("{}: cannot be read as a mesh ({}); save it as STL (binary or "
                     "ASCII), OBJ or PLY",
                     name, importer.GetErrorString()));
+  check_face_indices(*scene, name);
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                       aiProcess_SortByPType | aiProcess_PreTransformVertices);
+  if (!scene || !scene->mRootNode)
+    throw MeshError(fmt::format("{}: cannot be processed as a mesh ({}); save it as STL (binary or ASCII), OBJ or PLY",
+                                name, importer.GetErrorString()));
 
   const real scale = units == MeshUnits::millimetres ? 1e-3 : 1.0;
   TriMesh soup;

@@ -263,12 +263,14 @@ void check_size(const Vec3& extent, const MeshReport& r) {
       across * 1e3, extent.x * 1e3, extent.y * 1e3, extent.z * 1e3);
   std::string fix;
   if (across < min_extent && across * 1e3 >= min_extent && across * 1e3 <= max_extent)
-    fix = "is the file in metres? load it with MeshUnits::metres";
+    fix = "is the file in metres? say so: dentsph's --mesh-units m, a dental scene file's tooth.units \"m\" "
+          "(MeshUnits::metres in C++)";
   else if (across > max_extent && across * 1e-3 >= min_extent && across * 1e-3 <= max_extent)
-    fix = "is the file in millimetres? load it with MeshUnits::millimetres (the default)";
+    fix = "is the file in millimetres? say so: dentsph's --mesh-units mm (the default), a dental scene file's "
+          "tooth.units \"mm\" (MeshUnits::millimetres in C++)";
   else
     fix =
-        "check the file's units (pass MeshUnits::millimetres or MeshUnits::metres) and that "
+        "check the file's units (dentsph's --mesh-units mm or m, a dental scene file's tooth.units) and that "
         "it holds one tooth";
   fail(r.source, problem, fix);
 }

@@ -114,7 +114,11 @@ TEST(HapticLoop, AllocatesNothingWithTheUdpDevice) {
   o.live = &live;
   std::uint16_t port = 0;
   Watched device(make_udp_device({"127.0.0.1", 0}, &port));
-  testing::ClientProcess client(port, {"--rate", "1000", "--duration", "0.8", "--motion", "press", "--depth", "0.04"},
+  // Every path of the bridge: a hello, heartbeats, an absurd pose, a restart of the numbering, a
+  // button pressed fast (new sessions, refused poses, refused presses).
+  testing::ClientProcess client(port, {"--rate", "1000", "--duration", "0.8", "--motion", "press", "--depth", "0.04",
+                                       "--hello", "--heartbeat-every", "0.05", "--spike-at", "0.3", "--spike-m", "50",
+                                       "--restart-at", "0.5", "--toggle-button-hz", "50"},
                                 "alloc");
   ASSERT_TRUE(client.started());
   const RealtimeResult r = run_realtime(scene, device, o);
@@ -123,6 +127,8 @@ TEST(HapticLoop, AllocatesNothingWithTheUdpDevice) {
   EXPECT_GT(r.haptic.timing.ticks, 500u);
   EXPECT_GT(r.haptic.max_force_N, 0.0);  // poses arrived and forces went back
   EXPECT_EQ(live.ticks.load(), r.haptic.timing.ticks);
+  EXPECT_EQ(r.haptic.sessions, 2u);  // the first hello's, the restart's
+  EXPECT_GT(r.haptic.dispense_presses_refused, 0u);
   EXPECT_EQ(g_allocations.load(), 0u);
 }
 

@@ -21,60 +21,19 @@
 #include "dentsph/haptics/protocol.hpp"
 #include "dentsph/tools.hpp"
 #include "press_scene.hpp"
+#include "runtime_support.hpp"
 
 namespace dentsph {
 namespace {
 
 namespace proto = haptic_protocol;
 using testing::ClientProcess;
+using testing::expect_safe;
+using testing::options;
 using testing::press_scene;
-
-// The test scene's tool forces are about 0.02-0.2 N: scaled by 20 they are what a Falcon renders.
-RealtimeOptions options(ForceMode mode) {
-  RealtimeOptions o;
-  o.mode = mode;
-  o.force_scale = 20;
-  o.profile = device_profile("falcon");
-  o.threads = 1;
-  o.record_capacity_s = 10;
-  o.workspace.origin = {0, 0, 0.09};  // the device's origin: the tool's first keyframe
-  return o;
-}
-
-nlohmann::json realtime_sections(const RealtimeResult& r) { return nlohmann::json::parse(r.run.realtime_json); }
-
-void print_timing(const RealtimeResult& r) { std::printf("%s", realtime_report(r).c_str()); }
-
-// Every force the runtime sent is finite, within the profile, and changes by at most the rate
-// limit per tick.
-void expect_safe(const RealtimeResult& r, const DeviceProfile& p) {
-  ASSERT_GT(r.recording.haptic.size(), 10u);
-  Vec3 prev;
-  double prev_t = r.recording.haptic.front().t;
-  for (const HapticSample& s : r.recording.haptic) {
-    ASSERT_TRUE(is_finite(s.force));
-    ASSERT_LE(norm(s.force), p.max_force_N + 1e-12);
-    ASSERT_LE(norm(s.force - prev), p.max_force_rate_N_per_s * std::min(0.1, std::max(s.t - prev_t, 0.0)) + 1e-9);
-    prev = s.force;
-    prev_t = s.t;
-  }
-}
-
-// The press scene under the runtime with a UDP device, the reference client (given arguments)
-// playing it from a separate process; the runtime's result and the client's report.
-std::pair<RealtimeResult, nlohmann::json> run_with_client(const RealtimeOptions& o, std::vector<std::string> args,
-                                                          const std::string& tag) {
-  const Scene scene = press_scene();
-  std::uint16_t port = 0;
-  auto device = make_udp_device({"127.0.0.1", 0}, &port);
-  ClientProcess client(port, std::move(args), tag);
-  if (!client.started()) return {};
-  RealtimeResult r = run_realtime(scene, *device, o);
-  nlohmann::json c = client.wait();
-  print_timing(r);
-  std::printf("client: %s\n", c.dump().c_str());
-  return {std::move(r), std::move(c)};
-}
+using testing::print_timing;
+using testing::realtime_sections;
+using testing::run_with_client;
 
 TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   RealtimeOptions o = options(ForceMode::coupling);
@@ -156,26 +115,47 @@ TEST(HapticRuntime, ForceStaysContinuousWithTheSimulationAtATenthOfTheHapticRate
       proxy_jump = std::max(proxy_jump, o.coupling.stiffness_N_per_m *
                                             norm(r.recording.steps[k].tool_pose.position -
                                                  r.recording.steps[k - 1].tool_pose.position) / o.workspace.scale);
-    std::vector<double> steps;
+    // The host stalls a thread for 6 to 15 ms at times, even idle: the tick after a stall of the
+    // haptic thread renders a force that moved on for the whole stall (the interpolation runs on
+    // the clock). Such ticks are found in the loop's own record of its periods; their steps are
+    // held to the same bound per nominal period (their step times the period over theirs), the
+    // steps of ticks on time to the bound itself.
+    const double period = 1 / o.haptic_rate_hz;
+    std::vector<double> steps;    // ticks on time
+    double stalled_scaled = 0;    // the largest step of a stalled tick, per nominal period
+    std::size_t stalled = 0;
+    double longest = 0;
     const auto& h = r.recording.haptic;
-    for (std::size_t k = 1; k < h.size(); ++k)
-      if (h[k].gain == 1 && h[k - 1].gain == 1) steps.push_back(norm(h[k].force - h[k - 1].force));
+    for (std::size_t k = 1; k < h.size(); ++k) {
+      if (h[k].gain != 1 || h[k - 1].gain != 1) continue;
+      const double dt = h[k].t - h[k - 1].t, step = norm(h[k].force - h[k - 1].force);
+      longest = std::max(longest, dt);
+      if (dt > 1.5 * period) {
+        ++stalled;
+        stalled_scaled = std::max(stalled_scaled, step * period / dt);
+      } else {
+        steps.push_back(step);
+      }
+    }
     ASSERT_GT(steps.size(), 500u);
     std::sort(steps.begin(), steps.end());
     const double rendered_step = steps.back(), step_p99 = steps[steps.size() * 99 / 100];
     std::printf("%s: largest jump of the simulated force %.4g N (of k times the proxy's move %.4g N), largest step "
-                "of the rendered force %.4g N, p99 %.4g N\n", force_mode_name(mode), sim_jump, proxy_jump, rendered_step,
-                step_p99);
+                "of the rendered force %.4g N, p99 %.4g N; %zu stalled ticks (longest period %.3g ms), their largest "
+                "step per period %.4g N\n", force_mode_name(mode), sim_jump, proxy_jump, rendered_step, step_p99, stalled,
+                longest * 1e3, stalled_scaled);
     EXPECT_GT(r.haptic.max_force_N, 0.2);
     if (mode == ForceMode::coupling) {
       // The stated bound: no step above 0.4 N per 1 ms tick under virtual coupling (the hand's
       // own motion against the spring is part of it), and 99% of the steps under a quarter of
       // what a proxy held between simulation steps would give.
       EXPECT_LE(rendered_step, 0.4);
+      EXPECT_LE(stalled_scaled, 0.4);
       EXPECT_LT(step_p99, 0.25 * proxy_jump);
     } else {
       // Direct: the simulation's jumps are spread over at least five ticks.
       EXPECT_LE(rendered_step, 0.2 * sim_jump);
+      EXPECT_LE(stalled_scaled, 0.2 * sim_jump);
     }
   }
 }

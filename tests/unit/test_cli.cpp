@@ -2,14 +2,12 @@
 // cavity that does not fit the tooth, broken procedure files. Runs the built `dentsph` binary.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli_process.hpp"
 #include "test_tooth_support.hpp"
 
 namespace dentsph {
@@ -17,23 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result dentsph_cli(const std::string& args) {
-  const std::string cmd = std::string(DENTSPH_CLI) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = testing::CliResult;
+using testing::dentsph_cli;
 
 void expect_refused(const std::string& args, const std::vector<std::string>& phrases) {
   const Result r = dentsph_cli(args);
@@ -224,6 +207,25 @@ TEST(Cli, ADentalSceneFileIsValidatedAndRun) {
   const Result r = dentsph_cli("run scenes/class2_fill.json --steps 3 --threads 1 -q --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(read_json(out / "summary.json").at("cavity").at("class"), "class2");
+}
+
+// --mesh-units m reads a mesh written in metres; other units, or units without a mesh, are refused.
+TEST(Cli, MeshUnitsReadAMeshInMetres) {
+  constexpr real mm = 1e-3;
+  const fs::path f = dir() / "block_in_m.stl";
+  testing::write_ascii_stl(f, testing::box_mesh({0, 0, 0}, {10 * mm, 9 * mm, 12 * mm}), 1.0);
+  expect_refused("run --mesh " + f.string() + " --steps 1 -q", {"block_in_m.stl", "--mesh-units m"});
+  const Result ok = dentsph_cli("run --mesh " + f.string() + " --mesh-units m --steps 1 --threads 1 -q --out " +
+                                (dir() / "units_out").string());
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_EQ(read_json(dir() / "units_out" / "summary.json").at("steps"), 1);
+  const Result cm = dentsph_cli("run --mesh " + f.string() + " --mesh-units cm --steps 1 -q");
+  EXPECT_EQ(cm.code, 2) << cm.output;
+  EXPECT_NE(cm.output.find("--mesh-units"), std::string::npos) << cm.output;
+  const Result alone = dentsph_cli("run --mesh-units m --steps 1 -q");
+  EXPECT_EQ(alone.code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--mesh-units m: the built-in crown has no units to give; add --mesh"), std::string::npos)
+      << alone.output;
 }
 
 }  // namespace

@@ -85,6 +85,34 @@ TEST(DentalSceneFile, MeshAndProcedurePathsAreRelativeToTheSceneFile) {
   EXPECT_NEAR(sc.tooth->report().occlusal_point.z, 12 * mm, 1e-6);  // the block's top
 }
 
+// tooth.units: "mm" (the default) or "m", only with a mesh; the wrong units are refused naming the
+// field that fixes them.
+TEST(DentalSceneFile, TheMeshUnitsAreReadAndChecked) {
+  testing::write_ascii_stl(dir() / "teeth" / "block_m.stl", testing::box_mesh({0, 0, 0}, {10 * mm, 9 * mm, 12 * mm}), 1.0);
+  const Scene in_m = parse(R"({"name": "m", "tooth": {"mesh": "teeth/block_m.stl", "units": "m"}, "procedure": "fill.json"})");
+  ASSERT_TRUE(in_m.tooth);
+  EXPECT_NEAR(in_m.tooth->report().occlusal_point.z, 12 * mm, 1e-6);
+  const Scene in_mm = parse(R"({"name": "mm", "tooth": {"mesh": "teeth/block.stl", "units": "mm"}, "procedure": "fill.json"})");
+  ASSERT_TRUE(in_mm.tooth);
+  EXPECT_NEAR(in_mm.tooth->report().occlusal_point.z, 12 * mm, 1e-6);
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {R"({"name": "x", "tooth": {"mesh": "teeth/block_m.stl"}})", {"scene.json: tooth.mesh", "0.012 mm across", "tooth.units \"m\""}},
+      {R"({"name": "x", "tooth": {"mesh": "teeth/block.stl", "units": "m"}})", {"scene.json: tooth.mesh", "tooth.units"}},
+      {R"({"name": "x", "tooth": {"mesh": "teeth/block.stl", "units": "cm"}})", {"scene.json: tooth.units", "\"cm\"", "give \"mm\""}},
+      {R"({"name": "x", "tooth": {"units": "m"}})", {"scene.json: tooth.units", "without a mesh", "add tooth.mesh"}},
+      {R"({"name": "x", "tooth": {"mesh": "teeth/block.stl", "units": 1000}})", {"scene.json: tooth.units", "expected a string"}},
+  };
+  for (const auto& [text, phrases] : cases) {
+    try {
+      (void)parse(text);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const SceneError& e) {
+      for (const std::string& p : phrases)
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << "'" << p << "' in: " << e.what();
+    }
+  }
+}
+
 // The one check of a cavity number that scene files and the command line share: the value set in
 // metres (or degrees), a proximal box's number refused on a Class I, an impossible value refused
 // with its fix, and nothing set when refused.

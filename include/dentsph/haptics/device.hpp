@@ -43,6 +43,11 @@ struct DeviceSample {
   double device_time_s = 0;    // the device's own clock, for velocity estimates
   std::uint32_t sequence = 0;  // increments with every new pose
   std::uint32_t buttons = 0;   // pressed buttons, a bit mask (haptic_protocol::kButtonDispense)
+  // The device's session: a new number when another hand takes the device (a network client's
+  // hello, or its restart): the runtime then forgets the previous session's motion, puts the
+  // tool's proxy where the device is and ramps the force in from zero. 0 for a device that has
+  // one session (scripted, replay).
+  std::uint32_t session = 0;
   bool valid = false;          // a pose has been received at all
 };
 
@@ -82,6 +87,17 @@ struct UdpDeviceOptions {
   std::uint16_t port = 47000;
   double session_timeout_s = 1.0;  // a silent client's session ends (another may then connect)
   double heartbeat_interval_s = 0.1;  // heartbeats to a client while its pose is stale
+  // Plausible poses (docs/haptic-protocol.md): within this distance of the device's origin (m;
+  // desk devices reach about 0.1 m: a client sending millimetres is refused)...
+  double workspace_radius_m = 0.3;
+  // ...and no faster than a hand moves an instrument (m/s; a dentist's hand moves at centimetres a
+  // second), from the pose before and from the last accepted one, with a tolerance of
+  // `jump_tolerance_m` for the jitter of timestamps.
+  double max_speed_m_per_s = 2;
+  double jump_tolerance_m = 0.002;
+  // Poses behind the newest by more than the reordering window, this many in a row and in order
+  // among themselves, are a client that restarted its numbering without a hello: a new session.
+  int restart_after = 3;
 };
 // Throws std::runtime_error naming the address when it cannot bind. `bound_port`, when given,
 // receives the port it listens on.

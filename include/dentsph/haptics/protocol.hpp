@@ -20,6 +20,7 @@ enum class Type : std::uint8_t {
   force = 2,      // dentsph -> client: the force to render, answering the newest pose
   heartbeat = 3,  // either way: alive, nothing to say
   bye = 4,        // client -> dentsph: the session ends
+  hello = 5,      // client -> dentsph: a new session starts (its pose numbers start again)
 };
 
 // Flags of a force packet (bit set: the condition holds).
@@ -36,7 +37,8 @@ inline constexpr std::uint32_t kButtonDispense = 1u << 0;  // button 1: dispense
 struct Header {
   Type type = Type::heartbeat;
   std::uint16_t payload_bytes = 0;  // bytes after the header
-  std::uint32_t sequence = 0;       // per sender, +1 for every packet it sends (wraps)
+  std::uint32_t sequence = 0;       // a client's poses: +1 per pose (wraps); dentsph's messages: +1
+                                    // per message; a client's other messages: its newest pose's
   std::uint64_t timestamp_ns = 0;   // sender's monotonic clock when sent
 };
 
@@ -68,7 +70,7 @@ const char* decode_error_name(DecodeError e);
 // Encoders write exactly k*Bytes into `out` (which must hold them) and return the size.
 std::size_t encode(const PosePacket& p, std::span<std::uint8_t> out);
 std::size_t encode(const ForcePacket& p, std::span<std::uint8_t> out);
-std::size_t encode_header_only(const Header& h, std::span<std::uint8_t> out);  // heartbeat, bye
+std::size_t encode_header_only(const Header& h, std::span<std::uint8_t> out);  // heartbeat, bye, hello
 
 // Reads the header of a datagram and checks magic, version, type and that the length is exactly
 // that type's size.

@@ -1,0 +1,85 @@
+// The largest things a run accepts (README, "Resource limits"). Every input that could make a
+// run take unbounded time or memory is checked against one of these before the work starts, and
+// refused with the field that asks for it and the fix; the checks share these numbers and the
+// functions below, so that a scene file, a procedure file, the command line and the library say
+// the same.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "dentsph/vec3.hpp"
+
+namespace dentsph::limits {
+
+// ---- particles and memory -----------------------------------------------------------------------
+
+// Particles the simulation holds at once: every block, the tool and every increment and
+// instrument a scene's events bring (about 1 KB each in the state: 10 GiB).
+inline constexpr std::uint64_t max_particles = 10'000'000;
+// Particles one block of a scene file may produce.
+inline constexpr std::uint64_t max_block_points = max_particles;
+// Particles a scene holds as it is read: the simulation's, and every event's particles, which for
+// a procedure file's increment are all its candidate sites (a few thousand each).
+inline constexpr std::uint64_t max_held_particles = 20'000'000;
+// Events (dispense, switch_tool) of one scene or procedure file.
+inline constexpr std::size_t max_events = 1000;
+// The memory a scene may need (its particles as read and the simulation's state), in bytes; and
+// never more than the machine's physical memory.
+inline constexpr std::uint64_t max_scene_bytes = std::uint64_t(16) << 30;  // 16 GiB
+// Cells of the neighbour grid: a larger domain gets larger cells (the grid wraps beyond; this
+// costs time, never correctness), so no domain is refused for its size.
+inline constexpr std::int64_t max_grid_cells = std::int64_t(1) << 22;
+
+// ---- lattices -----------------------------------------------------------------------------------
+
+// A lattice's spacing is at least h / 10 (about 4200 neighbours within h; finer lattices make
+// the particle mass sum and every step's neighbour search run for hours) and at most h.
+inline constexpr real min_spacing_per_h = 0.1;
+
+// ---- time ---------------------------------------------------------------------------------------
+
+// The smallest time step, s.
+inline constexpr real min_dt = 1e-9;
+// The most steps of one offline run (--steps, --duration / dt, run.duration / dt, a procedure's
+// duration / dt): 28 hours at 1000 steps/s.
+inline constexpr std::uint64_t max_run_steps = 100'000'000;
+// The longest realtime run, wall seconds (--realtime --duration; a run without one stops here).
+inline constexpr double max_realtime_s = 3600;
+// Steps a realtime run records (the tool pose and force of each, 96 bytes): the run ends here.
+inline constexpr std::uint64_t max_recorded_steps = 20'000'000;
+
+// ---- increments on request (the device's button 1, the viewer's D key) ---------------------------
+
+// Presses of the device's button 1 counted in any one second (more are refused and counted).
+inline constexpr int max_dispense_presses_per_s = 4;
+// The paste an increment may bring the scene to, in cavity volumes (a tooth's cavity holds one;
+// without a tooth: the grid domain's volume).
+inline constexpr real max_material_per_cavity = 2;
+
+// ---- shared checks: "" when fine, else the problem (the caller adds the field and the fix) -----
+
+// A lattice spacing (m) for a kernel of support h (m): finite, within [h * min_spacing_per_h, h];
+// the message in `unit`, of `scale` m per unit.
+std::string spacing_problem(real spacing, real h, const char* unit = "m", real scale = 1);
+// The fix for a refused spacing, in `unit` with `scale` m per unit ("m", 1 or "mm", 1e-3).
+std::string spacing_fix(real h, const char* unit = "m", real scale = 1);
+
+// A run of `duration` s of simulated time in steps of dt: at most max_run_steps.
+std::string run_length_problem(real duration, real dt);
+// The steps of such a run (duration / dt rounded), or max_run_steps + 1 when over the limit.
+std::uint64_t run_steps(real duration, real dt);
+
+// Bytes the simulation's state takes per particle (every per-particle array, the bond lists of
+// `max_bonds` each, the neighbour lists, with the skin's copies when `skin`), an upper estimate.
+std::uint64_t state_bytes_per_particle(int max_bonds, bool skin);
+// The memory a scene needs: `held` particles as read and `simulated` in the state.
+std::uint64_t scene_bytes(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin);
+// The memory a scene may take: max_scene_bytes, or the machine's physical memory when less.
+std::uint64_t memory_limit_bytes();
+// "" when a scene of `held` and `simulated` particles fits in `limit_bytes`, else the problem.
+std::string memory_problem(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin,
+                           std::uint64_t limit_bytes);
+
+}  // namespace dentsph::limits

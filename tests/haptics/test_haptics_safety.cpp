@@ -1,0 +1,270 @@
+// The device side against an unfriendly client, over UDP with the reference client (which follows
+// docs/haptic-protocol.md) in a separate process: absurd poses are refused and counted, a new
+// session starts the tool afresh and ramps the force in, a client that restarts its numbering is
+// recognised, the protocol document names everything the device reports, and the button cannot
+// flood the scene with paste.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "client_process.hpp"
+#include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
+#include "dentsph/haptics.hpp"
+#include "dentsph/limits.hpp"
+#include "press_scene.hpp"
+#include "runtime_support.hpp"
+
+namespace dentsph {
+namespace {
+
+using testing::ClientProcess;
+using testing::expect_safe;
+using testing::options;
+using testing::press_scene;
+using testing::print_timing;
+using testing::realtime_sections;
+using testing::run_with_client;
+
+// ---- class 5: jolts to the hand ------------------------------------------------------------------
+
+// One finite but absurd pose (x = 50 m, a client sending millimetres; or 1e300) threw the tool
+// away and the device got +-9 N for 1.6 s while the hand was still, or made the state NaN and the
+// force zero for the rest of the session. Such a pose is refused and counted; the hand holding
+// still in the paste keeps feeling what it felt.
+TEST(HapticSafety, AnAbsurdPoseIsRefusedAndTheForceHolds) {
+  for (const std::string spike : {"50", "1e300", "0.2"}) {  // 0.2 m: in the workspace, but 20 cm in 1 ms
+    RealtimeOptions o = options(ForceMode::coupling);
+    o.duration_s = 2.0;
+    const auto [r, c] = run_with_client(o, {"--duration", "1.8", "--motion", "hold", "--depth", "0.05",
+                                            "--spike-at", "1.0", "--spike-m", spike}, "spike");
+    ASSERT_FALSE(c.is_null()) << "the client failed";
+    expect_safe(r, o.profile);
+    ASSERT_EQ(c["spikes"], 1);
+    const nlohmann::json d = realtime_sections(r)["device"];
+    // The absurd pose is refused, and so is the pose after it, which jumps back from it.
+    EXPECT_EQ(d["implausible"], 2) << spike;
+    EXPECT_EQ(d["implausible_by_reason"]["outside the workspace"], spike == "0.2" ? 0 : 1);
+    EXPECT_EQ(d["implausible_by_reason"]["faster than a hand"], spike == "0.2" ? 2 : 1);
+    EXPECT_EQ(r.run.status, "completed") << r.run.message;
+    EXPECT_EQ(r.haptic.non_finite_rejected, 0u) << "the simulation stayed finite";
+    EXPECT_EQ(r.haptic.magnitude_limited_ticks, 0u) << "the tool was not thrown away";
+    for (const HapticSample& s : r.recording.haptic) {
+      ASSERT_LE(norm(s.device_position), 0.06) << s.t;
+      ASSERT_LE(norm(s.proxy_position - s.device_position), 0.03) << "the proxy stays with the device, at " << s.t;
+    }
+    // The force changes no faster after the pose than while the hand held still before it. (A
+    // loaded host delays poses past the watchdog's timeout at times: ticks where the watchdog
+    // was acting are not the pose's doing, and are left out.)
+    auto largest_change = [&](double a, double b) {
+      double m = 0;
+      const auto& h = r.recording.haptic;
+      for (std::size_t k = 10; k < h.size(); ++k)
+        if (h[k].t >= a && h[k].t < b && h[k].gain == 1 && h[k - 10].gain == 1)
+          m = std::max(m, double(norm(h[k].force - h[k - 10].force)));
+      return m;
+    };
+    const double before = largest_change(0.8, 0.99), after = largest_change(0.99, 1.2);
+    std::printf("spike %s: largest change in 10 ticks before %.4f N, after %.4f N\n", spike.c_str(), before, after);
+    EXPECT_GT(before, 0) << "the hand pressed into the paste";
+    EXPECT_LE(after, 2 * before + 0.05) << spike;
+  }
+}
+
+// A client that sends millimetres: every pose beyond the first few millimetres of its motion is
+// faster than a hand, or outside the workspace, and refused; the device never feels a thrown tool.
+TEST(HapticSafety, AClientInMillimetresIsRefusedNotFollowed) {
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 1.2;
+  const auto [r, c] = run_with_client(o, {"--duration", "1.0", "--motion", "press", "--depth", "0.03", "--scale",
+                                          "1000"}, "millimetres");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  expect_safe(r, o.profile);
+  const nlohmann::json d = realtime_sections(r)["device"];
+  EXPECT_GT(d["implausible"].get<double>(), 0.9 * c["poses_sent"].get<double>());
+  // Only poses near the origin moving slower than a hand were taken (at the motion's start and end:
+  // a hundredth of a millimetre a millisecond), never the "metres" of the rest: the tool was never
+  // thrown (the force stays under the device's limit; before, it was held at 9 N).
+  for (const HapticSample& s : r.recording.haptic) ASSERT_LE(norm(s.device_position), 0.02) << s.t;
+  EXPECT_EQ(r.haptic.magnitude_limited_ticks, 0u);
+  std::printf("largest force %.3f N\n", r.haptic.max_force_N);
+}
+
+// A client that connected right after another's goodbye inherited the old tool position with no
+// fade-in (0 to 9 N in 9 ms). Now its session starts with the tool's proxy where its device is and
+// the force ramps in from zero over the watchdog's ramp_up_s.
+TEST(HapticSafety, ANewClientStartsWithItsOwnToolAndTheForceRampsIn) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 2.4;
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  // A presses 5 cm down into the paste and holds, says bye; B connects at once, its device 9 cm
+  // above the paste's surface... clear of it (the device's origin is the tool's first keyframe).
+  nlohmann::json a_report, b_report;
+  std::thread clients([&] {
+    ClientProcess a(port, {"--duration", "1.0", "--motion", "hold", "--depth", "0.05"}, "first");
+    a_report = a.wait();
+    ClientProcess b(port, {"--duration", "1.0", "--motion", "still"}, "second");
+    b_report = b.wait();
+  });
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  clients.join();
+  print_timing(r);
+  ASSERT_FALSE(a_report.is_null());
+  ASSERT_FALSE(b_report.is_null());
+  expect_safe(r, o.profile);
+  const nlohmann::json s = realtime_sections(r);
+  EXPECT_EQ(s["device"]["sessions"], 2);
+  EXPECT_EQ(s["haptic"]["sessions"], 2);
+  EXPECT_GT(a_report["max_force_N"].get<double>(), 0.5) << "the first hand pressed into the paste";
+  // B's session: its poses are numbered from 1 again.
+  const auto& h = r.recording.haptic;
+  std::size_t k0 = 0;
+  for (std::size_t k = 1; k < h.size(); ++k)
+    if (h[k].pose_sequence < h[k - 1].pose_sequence) k0 = k;
+  ASSERT_GT(k0, 0u) << "no second session in the recording";
+  const double t0 = h[k0].t;
+  EXPECT_LE(h[k0].gain, 0.02) << "the force starts again from zero";
+  double largest = 0;
+  for (std::size_t k = k0; k < h.size(); ++k) {
+    const double dt = h[k].t - t0;
+    // The gain ramps in no faster than ramp_up_s allows (a tick's rounding aside).
+    ASSERT_LE(h[k].gain, (dt + 0.002) / o.watchdog.ramp_up_s) << dt;
+    largest = std::max(largest, double(norm(h[k].force)));
+  }
+  std::printf("second session: largest force %.4g N (the first hand's reached %.4g N)\n", largest,
+              a_report["max_force_N"].get<double>());
+  // B's tool is its own, above the paste: it does not feel A's tool in the paste (0.38 N when the
+  // renderer still ramped from A's proxy; before sessions reset the proxy, B got A's tool, up to
+  // 9 N in 9 ms).
+  EXPECT_LT(largest, 0.1);
+  EXPECT_LT(b_report["max_force_N"].get<double>(), 0.1);
+}
+
+// ---- class 6: lock-out ---------------------------------------------------------------------------
+
+// A client that restarted its numbering from the same address without a goodbye had every pose
+// refused (as too old) for as long as its earlier session ran, and those refused poses kept the
+// stale session alive. A hello starts a new session; without one, three poses in a row numbered
+// one after another but far behind are recognised as the restart.
+TEST(HapticSafety, AClientThatRestartsItsNumberingIsANewSession) {
+  for (const bool hello : {false, true}) {
+    RealtimeOptions o = options(ForceMode::coupling);
+    o.duration_s = 2.2;
+    std::vector<std::string> args = {"--duration", "2.0", "--motion", "press", "--depth", "0.03", "--restart-at", "1.0"};
+    if (hello) args.push_back("--hello");
+    const auto [r, c] = run_with_client(o, args, hello ? "restart_hello" : "restart");
+    ASSERT_FALSE(c.is_null()) << "the client failed";
+    expect_safe(r, o.profile);
+    const nlohmann::json d = realtime_sections(r)["device"];
+    EXPECT_EQ(d["sessions"], 2) << "hello " << hello;
+    EXPECT_EQ(d["restarts"], hello ? 0 : 1);
+    EXPECT_EQ(d["hellos"], hello ? 2 : 0);
+    EXPECT_LE(d["too_old"].get<int>() + d["duplicates"].get<int>(), hello ? 0 : 2);
+    EXPECT_GE(d["poses"].get<double>(), c["poses_sent"].get<double>() - 2);
+    EXPECT_EQ(r.haptic.sessions, 2u);
+    // Forces kept coming after the restart: about one for every tick with a new pose.
+    EXPECT_GT(c["forces_after_restart"].get<double>(), 500) << "hello " << hello;
+  }
+}
+
+// ---- class 9: the protocol document --------------------------------------------------------------
+
+std::string protocol_doc() {
+  std::ifstream in("docs/haptic-protocol.md");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The document misled a client written from it: heartbeats took sequence numbers and were counted
+// as lost poses. The reference client numbers its messages as the document says (its hello and
+// heartbeats carry the newest pose's number): nothing is counted lost, and every counter the
+// device reports is named in the document.
+TEST(HapticProtocolDoc, AClientWrittenFromItIsUnderstoodAndEveryCounterIsNamed) {
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 1.7;
+  const auto [r, c] = run_with_client(o, {"--duration", "1.5", "--motion", "press", "--depth", "0.03", "--hello",
+                                          "--heartbeat-every", "0.01"}, "doc");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json d = realtime_sections(r)["device"];
+  EXPECT_GT(c["heartbeats_sent"].get<int>(), 100);
+  EXPECT_EQ(d["heartbeats_received"], c["heartbeats_sent"]);
+  EXPECT_EQ(d["lost"], 0);
+  EXPECT_EQ(d["too_old"], 0);
+  EXPECT_EQ(d["hellos"], 1);
+  EXPECT_EQ(d["sessions"], 1);
+  EXPECT_EQ(d["byes"], 1);
+  EXPECT_EQ(d["poses"], c["poses_sent"]);
+  EXPECT_EQ(d["implausible"], 0);
+  const std::string doc = protocol_doc();
+  ASSERT_FALSE(doc.empty()) << "docs/haptic-protocol.md (tests run from the repository root)";
+  for (const auto& [key, value] : d.items()) {
+    if (key == "name") continue;
+    EXPECT_NE(doc.find("`" + key + "`"), std::string::npos) << "the document does not name `" << key << "`";
+    if (value.is_object()) {
+      for (const auto& [reason, n] : value.items())
+        EXPECT_NE(doc.find("`" + reason + "`"), std::string::npos) << "the document does not name `" << reason << "`";
+    }
+  }
+  for (const char* phrase : {"+1 per pose", "hello", "into the cavity", "origin"})
+    EXPECT_NE(doc.find(phrase), std::string::npos) << phrase;
+}
+
+// ---- class 4: runaway growth over the network ----------------------------------------------------
+
+// Button 1 toggled 500 times a second for 5 s dispensed 707 increments. The haptic loop counts at
+// most limits::max_dispense_presses_per_s presses in any second and refuses (and counts) the rest.
+TEST(HapticSafety, AButtonToggledFastIsRateLimited) {
+  RealtimeOptions o = options(ForceMode::direct);
+  o.workspace.origin = {0.03, 0, 0.11};  // the still device's tool beside the increments' drop
+  o.duration_s = 2.2;
+  const real s = increment_spacing(press_scene());
+  o.dispense_volume = 20 * s * s * s;
+  const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", "--toggle-button-hz", "250"},
+                                      "toggle");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json h = realtime_sections(r)["haptic"];
+  std::printf("presses counted %llu, refused %llu, increments %llu\n", (unsigned long long)r.haptic.dispense_presses,
+              (unsigned long long)r.haptic.dispense_presses_refused, (unsigned long long)r.sim.button_dispenses);
+  EXPECT_GT(r.haptic.dispense_presses_refused, 100u);
+  EXPECT_LE(r.haptic.dispense_presses, std::uint64_t(3 * limits::max_dispense_presses_per_s));  // 2.2 s
+  EXPECT_GE(r.haptic.dispense_presses, std::uint64_t(limits::max_dispense_presses_per_s));
+  EXPECT_EQ(r.sim.button_dispenses, r.haptic.dispense_presses);
+  EXPECT_EQ(h["dispense_presses_refused"], r.haptic.dispense_presses_refused);
+  EXPECT_EQ(r.run.status, "completed");
+}
+
+// However often it is asked, an increment never brings the paste over twice the cavity's volume
+// (or the grid domain's without a tooth): the cavity can hold only so much.
+TEST(Dispense, IncrementsStopAtWhatTheCavityCanHold) {
+  for (const bool tooth : {true, false}) {
+    const Scene scene = tooth ? default_dental_procedure() : press_scene();
+    State state = make_state(scene);
+    const real volume = tooth ? scene.tooth->cavity_volume() / 6 : default_increment_volume(scene) * 4;
+    int accepted = 0;
+    for (int press = 0; press < 100; ++press)
+      if (dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene)) > 0) ++accepted;
+    std::printf("%s: %d of 100 increments, paste %.4g of at most %.4g m^3\n", tooth ? "crown" : "press scene", accepted,
+                material_volume(state), max_material_volume(scene));
+    EXPECT_GT(accepted, 2);
+    EXPECT_LT(accepted, 100);
+    EXPECT_LE(material_volume(state), max_material_volume(scene));
+    EXPECT_GT(material_volume(state) + volume, max_material_volume(scene)) << "refused only when it would not fit";
+    if (tooth) {
+      EXPECT_DOUBLE_EQ(max_material_volume(scene), 2 * scene.tooth->cavity_volume());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
