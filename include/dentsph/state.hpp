@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dentsph/bonds.hpp"
+#include "dentsph/cure_state.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -128,6 +129,7 @@ class State {
   std::vector<real> rho_static;
   bool rho_static_valid = false;
   BondStore bonds;
+  CureState cure;  // degree of conversion, dose, increment (include/dentsph/cure_state.hpp)
 
   // ---- tool and time ------------------------------------------------------------------------
   Pose tool_pose;          // the pose the next step moves the tool to (set by the caller)
