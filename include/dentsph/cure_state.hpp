@@ -30,7 +30,6 @@ class CureState {
   // A material table in the Model will replace them.
   std::vector<real> mu0, Kp0, rho00, Ka0;
   std::vector<Vec3> gel_pos;              // m, where the particle was when it set (rigid only)
-  std::vector<real> gel_alpha;            // its conversion then (rigid only)
 
   std::uint16_t increments = 0;           // increments begun so far
   real next_transition = 0;               // s, State::time of the next gelation and shrinkage pass

@@ -27,7 +27,6 @@ void CureState::append(const ParticleInit& p, real time) {
   rho00.push_back(p.material.rho0);
   Ka0.push_back(p.material.Ka);
   gel_pos.push_back({});
-  gel_alpha.push_back(0);
 }
 
 void CureState::compact(const std::vector<std::uint32_t>& new_id, std::uint32_t kept) {
@@ -38,7 +37,7 @@ void CureState::compact(const std::vector<std::uint32_t>& new_id, std::uint32_t 
       if (new_id[id] != ~0u) v[new_id[id]] = old[id];
   };
   rekey(alpha), rekey(dose), rekey(irradiance), rekey(increment), rekey(curable), rekey(rigid);
-  rekey(mixed_at), rekey(mu0), rekey(Kp0), rekey(rho00), rekey(Ka0), rekey(gel_pos), rekey(gel_alpha);
+  rekey(mixed_at), rekey(mu0), rekey(Kp0), rekey(rho00), rekey(Ka0), rekey(gel_pos);
 }
 
 std::uint16_t CureState::begin_increment(std::uint32_t first_id, std::uint32_t count) {
@@ -53,8 +52,7 @@ std::size_t CureState::bytes() const {
   const std::size_t total = capacity_bytes(alpha) + capacity_bytes(dose) + capacity_bytes(irradiance) +
                             capacity_bytes(increment) + capacity_bytes(curable) + capacity_bytes(rigid) +
                             capacity_bytes(mixed_at) + capacity_bytes(mu0) + capacity_bytes(Kp0) +
-                            capacity_bytes(rho00) + capacity_bytes(Ka0) + capacity_bytes(gel_pos) +
-                            capacity_bytes(gel_alpha) + capacity_bytes(beam_x) + capacity_bytes(beam_y) +
+                            capacity_bytes(rho00) + capacity_bytes(Ka0) + capacity_bytes(gel_pos) + capacity_bytes(beam_x) + capacity_bytes(beam_y) +
                             capacity_bytes(beam_z);
   return total / particles();
 }

@@ -5,8 +5,9 @@
 // to a wall, and between two set particles are dropped, not counted as broken), and the paste
 // placed on it later bonds to it. Then, as its conversion rises, it shrinks with its increment:
 // each rigid particle's place is its place at gelation scaled towards the mass centroid of its
-// increment's rigid particles by the cube root of the volume left, (1 - S alpha / alpha_max) /
-// (1 - S alpha_gel_i / alpha_max): free shrinkage of the set part, mass kept.
+// increment's rigid particles by the cube root of the volume left since the gel point,
+// (1 - S alpha / alpha_max) / (1 - S alpha_gel / alpha_max): free shrinkage of the set part, mass
+// kept. (A particle found past the gel point by a pass shrinks at once by what it passed it by.)
 #include <algorithm>
 #include <cmath>
 
@@ -31,7 +32,6 @@ void make_rigid(State& s, std::uint32_t i) {
   s.vel[i] = {};
   s.cure.rigid[id] = 1;
   s.cure.gel_pos[id] = s.pos[i];
-  s.cure.gel_alpha[id] = s.cure.alpha[id];
 }
 
 // The volume fraction left of paste at conversion alpha.
@@ -68,7 +68,7 @@ CureUpdate apply_cure_transition(const CureModel& cm, State& s) {
     auto target = [&](std::uint32_t i) {
       const std::uint32_t id = s.id[i];
       const Vec3 centre = sum[c.increment[id]] / mass[c.increment[id]];
-      const real scale = std::cbrt(volume_left(m, c.alpha[id]) / volume_left(m, c.gel_alpha[id]));
+      const real scale = std::cbrt(volume_left(m, c.alpha[id]) / volume_left(m, m.alpha_gel));
       return centre + (c.gel_pos[id] - centre) * scale;
     };
     for (std::uint32_t i = 0; i < n; ++i)
