@@ -1,5 +1,5 @@
 // dentsph: the command-line program. Subcommands: run (an offline run of a scene), validate
-// (check a scene without running it).
+// (check a scene without running it), bench, replay, material-test (virtual material tests).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -17,6 +17,7 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
+#include "material_test.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
 
@@ -163,6 +164,9 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
 
+  cli::MaterialTestCommand material_test;
+  material_test.add_to(app);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) {
@@ -173,6 +177,7 @@ int main(int argc, char** argv) {
       return cmd_run(run_scene, run_dental, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
+    if (material_test.chosen()) return material_test.run();
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
