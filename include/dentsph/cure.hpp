@@ -28,8 +28,10 @@ struct CureModel {
   // Pa s: the largest viscosity cured_parameters may give (make_cure_model: 0.8 of the viscous
   // stability limit of the Model's dt), so that stiffening never makes the step unstable.
   real viscosity_limit = 1e30;
-  // s between the passes that turn set paste rigid and move rigid paste as it shrinks (each pass
-  // that changes something makes the next step rebuild its lists and the boundary's static density).
+  // s between cure passes (cure_between_steps): the light's transport, the conversion and the
+  // paste's parameters, the gel transition and shrinkage (a pass that sets or moves paste makes the
+  // next step rebuild its lists and the boundary's static density). Between passes a step adds only
+  // the dose, from the last transport's irradiance.
   real transition_interval = 1e-3;
   // m: rigid paste is moved to its shrunk place once some particle's place has moved this far.
   real shrink_tolerance = 0;
@@ -42,26 +44,30 @@ CureModel make_cure_model(const Model& model, const CureMaterial& paste, real sp
 
 // What one cure update changed.
 struct CureUpdate {
-  std::uint32_t lit = 0;          // paste particles the light reached
-  std::uint32_t converted = 0;    // paste particles whose conversion rose
+  std::uint32_t lit = 0;          // paste particles the light reaches (at its last transport)
+  std::uint32_t converted = 0;    // paste particles whose conversion rose (a pass)
   std::uint32_t set = 0;          // particles that became rigid (gel point passed)
   bool moved = false;             // rigid particles were moved by shrinkage
   // Particles' roles, positions or parameters changed: a GPU stepper must take them up again.
   bool changed() const { return converted > 0 || set > 0 || moved; }
 };
 
-// The one entry point, called between steps (after each step, with the step's dt): the light's
-// irradiance on each paste particle (when `light` is on), dose and conversion over dt, the paste's
-// parameters from its conversion, and every transition_interval the gel transition and shrinkage.
-// Costs nothing measurable when there is no light and nothing is setting. Any dt works: a loop may
-// advance the cure in larger steps while the paste is at rest under the light.
+// The one entry point, called between steps (after each step, with the step's dt and the light
+// that is on, ActiveLights): every call adds the radiant exposure of dt to each lit paste particle;
+// every transition_interval of State::time (and at once when the light comes on, goes off or moves)
+// a pass recomputes the light's transport, each particle's conversion (from its dose, or its age
+// for a self-setting material) and its parameters (cured_parameters), turns paste past its gel
+// point rigid and moves rigid paste as it shrinks. Without light and with nothing setting, a call
+// returns at once. Any dt works: a loop may advance the cure in larger steps while the paste is at
+// rest under the light (each call then is a pass).
 CureUpdate cure_between_steps(const CureModel& cure, State& state, const std::optional<CuringLight>& light, real dt);
 
 // The light transport alone: state.cure.irradiance of every paste particle (W/m^2; 0 outside the
-// beam or behind the window). Part of cure_between_steps.
+// beam or behind the window) and the list of the lit ones (cure.lit_ids). Returns how many are lit.
+// Part of cure_between_steps' pass.
 std::uint32_t compute_irradiance(const CureModel& cure, State& state, const CuringLight& light);
 
-// The gel transition and shrinkage alone (part of cure_between_steps, every transition_interval):
+// The gel transition and shrinkage alone (part of cure_between_steps' pass):
 // paste past alpha_gel becomes rigid, and rigid paste moves towards its increment's centroid as it
 // shrinks. Returns what it did (set, moved).
 CureUpdate apply_cure_transition(const CureModel& cure, State& state);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "dentsph/curing_light.hpp"
 #include "dentsph/vec3.hpp"
 
 namespace dentsph {
@@ -32,9 +33,15 @@ class CureState {
   std::vector<Vec3> gel_pos;              // m, where the particle was when it set (rigid only)
 
   std::uint16_t increments = 0;           // increments begun so far
-  real next_transition = 0;               // s, State::time of the next gelation and shrinkage pass
+  // The cure pass (transport, conversion, parameters, transition; cure_between_steps): when the
+  // next is due (s, State::time), and the light the last one saw.
+  real next_pass = 0;
+  bool light_on = false;
+  CuringLight light;
 
-  // ---- scratch of the light transport (sized on demand, kept between calls) -------------------
+  // ---- the light transport's results and scratch (sized on demand, kept between calls) --------
+  std::vector<std::uint32_t> lit_ids;        // ids of the paste particles the light reaches
+  std::vector<real> lit_irradiance;          // W/m^2 on each, in the same order
   std::vector<real> beam_x, beam_y, beam_z;  // [n] by index: each particle in the beam's frame
   std::vector<real> beam_grid;               // attenuation per node, then its column integrals
 

@@ -31,48 +31,67 @@ CureModel make_cure_model(const Model& model, const CureMaterial& paste, real sp
   return cm;
 }
 
+namespace {
+
+bool same_light(const CuringLight& a, const CuringLight& b) {
+  return a.tip == b.tip && a.direction == b.direction && a.diameter == b.diameter && a.irradiance == b.irradiance &&
+         a.on == b.on;
+}
+
+// The conversion of every paste particle from its dose and age, and its parameters from it.
+std::uint32_t update_conversion(const CureModel& cm, State& s) {
+  CureState& c = s.cure;
+  const CureMaterial& m = cm.paste;
+  std::uint32_t converted = 0;
+  const std::uint32_t n = s.size();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t id = s.id[i];
+    if (!c.curable[id]) continue;
+    const real alpha = std::max(conversion_from_dose(m, c.dose[id]), conversion_from_age(m, s.time - c.mixed_at[id]));
+    if (!(alpha > c.alpha[id])) continue;
+    c.alpha[id] = alpha;
+    const Material p = cured_parameters(m, {c.mu0[id], c.Kp0[id], c.rho00[id], c.Ka0[id]}, alpha, cm.viscosity_limit);
+    s.mu[i] = p.mu;
+    s.Kp[i] = p.Kp;
+    s.rho0[i] = p.rho0;
+    s.Ka[i] = p.Ka;
+    ++converted;
+  }
+  return converted;
+}
+
+}  // namespace
+
 CureUpdate cure_between_steps(const CureModel& cm, State& s, const std::optional<CuringLight>& light, real dt) {
   CureState& c = s.cure;
   const CureMaterial& m = cm.paste;
   CureUpdate up;
   const bool lit = light && light->on && light->irradiance > 0 && m.light_cured;
-  // Nothing to do without light or setting, once the last transition has been applied.
-  const bool due = s.time >= c.next_transition;
-  if (!lit && !m.self_setting && !due) return up;
-
-  if (lit) up.lit = compute_irradiance(cm, s, *light);
-  if (lit || m.self_setting) {
-    const std::uint32_t n = s.size();
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint32_t id = s.id[i];
-      if (!c.curable[id]) continue;
-      if (lit) c.dose[id] += c.irradiance[id] * dt;
-      const real alpha = std::max(conversion_from_dose(m, c.dose[id]), conversion_from_age(m, s.time - c.mixed_at[id]));
-      if (!(alpha > c.alpha[id])) continue;
-      c.alpha[id] = alpha;
-      const Material p = cured_parameters(m, {c.mu0[id], c.Kp0[id], c.rho00[id], c.Ka0[id]}, alpha, cm.viscosity_limit);
-      s.mu[i] = p.mu;
-      s.Kp[i] = p.Kp;
-      s.rho0[i] = p.rho0;
-      s.Ka[i] = p.Ka;
-      ++up.converted;
+  // A light turned on, off or moved: a pass now.
+  if (lit != c.light_on || (lit && !same_light(*light, c.light))) {
+    c.light_on = lit;
+    if (lit) c.light = *light;
+    c.next_pass = std::min(c.next_pass, s.time);
+    if (!lit) {
+      std::fill(c.irradiance.begin(), c.irradiance.end(), real(0));
+      c.lit_ids.clear();
+      c.lit_irradiance.clear();
     }
-    // A conversion that rose makes the next transition pass due (at most every interval).
-    if (up.converted > 0 && c.next_transition > s.time + cm.transition_interval)
-      c.next_transition = s.time + cm.transition_interval;
-  } else if (!lit) {
-    // No light any more: zero what the last lit update left.
-    std::fill(c.irradiance.begin(), c.irradiance.end(), real(0));
   }
-  if (s.time >= c.next_transition) {
-    const CureUpdate t = apply_cure_transition(cm, s);
-    up.set = t.set;
-    up.moved = t.moved;
-    // The next pass: after an interval while anything converts or moves, else when conversion
-    // next rises (set above).
-    c.next_transition = (up.converted > 0 || t.set > 0 || t.moved) ? s.time + cm.transition_interval
-                                                                     : std::numeric_limits<real>::infinity();
-  }
+  const bool pass = s.time >= c.next_pass;
+  if (pass && lit) compute_irradiance(cm, s, *light);
+  // Every step: the dose, from the irradiance of the last transport.
+  up.lit = std::uint32_t(c.lit_ids.size());
+  for (std::size_t k = 0; k < c.lit_ids.size(); ++k) c.dose[c.lit_ids[k]] += c.lit_irradiance[k] * dt;
+  if (!pass) return up;
+  // The pass: conversion, parameters, gel transition and shrinkage.
+  up.converted = update_conversion(cm, s);
+  const CureUpdate t = apply_cure_transition(cm, s);
+  up.set = t.set;
+  up.moved = t.moved;
+  // The next pass after an interval while anything can change, else when a light comes on.
+  const bool active = lit || m.self_setting || up.converted > 0 || up.set > 0 || up.moved;
+  c.next_pass = active ? s.time + cm.transition_interval : std::numeric_limits<real>::infinity();
   return up;
 }
 

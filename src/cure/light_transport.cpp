@@ -51,6 +51,8 @@ std::uint32_t compute_irradiance(const CureModel& cm, State& s, const CuringLigh
   c.beam_y.resize(n);
   c.beam_z.resize(n);
   for (std::uint32_t id = 0; id < n; ++id) c.irradiance[id] = 0;
+  c.lit_ids.clear();
+  c.lit_irradiance.clear();
   if (!light.on || !(light.irradiance > 0) || !(norm2(light.direction) > 0) || !(cm.spacing > 0)) return 0;
 
   const BeamFrame f(light);
@@ -143,6 +145,8 @@ std::uint32_t compute_irradiance(const CureModel& cm, State& s, const CuringLigh
     const real tz = fz - real(iz);
     const real* t = g + node(ix, iy, iz);
     c.irradiance[id] = light.irradiance * std::exp(-(t[0] * (1 - tz) + t[1] * tz));
+    c.lit_ids.push_back(id);
+    c.lit_irradiance.push_back(c.irradiance[id]);
   }
   return lit;
 }
