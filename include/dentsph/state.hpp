@@ -147,6 +147,9 @@ class State {
   std::vector<Role> scratch_role;
 
   std::uint32_t size() const { return std::uint32_t(pos.size()); }
+  // Filling material: a moving material particle, or paste that has set (now a static boundary
+  // particle, cure.rigid). What the filling's assessment and the pictures count as paste.
+  bool is_paste(std::uint32_t i) const { return role[i] == Role::material || cure.rigid[id[i]]; }
 
   // Appends particles (between steps only); tool particles are placed at tool_pose. Sizes every
   // buffer, the bond store and the grid scratch for `model`.

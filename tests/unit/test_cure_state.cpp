@@ -4,7 +4,10 @@
 
 #include <cmath>
 
+#include "dentsph/assess.hpp"
 #include "dentsph/cure.hpp"
+#include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/step.hpp"
 #include "dentsph/tools.hpp"
 #include "support/cure_scenes.hpp"
@@ -115,6 +118,25 @@ TEST(CureTransition, NoLightNoWork) {
   EXPECT_EQ(up.lit, 0u);
   EXPECT_EQ(st.mu, mu);
   for (std::uint32_t id = 0; id < st.size(); ++id) EXPECT_EQ(st.cure.alpha[id], 0);
+}
+
+// Paste that has set is a boundary particle for the step, but still filling for the assessment
+// and the pictures (State::is_paste).
+TEST(CureTransition, SetPasteIsStillFillingForTheAssessment) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const CavityAssessor assessor(*sc.tooth);
+  const Assessment before = assessor.assess(st, sc.model);
+  const CureModel cm = make_cure_model(sc.model, cure_material_preset("composite"), sc.material_spacing, scene_paste(sc).material);
+  std::uint32_t paste = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (st.role[i] == Role::material) st.cure.alpha[st.id[i]] = cm.paste.alpha_gel, ++paste;
+  EXPECT_EQ(apply_cure_transition(cm, st).set, paste);
+  EXPECT_EQ(st.count(Role::material), 0u);
+  for (std::uint32_t i = 0; i < st.size(); ++i) EXPECT_EQ(st.is_paste(i), st.cure.curable[st.id[i]] == 1);
+  const Assessment after = assessor.assess(st, sc.model);
+  EXPECT_EQ(after.material_particles, before.material_particles);
+  EXPECT_EQ(after.fill_fraction, before.fill_fraction);
 }
 
 }  // namespace
