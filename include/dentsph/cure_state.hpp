@@ -44,6 +44,8 @@ class CureState {
   std::vector<real> lit_irradiance;          // W/m^2 on each, in the same order
   std::vector<real> beam_x, beam_y, beam_z;  // [n] by index: each particle in the beam's frame
   std::vector<real> beam_grid;               // attenuation per node, then its column integrals
+  std::vector<Vec3> increment_sum;           // [increments + 1] shrinkage: mass-weighted gel places
+  std::vector<real> increment_mass;          // [increments + 1] and masses of the set paste
 
   std::uint32_t particles() const { return std::uint32_t(alpha.size()); }
 

@@ -56,8 +56,10 @@ CureUpdate apply_cure_transition(const CureModel& cm, State& s) {
   // Shrinkage of the rigid part of each increment about its mass centroid at gelation.
   if (m.shrinkage > 0) {
     const std::size_t incs = std::size_t(c.increments) + 1;
-    std::vector<Vec3> sum(incs);
-    std::vector<real> mass(incs, 0);
+    std::vector<Vec3>& sum = c.increment_sum;
+    std::vector<real>& mass = c.increment_mass;
+    sum.assign(incs, Vec3{});  // no allocation once sized
+    mass.assign(incs, 0);
     for (std::uint32_t i = 0; i < n; ++i) {
       const std::uint32_t id = s.id[i];
       if (!c.rigid[id]) continue;
