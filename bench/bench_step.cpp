@@ -67,10 +67,24 @@ void BM_DentalCureUpdate(benchmark::State& bs) {
   const CureModel cure = make_cure_model(sc.model, never_sets, sc.material_spacing, scene_paste(sc).material);
   const std::optional<CuringLight> light = dental_light(sc);
   std::uint32_t lit = 0;
-  for (auto _ : bs) lit = cure_between_steps(cure, st, light, sc.model.dt).lit;
+  for (auto _ : bs) {
+    st.time += sc.model.dt;  // as the step would
+    lit = cure_between_steps(cure, st, light, sc.model.dt).lit;
+  }
   bs.counters["lit"] = lit;
 }
 BENCHMARK(BM_DentalCureUpdate)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The light's transport alone (part of a pass).
+void BM_DentalLightTransport(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const CureModel cure =
+      make_cure_model(sc.model, cure_material_preset("composite"), sc.material_spacing, scene_paste(sc).material);
+  const CuringLight light = dental_light(sc);
+  for (auto _ : bs) benchmark::DoNotOptimize(compute_irradiance(cure, st, light));
+}
+BENCHMARK(BM_DentalLightTransport)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // One cure pass alone (what a call does every transition_interval: the transport, every paste
 // particle's conversion and parameters, the transition check): the size of the spike.
