@@ -54,8 +54,8 @@ struct CureUpdate {
 
 // The one entry point, called between steps (after each step, with the step's dt and the light
 // that is on, ActiveLights): every call adds the radiant exposure of dt to each lit paste particle;
-// every transition_interval of State::time (and at once when the light comes on, goes off or moves)
-// a pass recomputes the light's transport, each particle's conversion (from its dose, or its age
+// every transition_interval of State::time (and at once when the light comes on or goes off; a
+// light that moves is taken at the next pass) a pass recomputes the light's transport, each particle's conversion (from its dose, or its age
 // for a self-setting material) and its parameters (cured_parameters), turns paste past its gel
 // point rigid and moves rigid paste as it shrinks. Without light and with nothing setting, a call
 // returns at once. Any dt works: a loop may advance the cure in larger steps while the paste is at

@@ -67,16 +67,20 @@ CureUpdate cure_between_steps(const CureModel& cm, State& s, const std::optional
   const CureMaterial& m = cm.paste;
   CureUpdate up;
   const bool lit = light && light->on && light->irradiance > 0 && m.light_cured;
-  // A light turned on, off or moved: a pass now.
-  if (lit != c.light_on || (lit && !same_light(*light, c.light))) {
+  // A light turned on or off: a pass now. A light that moved (a hand-held light follows the hand):
+  // the next pass, within an interval, takes its new place.
+  if (lit != c.light_on) {
     c.light_on = lit;
-    if (lit) c.light = *light;
     c.next_pass = std::min(c.next_pass, s.time);
     if (!lit) {
       std::fill(c.irradiance.begin(), c.irradiance.end(), real(0));
       c.lit_ids.clear();
       c.lit_irradiance.clear();
     }
+  }
+  if (lit && !same_light(*light, c.light)) {
+    c.light = *light;
+    c.next_pass = std::min(c.next_pass, s.time + cm.transition_interval);
   }
   const bool pass = s.time >= c.next_pass;
   if (pass && lit) compute_irradiance(cm, s, *light);

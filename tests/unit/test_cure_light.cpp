@@ -176,5 +176,40 @@ TEST(CureLight, DoseIsIrradianceTimesTimeWhateverTheUpdates) {
   }
 }
 
+// A light that comes on or goes off is taken at once; one that moves, at the next pass (within
+// transition_interval), and every call adds the dose of its dt.
+TEST(CureLight, APassTakesTheLightOnOffAtOnceAndAMoveWithinAnInterval) {
+  const real s = 0.2 * mm, dt = 5e-5;
+  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 3 * mm}, dt);
+  State st;
+  add_paste_layers(model, st, s, 40, 10, 0, 2);  // 8 x 2 mm
+  const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);
+  auto lit_x = [&] {  // mean x of the lit paste
+    real x = 0;
+    int n = 0;
+    for (std::uint32_t i = 0; i < st.size(); ++i)
+      if (st.cure.irradiance[st.id[i]] > 0) x += st.pos[i].x, ++n;
+    return n ? x / n : -1;
+  };
+  auto call = [&](const std::optional<CuringLight>& l) {
+    st.time += dt;
+    return cure_between_steps(cm, st, l, dt);
+  };
+  const CuringLight left = light_above({2 * mm, 1 * mm, 1 * mm}, 1000, 2 * mm);
+  CuringLight right = left;
+  right.tip.x = 6 * mm;
+  EXPECT_GT(call(left).lit, 0u);
+  EXPECT_NEAR(lit_x(), 2 * mm, 0.1 * mm);
+  const real dose = st.cure.dose[st.cure.lit_ids[0]];
+  call(left);
+  EXPECT_NEAR(st.cure.dose[st.cure.lit_ids[0]] - dose, st.cure.lit_irradiance[0] * dt, 1e-12);
+  call(right);
+  EXPECT_NEAR(lit_x(), 2 * mm, 0.1 * mm) << "a move is taken at the next pass";
+  for (real t = 0; t < cm.transition_interval; t += dt) call(right);
+  EXPECT_NEAR(lit_x(), 6 * mm, 0.1 * mm) << "within an interval";
+  EXPECT_EQ(call(std::nullopt).lit, 0u);
+  EXPECT_EQ(lit_x(), -1) << "off at once";
+}
+
 }  // namespace
 }  // namespace dentsph::testing
