@@ -6,6 +6,9 @@
 #include <benchmark/benchmark.h>
 
 #include "dentsph/bench.hpp"
+#include "dentsph/cure.hpp"
+#include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/simulation.hpp"
 #include "step/stages.hpp"
 
@@ -56,6 +59,100 @@ void BM_DentalSimulation(benchmark::State& bs) {
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DentalSimulation)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// Light curing on the dental scene (src/cure): the curing light over the cavity, 1000 mW/cm^2.
+CuringLight dental_light(const Scene& sc) {
+  CuringLight light;
+  light.tip = sc.tooth->frame().to_world({0, 0, 2e-3});
+  light.direction = -sc.tooth->frame().z;
+  return light;
+}
+
+// The cure update alone, as a run calls it after every step (the dose each step, a pass every
+// transition_interval: 1 in 20 steps at the dental dt). The paste is kept from setting (gel point at
+// alpha_max), so that every pass does the same work; the cure update is serial.
+void BM_DentalCureUpdate(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  for (int k = 0; k < 10; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st);
+  }
+  CureMaterial never_sets = cure_material_preset("composite");
+  never_sets.alpha_gel = never_sets.alpha_max;
+  const CureModel cure = make_cure_model(sc.model, never_sets, sc.material_spacing, scene_paste(sc).material);
+  const std::optional<CuringLight> light = dental_light(sc);
+  std::uint32_t lit = 0;
+  for (auto _ : bs) {
+    st.time += sc.model.dt;  // as the step would
+    lit = cure_between_steps(cure, st, light, sc.model.dt).lit;
+  }
+  bs.counters["lit"] = lit;
+}
+BENCHMARK(BM_DentalCureUpdate)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The light's transport alone (part of a pass).
+void BM_DentalLightTransport(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const CureModel cure =
+      make_cure_model(sc.model, cure_material_preset("composite"), sc.material_spacing, scene_paste(sc).material);
+  const CuringLight light = dental_light(sc);
+  for (auto _ : bs) benchmark::DoNotOptimize(compute_irradiance(cure, st, light));
+}
+BENCHMARK(BM_DentalLightTransport)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// One cure pass alone (what a call does every transition_interval: the transport, every paste
+// particle's conversion and parameters, the transition check): the size of the spike.
+void BM_DentalCurePass(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  for (int k = 0; k < 10; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st);
+  }
+  CureMaterial never_sets = cure_material_preset("composite");
+  never_sets.alpha_gel = never_sets.alpha_max;
+  const CureModel cure = make_cure_model(sc.model, never_sets, sc.material_spacing, scene_paste(sc).material);
+  const std::optional<CuringLight> light = dental_light(sc);
+  for (auto _ : bs) {
+    st.cure.next_pass = -1;
+    cure_between_steps(cure, st, light, sc.model.dt);
+  }
+}
+BENCHMARK(BM_DentalCurePass)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The step and the cure update after it, over the first 0.1 s of light (the top millimetre of
+// paste sets: role changes, the boundary's static density recomputed, lists rebuilt), restarting
+// from the unlit state every 2000 steps; compare with BM_DentalStep.
+void BM_DentalStepCuring(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State start = make_state(sc);
+  const StepOptions opt{int(bs.range(0)), nullptr};
+  for (int k = 0; k < 10; ++k) {
+    start.tool_pose = sc.tool.at(start.time + sc.model.dt);
+    step(sc.model, start, opt);
+  }
+  const CureModel cure =
+      make_cure_model(sc.model, cure_material_preset("composite"), sc.material_spacing, scene_paste(sc).material);
+  const std::optional<CuringLight> light = dental_light(sc);
+  State st = start;
+  int k = 0;
+  std::uint64_t set = 0;
+  for (auto _ : bs) {
+    if (k++ == 2000) {
+      bs.PauseTiming();
+      st = start;
+      k = 1;
+      bs.ResumeTiming();
+    }
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, opt);
+    set += cure_between_steps(cure, st, light, sc.model.dt).set;
+  }
+  bs.counters["set_per_step"] = benchmark::Counter(double(set) / double(bs.iterations()));
+}
+BENCHMARK(BM_DentalStepCuring)->Arg(1)->Arg(2)->Iterations(4000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // One stage of the dental scene's step, repeated on the state after 200 steps (the paste pressed in,
 // bonds formed): the density pass over the kept lists (with each particle's pressure), and the

@@ -1,6 +1,7 @@
 // dentsph: the command-line program. Subcommands: run (an offline run of a scene, or the haptic
 // runtime with --realtime), replay (a realtime run's recording), validate (check a scene without
-// running it), bench (steps per second).
+// running it), bench (steps per second), report (the tutor's report), material-test (virtual
+// material tests).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -20,6 +21,7 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
+#include "material_test.hpp"
 #include "output_dir.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
@@ -194,6 +196,9 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   validate->add_option("scene", validate_scene, "Scene file (JSON)")->required();
 
+  cli::MaterialTestCommand material_test;
+  material_test.add_to(app);
+
   // A command line CLI11 refuses (a missing scene file, an unknown option, a value out of range)
   // exits 2 as every other refusal does (CLI11's own codes are 100 and up); --help exits 0.
   try {
@@ -212,6 +217,7 @@ int main(int argc, char** argv) {
     }
     if (*validate) return cmd_validate(validate_scene);
     if (report.chosen()) return report.run();
+    if (material_test.chosen()) return material_test.run();
     bench_opt.backend = parse_backend(bench_backend);
     if (*replay)
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),

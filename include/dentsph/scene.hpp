@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dentsph/curing_light.hpp"
 #include "dentsph/model.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/state.hpp"
@@ -34,10 +35,12 @@ struct ToolTrajectory {
   Pose at(real t) const;
 };
 
-// Something that happens to a run at a time: an increment of material dropped in, or another
-// instrument taken up. Resolved when the scene is read: the runner only applies it.
+// Something that happens to a run at a time: an increment of material dropped in, another
+// instrument taken up, or the curing light turned on for a while. Resolved when the scene is read:
+// the runner only applies it (a cure event changes no particle: ActiveLights says when its light is
+// on, include/dentsph/active_lights.hpp).
 struct ProcedureEvent {
-  enum class Kind { dispense, switch_tool };
+  enum class Kind { dispense, switch_tool, cure };
   Kind kind = Kind::dispense;
   real t = 0;                            // s, applied before the first step at or after t
   std::vector<ParticleInit> particles;   // dispense: the increment (world frame);
@@ -49,6 +52,9 @@ struct ProcedureEvent {
   // cannot know. Fewer when fewer are free.
   std::size_t count = 0;
   real clearance = 0;
+  // cure: the light (world frame), on from t for `duration` seconds.
+  CuringLight light;
+  real duration = 0;
 };
 
 struct OutputSettings {
@@ -86,8 +92,9 @@ Scene parse_scene(const std::string& json_text, const std::string& source);
 // The initial state of a scene: tool at its first keyframe, particles added.
 State make_state(const Scene& scene);
 
-// Applies a procedure event to a state between steps (adds the increment, or replaces the tool
-// particles, which then follow the tool pose).
+// Applies a procedure event to a state between steps (adds the increment, numbered as the next
+// one in state.cure, or replaces the tool particles, which then follow the tool pose; a cure event
+// changes nothing here).
 void apply_event(const Scene& scene, State& state, const ProcedureEvent& event);
 
 // Particle mass that gives a particle inside an infinite simple cubic lattice of `spacing` the

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dentsph/bonds.hpp"
+#include "dentsph/cure_state.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -128,6 +129,7 @@ class State {
   std::vector<real> rho_static;
   bool rho_static_valid = false;
   BondStore bonds;
+  CureState cure;  // degree of conversion, dose, increment (include/dentsph/cure_state.hpp)
 
   // ---- tool and time ------------------------------------------------------------------------
   Pose tool_pose;          // the pose the next step moves the tool to (set by the caller)
@@ -145,6 +147,9 @@ class State {
   std::vector<Role> scratch_role;
 
   std::uint32_t size() const { return std::uint32_t(pos.size()); }
+  // Filling material: a moving material particle, or paste that has set (now a static boundary
+  // particle, cure.rigid). What the filling's assessment and the pictures count as paste.
+  bool is_paste(std::uint32_t i) const { return role[i] == Role::material || cure.rigid[id[i]]; }
 
   // Appends particles (between steps only); tool particles are placed at tool_pose. Sizes every
   // buffer, the bond store and the grid scratch for `model`.

@@ -151,7 +151,7 @@ Assessment CavityAssessor::assess(const State& state, const Model& model, const 
   for (std::uint32_t i = 0; i < state.size(); ++i) {
     if (state.role[i] == Role::tool && is_finite(state.pos[i]))
       tool.push_back(fr.to_local(state.pos[i]));
-    if (state.role[i] != Role::material) continue;
+    if (!state.is_paste(i)) continue;  // moving paste, or paste that has set
     ++a.material_particles;
     const Vec3& w = state.pos[i];
     if (!is_finite(w) || !inside(w, m.keep.min, m.keep.max)) {

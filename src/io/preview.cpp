@@ -58,7 +58,7 @@ void write_preview_png(const std::filesystem::path& file, const State& s, const 
   Vec3 centre;
   int counted = 0;
   for (std::uint32_t i = 0; i < s.size(); ++i)
-    if (s.role[i] == Role::material && is_finite(s.pos[i])) centre += s.pos[i], ++counted;
+    if (s.is_paste(i) && is_finite(s.pos[i])) centre += s.pos[i], ++counted;
   if (counted == 0)
     for (std::uint32_t i = 0; i < s.size(); ++i)
       if (is_finite(s.pos[i])) centre += s.pos[i], ++counted;
@@ -89,7 +89,8 @@ void write_preview_png(const std::filesystem::path& file, const State& s, const 
               [&](std::uint32_t a, std::uint32_t b) { return dot(s.pos[a], depth) < dot(s.pos[b], depth); });
     for (std::uint32_t i : order) {
       const Vec3 d = s.pos[i] - centre;
-      p.disc(0.5 * n + dot(d, right) * scale, 0.5 * n - dot(d, upward) * scale, radius, colour_of(s.role[i]));
+      p.disc(0.5 * n + dot(d, right) * scale, 0.5 * n - dot(d, upward) * scale, radius,
+             colour_of(s.is_paste(i) ? Role::material : s.role[i]));  // set paste is still paste
     }
   };
   Panel side(n), top(n);

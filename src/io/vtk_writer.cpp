@@ -59,6 +59,14 @@ void write_vtu(const std::filesystem::path& file, const State& s) {
   const auto o_role = data.add(role);
   const auto o_bonds = data.add(bonds);
   const auto o_id = data.add(ids);
+  // The cure state (kept by id): degree of conversion and radiant exposure in J/cm^2.
+  std::vector<double> conversion(n), dose(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    conversion[i] = s.cure.alpha[s.id[i]];
+    dose[i] = s.cure.dose[s.id[i]] / 1e4;
+  }
+  const auto o_conversion = data.add(conversion);
+  const auto o_dose = data.add(dose);
   std::vector<std::int64_t> conn(n), offs(n);
   for (std::size_t i = 0; i < n; ++i) conn[i] = std::int64_t(i), offs[i] = std::int64_t(i + 1);
   const auto o_conn = data.add(conn);
@@ -76,6 +84,8 @@ void write_vtu(const std::filesystem::path& file, const State& s) {
   xml += array_tag("Int32", "role", 1, o_role) + "\n";  // 0 material, 1 boundary, 2 tool
   xml += array_tag("Int32", "bond_count", 1, o_bonds) + "\n";
   xml += array_tag("UInt32", "id", 1, o_id) + "\n";
+  xml += array_tag("Float64", "conversion", 1, o_conversion) + "\n";
+  xml += array_tag("Float64", "dose_J_per_cm2", 1, o_dose) + "\n";
   xml += "</PointData>\n<Points>\n" + array_tag("Float64", "position", 3, o_points) + "\n</Points>\n";
   xml += "<Cells>\n" + array_tag("Int64", "connectivity", 1, o_conn) + "\n" + array_tag("Int64", "offsets", 1, o_offs) +
          "\n" + array_tag("UInt8", "types", 1, o_types) + "\n</Cells>\n";

@@ -55,21 +55,59 @@ std::vector<ParticleInit> sphere_increment(const Reader& d, const MaterialTable&
   return material_increment(at, volume, spacing, lattice_particle_mass(m->rho0, spacing, kernel), *m);
 }
 
-// One event: {"t": s, "dispense": {...}} or {"t": s, "switch_tool": {"name": "flat_plugger",
-// "spacing": length}}. Spacing defaults to h / 2; the instrument is of the tool's material.
+// The curing light of a "cure" event: {"position": [x, y, z], "direction": [x, y, z], "duration": s,
+// "irradiance": mW/cm^2, "diameter": length}, lengths in the placement's unit, placed in the world.
+void read_cure(const Reader& c, const Placement& place, ProcedureEvent& ev) {
+  c.only({"position", "direction", "duration", "irradiance", "diameter"});
+  ev.kind = ProcedureEvent::Kind::cure;
+  ev.duration = c.number("duration", "how long the light stays on in s, e.g. 20", Range::positive);
+  CuringLight& light = ev.light;
+  const Vec3 tip = place.length_scale *
+                   c.vec3("position", fmt::format("the light tip's centre [x, y, z] in {}", place.length_unit));
+  Vec3 direction{0, 0, -1};
+  if (c.has("direction")) {
+    direction = c.vec3("direction", "where the beam points [x, y, z], e.g. [0, 0, -1] (down)");
+    if (!(norm2(direction) > 0)) c.fail("direction", "is zero", "give a non-zero direction, e.g. [0, 0, -1]");
+  }
+  const real mw = c.number_or("irradiance", 1000, "the light's irradiance in mW/cm^2, e.g. 1000", Range::positive);
+  if (mw > 10000)
+    c.fail("irradiance", fmt::format("{} mW/cm^2 is more than any curing light gives", mw),
+           "give the irradiance in mW/cm^2: 400 to 3000 for dental curing lights, 1000 is typical");
+  light.irradiance = mw * W_per_m2_per_mW_per_cm2;
+  light.diameter = place.length_scale * c.number_or("diameter", 10e-3 / place.length_scale,
+                                                    fmt::format("the light tip's diameter in {}, e.g. {}",
+                                                                place.length_unit, 10e-3 / place.length_scale),
+                                                    Range::positive);
+  if (place.to_world) {
+    const Vec3 at = place.to_world(Pose{tip, {}}).position;
+    light.direction = place.to_world(Pose{tip + direction, {}}).position - at;
+    light.tip = at;
+  } else {
+    light.tip = tip;
+    light.direction = direction;
+  }
+  light.direction = light.direction / norm(light.direction);
+}
+
+// One event: {"t": s, "dispense": {...}}, {"t": s, "switch_tool": {"name": "flat_plugger",
+// "spacing": length}} or {"t": s, "cure": {...}} (read_cure). Spacing defaults to h / 2; the
+// instrument is of the tool's material.
 ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const Placement& place,
                           const MaterialTable* materials, const Material& tool_material, const KernelCoeffs& kernel) {
-  e.only({"t", "dispense", "switch_tool"});
+  e.only({"t", "dispense", "switch_tool", "cure"});
   ProcedureEvent ev;
   ev.t = e.number("t", "the event time in s", Range::non_negative);
   if (previous != nullptr && ev.t < previous->t)
     e.fail("t", fmt::format("{} s is before the previous event's {} s", ev.t, previous->t),
            "list events in time order");
-  if (e.has("dispense") == e.has("switch_tool"))
-    e.fail_here("needs exactly one of \"dispense\" and \"switch_tool\"",
-                "give {\"t\": 1.0, \"dispense\": {\"volume\": ..., \"at\": [x, y, z]}} or "
-                "{\"t\": 1.0, \"switch_tool\": {\"name\": \"flat_plugger\"}}");
-  if (const std::optional<Reader> d = e.optional_object("dispense", "the increment {\"volume\": ..., \"at\": [x, y, z]}")) {
+  if (int(e.has("dispense")) + int(e.has("switch_tool")) + int(e.has("cure")) != 1)
+    e.fail_here("needs exactly one of \"dispense\", \"switch_tool\" and \"cure\"",
+                "give {\"t\": 1.0, \"dispense\": {\"volume\": ..., \"at\": [x, y, z]}}, "
+                "{\"t\": 1.0, \"switch_tool\": {\"name\": \"flat_plugger\"}} or "
+                "{\"t\": 1.0, \"cure\": {\"position\": [x, y, z], \"duration\": 20}}");
+  if (const std::optional<Reader> c = e.optional_object("cure", "the curing light {\"position\": [x, y, z], \"duration\": 20}")) {
+    read_cure(*c, place, ev);
+  } else if (const std::optional<Reader> d = e.optional_object("dispense", "the increment {\"volume\": ..., \"at\": [x, y, z]}")) {
     ev.kind = ProcedureEvent::Kind::dispense;
     if (place.dispense)
       place.dispense(*d, ev);

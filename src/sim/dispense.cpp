@@ -78,7 +78,9 @@ std::size_t dispense_increment(const Scene& scene, State& state, real volume, co
     if (state.role[i] == Role::material) top = std::max(top, dot(state.pos[i] - axis_origin, up));
   const Vec3 centre = axis_origin + up * (top + r + 2 * s);
   const std::vector<ParticleInit> ps = material_increment(centre, volume, s, paste.mass, paste.material);
+  const std::uint32_t first = state.size();
   state.add_particles(scene.model, ps);
+  state.cure.begin_increment(first, std::uint32_t(ps.size()));
   return ps.size();
 }
 

@@ -30,12 +30,17 @@ std::vector<ParticleInit> free_sites(const State& state, const ProcedureEvent& e
 
 void apply_event(const Scene& scene, State& state, const ProcedureEvent& event) {
   switch (event.kind) {
-    case ProcedureEvent::Kind::dispense:
+    case ProcedureEvent::Kind::dispense: {
+      const std::uint32_t first = state.size();
       state.add_particles(scene.model, event.count > 0 ? free_sites(state, event) : event.particles);
+      state.cure.begin_increment(first, state.size() - first);
       return;
+    }
     case ProcedureEvent::Kind::switch_tool:
       replace_tool_particles(state, scene.model, event.particles);
       return;
+    case ProcedureEvent::Kind::cure:
+      return;  // the light is looked up each step (ActiveLights)
   }
   throw std::logic_error("apply_event: unknown event kind");
 }

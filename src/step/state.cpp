@@ -56,6 +56,7 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
       if (const std::uint32_t other = new_id[bonds.partner(old, b)]; other != gone) rebuilt.try_add(new_id[old], other);
   }
   bonds = std::move(rebuilt);
+  cure.compact(new_id, kept);
   // Compact every per-particle array in index order.
   auto compact = [&](auto& v) {
     std::size_t k = 0;
@@ -109,7 +110,7 @@ std::size_t State::bytes_per_particle() const {
   if (size() == 0) return 0;
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
-                            bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + bytes(grid.key) +
+                            bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + cure.bytes() * size() + bytes(grid.key) +
                             bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
                             bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role);
   return total / size();
@@ -137,6 +138,7 @@ void State::add_particles(const Model& model, const std::vector<ParticleInit>& p
     pressure.push_back(0);
     volume.push_back(p.mass / p.material.rho0);
     force.push_back({});
+    cure.append(p, time);
   }
   size_by_id_and_scratch(model, n);
 }

@@ -228,5 +228,17 @@ TEST(Cli, MeshUnitsReadAMeshInMetres) {
       << alone.output;
 }
 
+TEST(Cli, TheDepthOfCureTest) {
+  const Result r = dentsph_cli("material-test depth-of-cure --spacing 0.2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("depth of cure: 3.00 mm"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("published: 3.00 mm"), std::string::npos) << r.output;
+  const Result longer = dentsph_cli("material-test depth-of-cure --spacing 0.2 --time 40 --irradiance 1200");
+  EXPECT_NE(longer.output.find("1200 mW/cm2 for 40 s"), std::string::npos) << longer.output;
+  expect_refused("material-test depth-of-cure --material amalgam", {"sets by itself, not by light"});
+  expect_refused("material-test depth-of-cure --material glass", {"--material"});
+  expect_refused("material-test depth-of-cure --irradiance 0", {"--irradiance"});
+}
+
 }  // namespace
 }  // namespace dentsph

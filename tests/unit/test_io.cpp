@@ -45,7 +45,7 @@ TEST(Vtu, HeaderAndPositionsRoundTrip) {
   io::write_vtu(f, st);
   const std::string text = slurp(f);
   EXPECT_NE(text.find("NumberOfPoints=\"3\""), std::string::npos);
-  for (const char* name : {"velocity", "density", "pressure", "role", "bond_count", "id", "position"})
+  for (const char* name : {"velocity", "density", "pressure", "role", "bond_count", "id", "conversion", "dose_J_per_cm2", "position"})
     EXPECT_NE(text.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
   // The first appended array is the positions (offset 0): a UInt64 byte count, then 9 doubles.
   const std::size_t start = text.find("<AppendedData encoding=\"raw\">\n_");

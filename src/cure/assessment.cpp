@@ -1,0 +1,139 @@
+// The assessment of cure (include/dentsph/cure_assessment.hpp).
+#include "dentsph/cure_assessment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace dentsph {
+
+namespace {
+
+constexpr real mm = 1e-3;
+
+std::string increment_name(int index) {
+  return index == 0 ? std::string("the initial paste") : fmt::format("increment {}", index);
+}
+
+std::string increment_message(const IncrementCure& c, real criterion) {
+  const std::string name = increment_name(c.index);
+  if (c.top_alpha <= 0) return fmt::format("{} is {:.1f} mm thick and was not cured: no light reached it", name, c.thickness / mm);
+  const real under = 1 - c.adequate_fraction;
+  const std::string head =
+      fmt::format("{} is {:.1f} mm thick: its base received {:.2g} J/cm2", name, c.thickness / mm, c.base_dose / 1e4);
+  if (under <= 0)
+    return fmt::format("{}, bottom/top conversion {:.2f}: adequately cured throughout", head, c.base_alpha / c.top_alpha);
+  return fmt::format("{} and {:.0f}% of it is under-cured (conversion below {:.0f}% of its top's), from {:.1f} mm below its "
+                     "top down to {:.1f} mm",
+                     head, 100 * under, 100 * criterion, c.under_cured_from / mm, c.under_cured_to / mm);
+}
+
+}  // namespace
+
+CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_in, real criterion) {
+  CureAssessment a;
+  a.criterion = criterion;
+  const Vec3 up = up_in / norm(up_in);
+  const CureState& c = s.cure;
+  const real sp = cm.spacing;
+  constexpr real inf = std::numeric_limits<real>::infinity();
+  struct Acc {
+    std::uint32_t n = 0;
+    real lo = inf, hi = -inf;
+  };
+  std::map<int, Acc> acc;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    const std::uint32_t id = s.id[i];
+    if (!c.curable[id] || !is_finite(s.pos[i])) continue;
+    Acc& g = acc[c.increment[id]];
+    const real h = dot(s.pos[i], up);
+    ++g.n, g.lo = std::min(g.lo, h), g.hi = std::max(g.hi, h);
+  }
+  for (const auto& [index, g] : acc) {
+    IncrementCure r;
+    r.index = index;
+    r.particles = g.n;
+    r.thickness = g.hi - g.lo + sp;
+    // Top and base layers: a spacing deep from either end.
+    std::uint32_t n_top = 0, n_base = 0;
+    for (std::uint32_t i = 0; i < s.size(); ++i) {
+      const std::uint32_t id = s.id[i];
+      if (!c.curable[id] || c.increment[id] != index || !is_finite(s.pos[i])) continue;
+      const real h = dot(s.pos[i], up);
+      if (h > g.hi - 0.5 * sp) r.top_dose += c.dose[id], r.top_alpha += c.alpha[id], ++n_top;
+      if (h < g.lo + 0.5 * sp) r.base_dose += c.dose[id], r.base_alpha += c.alpha[id], ++n_base;
+    }
+    r.top_dose /= n_top, r.top_alpha /= n_top, r.base_dose /= n_base, r.base_alpha /= n_base;
+    std::uint32_t adequate = 0;
+    real from = inf, to = -inf;
+    for (std::uint32_t i = 0; i < s.size(); ++i) {
+      const std::uint32_t id = s.id[i];
+      if (!c.curable[id] || c.increment[id] != index || !is_finite(s.pos[i])) continue;
+      const bool ok = r.top_alpha > 0 && c.alpha[id] >= criterion * r.top_alpha;
+      const real volume = s.mass[i] / s.rho0[i];
+      a.paste_volume += volume;
+      if (ok) {
+        ++adequate;
+        continue;
+      }
+      r.under_cured_volume += volume;
+      const real depth = g.hi - dot(s.pos[i], up);  // below the top particle's centre
+      from = std::min(from, depth), to = std::max(to, depth + sp);
+    }
+    r.adequate_fraction = real(adequate) / real(g.n);
+    if (to > from) r.under_cured_from = std::max<real>(0, from), r.under_cured_to = to;
+    a.under_cured_volume += r.under_cured_volume;
+    r.message = increment_message(r, criterion);
+    a.increments.push_back(r);
+  }
+  std::uint32_t bad = 0;
+  for (const IncrementCure& r : a.increments) bad += r.adequate_fraction < 1;
+  if (a.increments.empty())
+    a.message = "no paste to assess";
+  else if (bad == 0)
+    a.message = fmt::format("all paste adequately cured (bottom/top conversion at least {:.1f} in every increment)", criterion);
+  else
+    a.message = fmt::format("{:.2f} mm3 of paste under-cured ({:.0f}% of {:.2f} mm3) in {} of {} increments", a.under_cured_volume / (mm * mm * mm),
+                            100 * a.under_cured_volume / a.paste_volume, a.paste_volume / (mm * mm * mm), bad, a.increments.size());
+  return a;
+}
+
+std::string cure_assessment_json(const CureAssessment& a) {
+  using nlohmann::json;
+  json j;
+  j["criterion_bottom_top"] = a.criterion;
+  j["paste_volume_mm3"] = a.paste_volume / (mm * mm * mm);
+  j["under_cured_volume_mm3"] = a.under_cured_volume / (mm * mm * mm);
+  j["message"] = a.message;
+  json incs = json::array();
+  for (const IncrementCure& r : a.increments) {
+    json x;
+    x["increment"] = r.index;
+    x["particles"] = r.particles;
+    x["thickness_mm"] = r.thickness / mm;
+    x["top_dose_J_per_cm2"] = r.top_dose / 1e4;
+    x["base_dose_J_per_cm2"] = r.base_dose / 1e4;
+    x["top_conversion"] = r.top_alpha;
+    x["base_conversion"] = r.base_alpha;
+    x["bottom_top_ratio"] = r.top_alpha > 0 ? r.base_alpha / r.top_alpha : 0;
+    x["adequately_cured_fraction"] = r.adequate_fraction;
+    x["under_cured_volume_mm3"] = r.under_cured_volume / (mm * mm * mm);
+    x["under_cured_depth_mm"] = json::array({r.under_cured_from / mm, r.under_cured_to / mm});
+    x["message"] = r.message;
+    incs.push_back(x);
+  }
+  j["increments"] = incs;
+  return j.dump();
+}
+
+std::string cure_assessment_report(const CureAssessment& a) {
+  std::string out = fmt::format("cure: {}\n", a.message);
+  for (const IncrementCure& r : a.increments) out += fmt::format("  {}\n", r.message);
+  return out;
+}
+
+}  // namespace dentsph
