@@ -13,8 +13,14 @@
 
 namespace dentsph {
 
+// The dental scenes' time step for each solver, s: the paper's explicit step 5e-5 (under its
+// acoustic limit, 62 us for the paste and walls below), the iisph solver 1e-3 (one step per tick of
+// a 1 kHz haptic loop; docs/model.md).
+real dental_time_step(Solver solver);
+
 struct DentalSceneParams {
-  real dt = 5e-5;                        // s
+  Solver solver = Solver::paper;         // which step runs (Model::solver)
+  real dt = 0;                           // s; 0: dental_time_step(solver)
   int material_particles = 1600;         // the cavity's share first, the rest heaped above it
   Material paste{1.0, 10, 2000, 50};     // mu Pa s, Kp m^2/s^2, rho0 kg/m^3, Ka Pa
   Material wall{1.0, 15, 2000, 0};       // boundary and tool
@@ -106,11 +112,13 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
 Scene load_dental_procedure(const ToothScene& tooth, const std::filesystem::path& file,
                             const DentalSceneParams& params = {});
 // The procedure file on a lined tooth; an empty path: the built-in procedure.
-Scene procedure_or_built_in(const ToothScene& tooth, const std::filesystem::path& file);
+Scene procedure_or_built_in(const ToothScene& tooth, const std::filesystem::path& file,
+                            const DentalSceneParams& params = {});
 // The built-in procedure on the built-in crown: what `dentsph run` runs.
 Scene default_dental_procedure(const DentalSceneParams& params = {});
 // What `dentsph run` runs without a scene file: the procedure file (empty: the built-in one) on
 // the tooth of `tooth` (by default the built-in crown with its Class I cavity).
-Scene dental_run_scene(const ToothSpec& tooth, const std::filesystem::path& procedure_file);
+Scene dental_run_scene(const ToothSpec& tooth, const std::filesystem::path& procedure_file,
+                       const DentalSceneParams& params = {});
 
 }  // namespace dentsph

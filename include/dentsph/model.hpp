@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "dentsph/vec3.hpp"
 
@@ -26,6 +28,7 @@ struct KernelCoeffs {
   real spiky_grad = 0;   // 45 / (pi h^6), 1/m^6; gradW = -spiky_grad (h - r)^2 rhat
   real visc_lap = 0;     // 45 / (pi h^6), 1/m^6; lapW = visc_lap (h - r)
   real adh_scale = 0;    // Cd / h^4, 1/m^4
+  real cubic = 0;        // 8 / (pi h^3), 1/m^3: the cubic spline of support h (the iisph solver's gradient)
 };
 
 // The uniform grid of the broad phase. Cells are cubes of edge `cell_size` starting at `origin`;
@@ -43,6 +46,27 @@ struct GridSpec {
   std::int64_t cell_count() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 };
 
+// Which step `step()` runs (docs/model.md, "Solvers"):
+// - paper: the paper's explicit, weakly compressible step (src/step), capped by its acoustic,
+//   viscous and force limits; the reference every paper figure is about.
+// - iisph: implicit incompressible SPH (Ihmsen et al. 2014) with implicit viscosity and the
+//   paper's adhesion bonds (src/solver), capped by the velocity CFL condition only.
+enum class Solver { paper, iisph };
+const char* solver_name(Solver s);                           // "paper", "iisph"
+std::optional<Solver> solver_from_name(std::string_view name);
+inline constexpr const char* solver_choices = "paper or iisph";
+
+// The iisph solver's budget and targets (docs/model.md, "The iisph solver").
+struct IisphParams {
+  int min_iterations = 2;         // pressure iterations always done
+  int max_iterations = 12;        // pressure iterations at most: the step's cost is bounded
+  real density_error = 0.002;     // stop once the solve's mean error (relative density) is below this
+  real omega = 0.5;               // relaxation of the Jacobi pressure update
+  real warm_start = 1;            // the last step's pressure times this starts the solve
+  int viscosity_iterations = 8;   // conjugate-gradient iterations of the backward-Euler viscosity
+  real cfl = 0.4;                 // velocity Courant number: dt <= cfl h / max|v|
+};
+
 // The user's choices; make_model() checks them and derives the rest.
 struct ModelParams {
   real dt = 1e-4;                 // s, fixed time step
@@ -55,6 +79,8 @@ struct ModelParams {
   int grid_reach = 1;             // grid cells of h / grid_reach, searched grid_reach deep
   real neighbour_skin = 0;        // m, neighbour lists reach h + skin and are kept until a
                                   // particle has moved skin / 2 (0: rebuilt every step)
+  Solver solver = Solver::paper;  // which step runs
+  IisphParams iisph;              // the iisph solver's budget (unused by the paper's step)
 };
 
 struct Model {
@@ -67,6 +93,8 @@ struct Model {
   real cfl_lambda = 0.4;
   real neighbour_skin = 0;  // m, see ModelParams
   Vec3 domain_min, domain_max;
+  Solver solver = Solver::paper;
+  IisphParams iisph;
 };
 
 // Checks `p` and derives the kernel constants, C_d and the grid. Throws std::invalid_argument

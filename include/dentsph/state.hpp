@@ -58,6 +58,13 @@ struct StepDiagnostics {
   real max_accel = 0;        // m/s^2, largest |a| of a material particle
   real max_speed = 0;        // m/s, largest |v| of a material particle after integration
   std::uint64_t non_finite = 0;  // material particles whose state became NaN or infinite
+  // The iisph solver's own figures (zero after a paper step):
+  int pressure_iterations = 0;  // pressure iterations this step took (within the model's budget)
+  real density_error = 0;       // mean compression of the material at the end of the step: mean over
+                                // material particles of max(0, rho_predicted - rho0) / rho0
+  real pressure_residual = 0;   // the pressure solve's error: mean over material particles of
+                                // |rho_predicted - rho0 - p / Kp| / rho0 (where p = 0: its positive part)
+  std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
 };
 
 // What the force pass reads of a neighbour, gathered in one record per particle by the density
@@ -104,6 +111,49 @@ struct GridIndex {
   std::vector<PairData> pair_data;
 };
 
+// One neighbour within h of a particle, as the iisph solver's pair pass leaves it.
+struct SolverPair {
+  Vec3 grad;           // m_j gradW_cubic(r_i - r_j), kg/m^4
+  real visc;           // (mu_i + mu_j)/2 m_j lapW_visc(r) / rho_j, Pa s / m^5 (rho_j: the pair pass's density,
+                       // rest density for boundary and tool; material rows only)
+  std::uint32_t j;     // the neighbour's index
+};
+
+// The iisph solver's scratch (src/solver), sized when particles are added (a step allocates
+// nothing) and only for a model whose solver is iisph. Every particle has a row (indexed like the
+// particles, cell order): a material particle's lists every neighbour within h, a boundary or tool
+// particle's its material neighbours (the pressure solve's constraints are every particle's
+// density; only material moves).
+struct IisphScratch {
+  static constexpr int kPairStride = 64;  // neighbours within h kept per row
+  bool sized = false;  // also: the reorder keeps `State::pressure` (the next solve starts from it)
+  std::vector<std::uint32_t> material;       // [material] the material particles, cell order (at a rebuild)
+  std::vector<std::uint32_t> active;         // [<= n] the rows of the pressure solve this step: material, and
+                                             // boundary and tool particles with material neighbours
+  std::uint32_t active_count = 0;
+  std::vector<SolverPair> pairs;             // [n * kPairStride]: material neighbours from the front, boundary
+                                             // and tool neighbours from the back
+  std::vector<std::uint8_t> n_material, n_other;  // [n] entries at each end
+  // [n] per row:
+  std::vector<Vec3> grad_sum;        // S_i = sum_j m_j gradW_ij over every neighbour (material rows)
+  std::vector<real> diag_x;          // a_ii = -dt^2 / rho_i^2 diag_x (pressure.cpp)
+  std::vector<real> visc_diag;       // material rows: sum_j of the row's visc
+  std::vector<Vec3> visc_fixed;      // material rows: sum over boundary and tool neighbours of visc v_j
+  std::vector<real> div_fixed;       // material rows: sum over boundary and tool neighbours of v_j . m_j gradW_ij
+  std::vector<Vec3> v_star;          // material: velocity after gravity and adhesion, then after the pressure
+  std::vector<real> source;          // target density - max(rho_adv, target)
+  std::vector<real> error;           // material: the solve's error of the last iteration (relative)
+  std::vector<real> compression;     // material: max(0, rho_predicted - rho0) / rho0 of the last iteration
+  std::vector<Vec3> tool_force;      // N, tool particles: adhesion on them
+  std::vector<real> inv_rho;         // 1 / rho (this step's density)
+  std::vector<real> q;               // p / rho^2
+  std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
+  std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
+  std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
+
+  std::size_t bytes() const;
+};
+
 class State {
  public:
   // ---- particles, [size()] each, current order --------------------------------------------
@@ -145,6 +195,7 @@ class State {
   std::vector<real> scratch_real;
   std::vector<std::uint32_t> scratch_u32;
   std::vector<Role> scratch_role;
+  IisphScratch iisph;
 
   std::uint32_t size() const { return std::uint32_t(pos.size()); }
   // Filling material: a moving material particle, or paste that has set (now a static boundary
@@ -170,6 +221,8 @@ class State {
  private:
   // Sizes index_of_id, the bond store and the scratch for n particles (after adding or removing).
   void size_by_id_and_scratch(const Model& model, std::uint32_t n);
+  // Sizes (or, for another solver, empties) the iisph solver's scratch.
+  void size_iisph_scratch(const Model& model, std::uint32_t n);
 };
 
 }  // namespace dentsph

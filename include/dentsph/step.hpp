@@ -9,14 +9,18 @@
 namespace dentsph {
 
 // Wall time of each stage, summed over the steps that were given this struct (microseconds).
-// pressure_us is measured by the GPU backend alone: the CPU step computes each particle's pressure
-// inside its density pass, whose time is density_us.
+// The paper's step: pressure_us is measured by the GPU backend alone (the CPU step computes each
+// particle's pressure inside its density pass, whose time is density_us), viscosity_us is 0. The
+// iisph solver: density_us is its pair pass, forces_us the adhesion and gravity, pressure_us the
+// pressure solve, viscosity_us the implicit viscosity, integrate_us the end of the step with the
+// tool wrench (wrench_us 0).
 struct StageTimes {
   double hash_us = 0, sort_us = 0, reorder_us = 0, density_us = 0, pressure_us = 0, forces_us = 0,
-         wrench_us = 0, integrate_us = 0;
+         wrench_us = 0, integrate_us = 0, viscosity_us = 0;
   std::uint64_t steps = 0;
   double total_us() const {
-    return hash_us + sort_us + reorder_us + density_us + pressure_us + forces_us + wrench_us + integrate_us;
+    return hash_us + sort_us + reorder_us + density_us + pressure_us + forces_us + wrench_us + integrate_us +
+           viscosity_us;
   }
 };
 

@@ -8,6 +8,8 @@
 // the events to the store's counters.
 #pragma once
 
+#include <algorithm>
+
 #include "dentsph/model.hpp"
 #include "dentsph/state.hpp"
 #include "physics/bond_rules.hpp"
@@ -64,10 +66,36 @@ inline void form(State& s, std::uint32_t i, std::uint32_t j, Events& ev) {
 
 // Bonds moving particle i to j, whose squared distance is r2, if they are closer than A, may bond, and
 // are not bonded yet: the all-pairs reference's rule, pair by pair. The grid step forms the bonds of
-// each particle's close pairs at once, in the same order (form_bonds in step/forces.cpp).
+// each particle's close pairs at once, in the same order (form_bonds below).
 inline void try_form(const Model& model, State& s, std::uint32_t i, std::uint32_t j, real r2, Events& ev) {
   if (!may_form(model, s, i, j, r2) || s.bonds.has(s.id[i], s.id[j])) return;
   form(s, i, j, ev);
+}
+
+// Bonds moving particle i to those of the n close pairs (j != i, r^2 < A^2, as the callers filter
+// them) that may bond and are not bonded yet, in the order given (as bonds::try_form of the
+// all-pairs step one by one would): the grid step's one way of forming bonds, from its lists and
+// from its search of overflowed ones (src/step/forces.cpp), and the iisph solver's (src/solver).
+// Which are bonded already is found in one pass over i's bond list per chunk, with loops of fixed
+// length: a search per pair that stops at its partner mispredicted about once per pair.
+inline void form_bonds(State& s, std::uint32_t i, const std::uint32_t* close, std::uint32_t n, bonds::Events& ev) {
+  constexpr std::uint32_t chunk = GridIndex::kNeighbourStride;
+  const std::uint32_t id = s.id[i];
+  for (std::uint32_t c0 = 0; c0 < n; c0 += chunk) {
+    const std::uint32_t m = std::min(chunk, n - c0);
+    std::uint32_t close_id[chunk];
+    std::uint8_t bonded[chunk];
+    for (std::uint32_t c = 0; c < m; ++c) {
+      close_id[c] = s.id[close[c0 + c]];
+      bonded[c] = 0;
+    }
+    for (int b = 0; b < s.bonds.count(id); ++b) {
+      const std::uint32_t partner = s.bonds.partner(id, b);
+      for (std::uint32_t c = 0; c < m; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
+    }
+    for (std::uint32_t c = 0; c < m; ++c)
+      if (!bonded[c] && bonds::can_bond(s, i, close[c0 + c])) bonds::form(s, i, close[c0 + c], ev);
+  }
 }
 
 inline void record(State& s, const Events& ev) {

@@ -21,6 +21,7 @@ DENTSPH_HD inline KernelCoeffs make_coeffs(real h, const AdhesionParams& a) {
   k.spiky_grad = 45.0 / (pi * h6);
   k.visc_lap = 45.0 / (pi * h6);
   k.adh_scale = a.Cd / (h * h * h * h);
+  k.cubic = 8.0 / (pi * h3);
   return k;
 }
 
@@ -57,6 +58,28 @@ DENTSPH_HD inline real visc(real r, const KernelCoeffs& k) {
 DENTSPH_HD inline real visc_laplacian(real r, const KernelCoeffs& k) {
   if (r >= k.h) return 0;
   return k.visc_lap * (k.h - r);
+}
+
+// The cubic spline (Monaghan's M4) of support h, 1/m^3: with q = r / h,
+// 8/(pi h^3) (6 (q^3 - q^2) + 1) for q <= 1/2, 8/(pi h^3) 2 (1 - q)^3 for q <= 1. Integrates to 1.
+// The iisph solver's pressure gradient: on a cubic lattice of spacing h / 2 with the poly6 lattice
+// mass, the discrete gradient of a linear field is 1.010 of the true one (spiky: 0.947, poly6's
+// own gradient: 1.055; docs/model.md), so its pressure is the mechanical one.
+DENTSPH_HD inline real cubic(real r, const KernelCoeffs& k) {
+  const real q = r / k.h;
+  if (q >= 1) return 0;
+  if (q <= 0.5) return k.cubic * (6 * (q * q * q - q * q) + 1);
+  const real d = 1 - q;
+  return k.cubic * 2 * d * d * d;
+}
+
+// Radial derivative of the cubic spline, 1/m^4 (non-positive): gradW(r_ij) = cubic_grad_radial(r) rhat.
+DENTSPH_HD inline real cubic_grad_radial(real r, const KernelCoeffs& k) {
+  const real q = r / k.h;
+  if (q >= 1) return 0;
+  if (q <= 0.5) return k.cubic / k.h * 6 * q * (3 * q - 2);
+  const real d = 1 - q;
+  return -k.cubic / k.h * 6 * d * d;
 }
 
 // The bracket x^eps - x^zeta of eq. 12, x in [0, 1]; integer exponents take the fast path.

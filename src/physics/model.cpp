@@ -23,6 +23,20 @@ void require_finite_positive(real v, const char* field, const char* fix) {
 
 }  // namespace
 
+const char* solver_name(Solver s) {
+  switch (s) {
+    case Solver::paper: return "paper";
+    case Solver::iisph: return "iisph";
+  }
+  return "unknown";
+}
+
+std::optional<Solver> solver_from_name(std::string_view name) {
+  for (Solver s : {Solver::paper, Solver::iisph})
+    if (name == solver_name(s)) return s;
+  return std::nullopt;
+}
+
 real adhesion_normalisation(real eps, real zeta) {
   // The bracket x^eps - x^zeta has its minimum where eps x^(eps-1) = zeta x^(zeta-1).
   const real xs = std::pow(zeta / eps, 1.0 / (eps - zeta));
@@ -54,6 +68,20 @@ Model make_model(const ModelParams& p) {
     fail("neighbour_skin", fmt::format("must be in [0, h] metres, got {}; 0.1 h to 0.3 h is usual", p.neighbour_skin));
   if (p.grid_reach < 1 || p.grid_reach > 3)
     fail("grid_reach", fmt::format("must be 1, 2 or 3 (cells of h / reach), got {}", p.grid_reach));
+  const IisphParams& ip = p.iisph;
+  if (ip.min_iterations < 1 || ip.max_iterations < ip.min_iterations || ip.max_iterations > 1000)
+    fail("iisph.max_iterations",
+         fmt::format("need 1 <= min_iterations <= max_iterations <= 1000, got {} and {}", ip.min_iterations,
+                     ip.max_iterations));
+  if (!(ip.density_error > 0 && ip.density_error < 1))
+    fail("iisph.density_error", fmt::format("must be in (0, 1), got {}; 0.001 to 0.01 is usual", ip.density_error));
+  if (!(ip.omega > 0 && ip.omega <= 1))
+    fail("iisph.omega", fmt::format("must be in (0, 1], got {}; 0.5 is usual", ip.omega));
+  if (!(ip.warm_start >= 0 && ip.warm_start <= 1))
+    fail("iisph.warm_start", fmt::format("must be in [0, 1], got {}", ip.warm_start));
+  if (ip.viscosity_iterations < 1 || ip.viscosity_iterations > 1000)
+    fail("iisph.viscosity_iterations", fmt::format("must be in [1, 1000], got {}", ip.viscosity_iterations));
+  require_finite_positive(ip.cfl, "iisph.cfl", "about 0.4 is usual");
   if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
       !(p.domain_min.y < p.domain_max.y) || !(p.domain_min.z < p.domain_max.z))
     fail("domain", "min must be below max on every axis (metres)");
@@ -69,6 +97,8 @@ Model make_model(const ModelParams& p) {
   m.neighbour_skin = p.neighbour_skin;
   m.domain_min = p.domain_min;
   m.domain_max = p.domain_max;
+  m.solver = p.solver;
+  m.iisph = p.iisph;
 
   // Grid: cells of edge h / reach over the domain; at least 2 reach + 1 per axis (distinct
   // searched cells), at most 2^22 cells in all (the domain wraps beyond, which stays correct).

@@ -11,6 +11,8 @@
 
 namespace dentsph {
 
+real dental_time_step(Solver solver) { return solver == Solver::iisph ? 1e-3 : 5e-5; }
+
 Scene default_dental_scene(const DentalSceneParams& dp) {
   return dental_scene(default_tooth_scene(), dp, "dental_default", "built-in");
 }
@@ -28,7 +30,8 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   sc.name = name;
   sc.source = source;
   ModelParams& p = sc.params;
-  p.dt = dp.dt;
+  p.dt = dp.dt > 0 ? dp.dt : dental_time_step(dp.solver);
+  p.solver = dp.solver;
   p.h = 2 * s;
   p.gravity = fr.z * -9.81;
   p.adhesion.A = 1.2 * s;

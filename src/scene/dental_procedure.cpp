@@ -166,13 +166,13 @@ Scene default_dental_procedure(const DentalSceneParams& dp) {
                           dp);
 }
 
-Scene procedure_or_built_in(const ToothScene& tooth, const std::filesystem::path& file) {
-  return file.empty() ? dental_procedure(tooth, std::string(default_procedure_json()), "built-in default_procedure")
-                      : load_dental_procedure(tooth, file);
+Scene procedure_or_built_in(const ToothScene& tooth, const std::filesystem::path& file, const DentalSceneParams& dp) {
+  return file.empty() ? dental_procedure(tooth, std::string(default_procedure_json()), "built-in default_procedure", dp)
+                      : load_dental_procedure(tooth, file, dp);
 }
 
-Scene dental_run_scene(const ToothSpec& spec, const std::filesystem::path& procedure_file) {
-  Scene sc = procedure_or_built_in(prepare_tooth(spec), procedure_file);
+Scene dental_run_scene(const ToothSpec& spec, const std::filesystem::path& procedure_file, const DentalSceneParams& dp) {
+  Scene sc = procedure_or_built_in(prepare_tooth(spec), procedure_file, dp);
   sc.source = fmt::format("{} on {}", sc.source, tooth_name(spec));
   return sc;
 }

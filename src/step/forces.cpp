@@ -44,32 +44,6 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, const pair::
   return f;
 }
 
-// Bonds moving particle i to those of the n close pairs (j != i, r^2 < A^2, as the callers filter
-// them) that may bond and are not bonded yet, in the order given (as bonds::try_form of the
-// all-pairs step one by one would): the grid step's one way of forming bonds, from its lists and
-// from its search of overflowed ones.
-// Which are bonded already is found in one pass over i's bond list per chunk, with loops of fixed
-// length: a search per pair that stops at its partner mispredicted about once per pair.
-void form_bonds(State& s, std::uint32_t i, const std::uint32_t* close, std::uint32_t n, bonds::Events& ev) {
-  constexpr std::uint32_t chunk = GridIndex::kNeighbourStride;
-  const std::uint32_t id = s.id[i];
-  for (std::uint32_t c0 = 0; c0 < n; c0 += chunk) {
-    const std::uint32_t m = std::min(chunk, n - c0);
-    std::uint32_t close_id[chunk];
-    std::uint8_t bonded[chunk];
-    for (std::uint32_t c = 0; c < m; ++c) {
-      close_id[c] = s.id[close[c0 + c]];
-      bonded[c] = 0;
-    }
-    for (int b = 0; b < s.bonds.count(id); ++b) {
-      const std::uint32_t partner = s.bonds.partner(id, b);
-      for (std::uint32_t c = 0; c < m; ++c) bonded[c] |= close_id[c] == partner ? 1 : 0;
-    }
-    for (std::uint32_t c = 0; c < m; ++c)
-      if (!bonded[c] && bonds::can_bond(s, i, close[c0 + c])) bonds::form(s, i, close[c0 + c], ev);
-  }
-}
-
 // Force density on moving particle i; updates i's bonds (events into ev).
 Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
   const KernelCoeffs& k = model.kernel;
@@ -98,7 +72,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       close[n_close] = j;
       n_close += bond_rules::close_enough(r2, t) ? 1 : 0;
     }
-    form_bonds(s, i, close, n_close, ev);
+    bonds::form_bonds(s, i, close, n_close, ev);
     return f;
   }
   // Otherwise search the grid (over the positions themselves: the coordinate arrays are as old as
@@ -116,7 +90,7 @@ Vec3 force_on(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) 
       close[n_close] = j;
       n_close += bond_rules::close_enough(nb.r2[q], t) ? 1 : 0;
     }
-    form_bonds(s, i, close, n_close, ev);
+    bonds::form_bonds(s, i, close, n_close, ev);
     nb.n = 0;
   };
   grid::for_each_neighbour_range(model.grid, g, si.pos, grid::Visit::all, [&](std::uint32_t b, std::uint32_t e) {

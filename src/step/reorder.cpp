@@ -36,7 +36,9 @@ void reorder(State& s, int threads) {
     gather(s.Kp, s.scratch_real, order);
     gather(s.rho0, s.scratch_real, order);
     gather(s.Ka, s.scratch_real, order);
-    // rho, pressure and force are recomputed before they are read again.
+    // The iisph solver starts each pressure solve from the last one (the paper's step recomputes
+    // its pressure before reading it). rho and force are recomputed before they are read again.
+    if (s.iisph.sized) gather(s.pressure, s.scratch_real, order);
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       s.index_of_id[s.id[i]] = std::uint32_t(i);

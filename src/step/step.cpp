@@ -1,39 +1,16 @@
-// The grid step, in the paper's order (section 3.2).
-#include <chrono>
-
+// The grid step, in the paper's order (section 3.2); a model whose solver is iisph steps with
+// src/solver instead.
 #include "dentsph/step.hpp"
+#include "solver/iisph.hpp"
+#include "step/stage_clock.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph {
 
-namespace {
-
-// Adds the wall time of each stage to a StageTimes when one is given; costs nothing otherwise.
-class StageClock {
- public:
-  explicit StageClock(StageTimes* t) : times_(t) {
-    if (times_) last_ = std::chrono::steady_clock::now();
-  }
-  void lap(double StageTimes::*field) {
-    if (!times_) return;
-    const auto now = std::chrono::steady_clock::now();
-    times_->*field += std::chrono::duration<double, std::micro>(now - last_).count();
-    last_ = now;
-  }
-  ~StageClock() {
-    if (times_) ++times_->steps;
-  }
-
- private:
-  StageTimes* times_;
-  std::chrono::steady_clock::time_point last_;
-};
-
-}  // namespace
-
 void step(const Model& model, State& state, const StepOptions& opt) {
+  if (model.solver == Solver::iisph) return iisph::step(model, state, opt);
   const int t = opt.threads < 1 ? 1 : opt.threads;
-  StageClock clock(opt.times);
+  stages::StageClock clock(opt.times);
   // The broad phase, the sort and the reorder run when the neighbour lists must be rebuilt: every
   // step without a skin, else once some particle has moved half the skin (neighbour_lists.cpp).
   const bool rebuild = stages::lists_need_rebuild(model, state, t);

@@ -82,5 +82,36 @@ TEST(Threads, ChangingTheThreadCountBetweenStepsChangesNothing) {
   EXPECT_EQ(serial.tool_wrench.force, mixed.tool_wrench.force);
 }
 
+// The iisph solver: the same, with its pressure iterations and their early exit (the mean error is
+// summed in a fixed order, so every thread count stops after the same iteration).
+TEST(Threads, ParallelIisphStepIsBitIdenticalToSerial) {
+  ModelParams p = testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-3, {0, 0, -9.81});
+  p.solver = Solver::iisph;
+  p.neighbour_skin = 0.1 * p.h;
+  const Model model = make_model(p);
+  State serial = scene(model), parallel = scene(model);
+  int iterations = 0;
+  for (int k = 0; k < 60; ++k) {
+    serial.tool_pose.position.z -= 0.001;
+    parallel.tool_pose.position.z -= 0.001;
+    step(model, serial);
+    step(model, parallel, StepOptions{2, nullptr});
+    for (std::uint32_t i = 0; i < serial.size(); ++i) {
+      ASSERT_EQ(serial.id[i], parallel.id[i]) << "step " << k;
+      ASSERT_EQ(serial.pos[i], parallel.pos[i]) << "step " << k << " index " << i;
+      ASSERT_EQ(serial.vel[i], parallel.vel[i]) << "step " << k << " index " << i;
+      ASSERT_EQ(serial.pressure[i], parallel.pressure[i]) << "step " << k << " index " << i;
+      ASSERT_EQ(serial.bonds.count(serial.id[i]), parallel.bonds.count(parallel.id[i]));
+    }
+    ASSERT_EQ(serial.tool_wrench.force, parallel.tool_wrench.force);
+    ASSERT_EQ(serial.diagnostics.pressure_iterations, parallel.diagnostics.pressure_iterations);
+    ASSERT_EQ(serial.diagnostics.density_error, parallel.diagnostics.density_error);
+    iterations += serial.diagnostics.pressure_iterations;
+  }
+  EXPECT_GT(serial.bonds.counters.formed, 0u);
+  EXPECT_GT(norm(serial.tool_wrench.force), 0) << "the tool touched the material";
+  EXPECT_GT(iterations, 60 * model.iisph.min_iterations) << "some steps iterated beyond the minimum";
+}
+
 }  // namespace
 }  // namespace dentsph

@@ -1,0 +1,87 @@
+// The end of an iisph step: the force on the tool (the reaction of the pressure, viscous and
+// adhesion forces its particles exert on material), then each material particle's velocity
+// v = v** + dt a_p and position r += dt v, the tool moved to its pose, and the outputs: `pressure`
+// is the solve's (mechanical) pressure, `force` the internal force density of material, the
+// diagnostics of the paper's step (largest acceleration and speed, non-finite material).
+#include <algorithm>
+#include <cmath>
+
+#include "solver/iisph.hpp"
+
+namespace dentsph::iisph {
+
+namespace {
+
+// Force (N) on tool particle i from its material neighbours (pressure, viscosity) and its bonds.
+Vec3 tool_particle_force(const State& s, std::uint32_t i) {
+  const IisphScratch& x = s.iisph;
+  const SolverPair* row = x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
+  Vec3 pressure, viscous;
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
+    const std::uint32_t j = row[e].j;
+    pressure += row[e].grad * (x.q[i] + x.q[j]);
+    viscous += (x.v_a[j] - s.vel[i]) * row[e].visc;  // v** of material, the tool's own velocity
+  }
+  return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];
+}
+
+void tool_wrench(State& s) {
+  ToolWrench w;
+  const Vec3 c = s.tool_pose_applied.position;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    if (s.role[i] != Role::tool) continue;
+    const Vec3 f = tool_particle_force(s, i);
+    s.force[i] = f * (s.rho[i] / s.mass[i]);  // force density, as the paper's step keeps it
+    w.force += f;
+    w.torque += cross(s.pos[i] - c, f);
+  }
+  s.tool_wrench = w;
+}
+
+}  // namespace
+
+void finish(const Model& model, State& s, int threads) {
+  tool_wrench(s);
+  const IisphScratch& x = s.iisph;
+  const real dt = model.dt;
+  real a2max = 0, v2max = 0;
+  std::uint64_t non_finite = 0;
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite)
+  for (std::int64_t i = 0; i < n; ++i) {
+    switch (s.role[i]) {
+      case Role::material: {
+        const Vec3 v = x.v_a[i];
+        const Vec3 a = (v - s.vel[i]) / dt;
+        s.force[i] = (a - model.gravity) * s.rho[i];
+        s.vel[i] = v;
+        s.pos[i] += v * dt;
+        s.volume[i] = s.mass[i] / s.rho[i];
+        const real a2 = norm2(a), v2 = norm2(v);
+        if (!std::isfinite(a2) || !std::isfinite(v2) || !is_finite(s.pos[i])) {
+          ++non_finite;
+        } else {
+          a2max = std::max(a2max, a2);
+          v2max = std::max(v2max, v2);
+        }
+        break;
+      }
+      case Role::boundary:
+        s.volume[i] = s.mass[i] / s.rho[i];
+        s.force[i] = {};
+        break;
+      case Role::tool:
+        s.pos[i] = s.tool_pose.apply(s.anchor[i]);
+        s.volume[i] = s.mass[i] / s.rho[i];
+        break;
+    }
+  }
+  s.diagnostics.max_accel = std::sqrt(a2max);
+  s.diagnostics.max_speed = std::sqrt(v2max);
+  s.diagnostics.non_finite = non_finite;
+  s.tool_pose_applied = s.tool_pose;
+  s.time += dt;
+  ++s.steps;
+}
+
+}  // namespace dentsph::iisph

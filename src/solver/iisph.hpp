@@ -1,0 +1,50 @@
+// The iisph solver (docs/model.md, "The iisph solver"): implicit incompressible SPH (Ihmsen et al.
+// 2014, relaxed Jacobi) with backward-Euler viscosity and the paper's adhesion bonds, on the grid
+// machinery of the paper's step (src/step: cell keys, sort, reorder, neighbour lists with a skin).
+// Its stages, one file each, in the order iisph_step.cpp calls them:
+//
+//   rows.cpp        the material particles in cell order, the tool's velocity over the step
+//   pairs.cpp       every particle's density, and its row: the neighbours within h with their kernel
+//                   gradient and viscosity weight; bonds form below A
+//   advection.cpp   adhesion of the bonded pairs (bonds break past B), gravity: the velocity v*
+//   pressure.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
+//                   step where its equation of state puts it; v* + dt a_p
+//   viscosity.cpp   backward-Euler viscosity by conjugate gradients: v**
+//   finish.cpp      velocity and position, the tool's move, diagnostics, the tool wrench
+//
+// Every stage is a loop over rows (or particles) in which each writes only its own entries and sums
+// in a fixed order, so every thread count gives the same result bit for bit.
+#pragma once
+
+#include "dentsph/model.hpp"
+#include "dentsph/state.hpp"
+#include "dentsph/step.hpp"
+
+namespace dentsph::iisph {
+
+// One step of the iisph solver (step() runs it for a model whose solver is iisph).
+void step(const Model& model, State& state, const StepOptions& options);
+
+// rows.cpp: lists the material particles (after a rebuild).
+void list_material(State& state);
+// rows.cpp: each tool particle's velocity over this step (to state.tool_pose), the boundary at rest,
+// and their entries in the solver's per-particle arrays.
+void prepare_particles(const Model& model, State& state, int threads);
+// pairs.cpp: the density of every particle and its pair row; material and tool particles form bonds
+// with the material closer than A.
+void compute_pairs(const Model& model, State& state, int threads, bool build_lists);
+// rows.cpp: the rows of this step's pressure solve: material, and the boundary and tool particles
+// with material neighbours (the others get pressure 0).
+void list_active_rows(State& state);
+// advection.cpp: breaks bonds past B, adhesion, gravity: v* of material rows; the viscosity and
+// divergence terms of the boundary and tool neighbours, fixed for the step.
+void advect(const Model& model, State& state, int threads);
+// viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_sweeps Jacobi sweeps.
+void implicit_viscosity(const Model& model, State& state, int threads);
+// pressure.cpp: the pressure solve; leaves each material particle's pressure acceleration in
+// state.iisph.accel and the iterations and density error in state.diagnostics.
+void solve_pressure(const Model& model, State& state, int threads);
+// finish.cpp: v = v** + dt a_p, r += dt v; the tool to its pose; outputs, diagnostics, wrench.
+void finish(const Model& model, State& state, int threads);
+
+}  // namespace dentsph::iisph

@@ -1,0 +1,177 @@
+// The iisph solver's pair pass: every particle's density (the paper's, rho_i = sum_j m_j
+// W_poly6(r_ij), self included; a boundary particle's boundary part is static, rho_static) and its
+// row of neighbours within h:
+//  - a material particle lists every neighbour: m_j gradW_cubic(r_i - r_j) and the viscosity weight
+//    (mu_i + mu_j)/2 m_j lapW_visc, material neighbours from the front of the row, boundary and tool
+//    ones from the back, so that each solver sweep is a short loop over precomputed numbers;
+//  - a boundary or tool particle lists its material neighbours alone (its density is a constraint of
+//    the pressure solve, and its pressure pushes them);
+//  - S_i = sum_j m_j gradW_ij (material) and diag_x, from which the pressure solve's diagonal comes;
+//  - material and tool particles bond to the material closer than A (bonds::form_bonds, the paper's
+//    step's rule).
+// The neighbours come from the neighbour lists of the paper's step (radius h + skin, built here at a
+// rebuild, kept until some particle has moved half the skin; a boundary particle's holds its moving
+// neighbours) or, for an overflowed list, a search of the grid.
+#include <algorithm>
+#include <cmath>
+
+#include "bonds/hysteresis.hpp"
+#include "physics/kernels.hpp"
+#include "solver/iisph.hpp"
+#include "step/grid.hpp"
+#include "step/stages.hpp"
+
+namespace dentsph::iisph {
+
+namespace {
+
+// Builds the row of particle i from the pairs handed to add(), in the order given.
+class RowBuilder {
+ public:
+  RowBuilder(const Model& model, State& s, std::uint32_t i)
+      : k_(model.kernel), s_(s), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
+        A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A),
+        pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+
+  // Neighbour j at d = r_i - r_j, r2 = |d|^2 (anything beyond h, and i itself, is skipped).
+  void add(std::uint32_t j, const Vec3& d, real r2) {
+    if (!(r2 < k_.h2) || j == i_) return;
+    const real mj = s_.mass[j];
+    const real w = k_.h2 - r2;
+    rho_sum_ += mj * w * w * w;
+    const bool material = s_.role[j] == Role::material;
+    if (!material && role_ != Role::material) return;  // boundary and tool rows list material alone
+    if (front_ == back_) {  // the row is full: counted, never expected near rest density
+      ++overflow_;
+      return;
+    }
+    const real r = std::sqrt(r2);
+    const Vec3 grad = r > 0 ? d * (mj * kernels::cubic_grad_radial(r, k_) / r) : Vec3{};
+    const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * kernels::visc_laplacian(r, k_);
+    pairs_[material ? front_++ : --back_] = {grad, visc, j};
+    S_ += grad;
+    if (material) g2_ += norm2(grad) / mj;
+    if (r2 < A2_) {
+      if (n_close_ == kClose) flush_bonds();
+      close_[n_close_++] = j;
+    }
+  }
+
+  // Writes the row's sums and the density; forms the bonds of the close pairs.
+  void finish(bonds::Events& ev, std::uint64_t& overflow) {
+    flush_bonds();
+    ev += events_;
+    IisphScratch& x = s_.iisph;
+    x.n_material[i_] = std::uint8_t(front_);
+    x.n_other[i_] = std::uint8_t(IisphScratch::kPairStride - back_);
+    const bool material = role_ == Role::material;
+    x.grad_sum[i_] = S_;
+    // a_ii = -dt^2 / rho_i^2 diag_x: p_i moves i itself (material: |S_i|^2) and its material
+    // neighbours (m_i sum_j m_j |gradW_ij|^2); pressure.cpp.
+    x.diag_x[i_] = (material ? norm2(S_) : 0) + mi_ * g2_;
+    const real h6 = k_.h2 * k_.h2 * k_.h2;
+    s_.rho[i_] = role_ == Role::boundary ? s_.rho_static[s_.id[i_]] + k_.poly6 * rho_sum_
+                                         : k_.poly6 * (mi_ * h6 + rho_sum_);
+    x.inv_rho[i_] = 1 / s_.rho[i_];
+    overflow += overflow_;
+  }
+
+ private:
+  void flush_bonds() {
+    if (n_close_ > 0) bonds::form_bonds(s_, i_, close_, n_close_, events_);
+    n_close_ = 0;
+  }
+
+  static constexpr std::uint32_t kClose = 128;
+  const KernelCoeffs& k_;
+  State& s_;
+  std::uint32_t i_;
+  Role role_;
+  real mi_, mu_i_, A2_;
+  SolverPair* pairs_;
+  std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
+  real rho_sum_ = 0, g2_ = 0;
+  Vec3 S_;
+  std::uint32_t close_[kClose];
+  std::uint32_t n_close_ = 0;
+  bonds::Events events_;
+  std::uint64_t overflow_ = 0;
+};
+
+// Which neighbours particle i lists: a boundary particle the moving ones (its boundary part is
+// static), the others all.
+grid::Visit listed(const State& s, std::uint32_t i) {
+  return s.role[i] == Role::boundary ? grid::Visit::moving : grid::Visit::all;
+}
+
+// The grid search around particle i, over the sorted coordinates (valid after a reorder) or, between
+// rebuilds, over the positions themselves.
+template <class Fn>
+void search(const Model& model, const State& s, std::uint32_t i, bool sorted, Fn&& fn) {
+  const GridIndex& g = s.grid;
+  const Vec3 pi = s.pos[i];
+  grid::for_each_neighbour_range(model.grid, g, pi, listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t j = b; j < e; ++j) {
+      const Vec3 d = sorted ? Vec3{pi.x - g.x[j], pi.y - g.y[j], pi.z - g.z[j]} : pi - s.pos[j];
+      fn(j, d, norm2(d));
+    }
+  });
+}
+
+// Rebuild: the search writes i's list of neighbours within h + skin (as the paper's density pass
+// does: every candidate written at the count, the count advancing for those within reach; past the
+// capacity it marks the overflow) and hands them to the row.
+void build_list_and_row(const Model& model, State& s, std::uint32_t i, RowBuilder& row) {
+  GridIndex& g = s.grid;
+  const real reach = model.kernel.h + model.neighbour_skin, reach2 = reach * reach;
+  constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
+  std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  std::uint32_t count = 0;
+  search(model, s, i, true, [&](std::uint32_t j, const Vec3& d, real r2) {
+    const std::uint32_t within = (r2 < reach2) & (j != i);
+    list[count < cap ? count : cap] = j;
+    count += within;
+    row.add(j, d, r2);
+  });
+  g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
+}
+
+}  // namespace
+
+void compute_pairs(const Model& model, State& s, int threads, bool build_lists) {
+  if (!s.rho_static_valid) stages::compute_static_density(model, s);  // after particles were added
+  const std::int64_t n = s.size();
+  std::uint64_t formed = 0, overflowed = 0, pair_overflow = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : formed, overflowed, pair_overflow)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::uint32_t i = std::uint32_t(k);
+    RowBuilder row(model, s, i);
+    const GridIndex& g = s.grid;
+    if (build_lists) {
+      build_list_and_row(model, s, i, row);
+    } else if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) {
+      search(model, s, i, false, [&](std::uint32_t j, const Vec3& d, real r2) { row.add(j, d, r2); });
+    } else {
+      const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+      const Vec3 pi = s.pos[i];
+      for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
+        const std::uint32_t j = list[q];
+        const Vec3 d = pi - s.pos[j];
+        row.add(j, d, norm2(d));
+      }
+    }
+    bonds::Events ev;
+    std::uint64_t over = 0;
+    row.finish(ev, over);
+    formed += ev.formed;
+    overflowed += ev.overflowed;
+    pair_overflow += over;
+  }
+  bonds::Events total;
+  total.formed = formed;
+  total.overflowed = overflowed;
+  bonds::record(s, total);
+  s.diagnostics.pair_overflow = pair_overflow;
+}
+
+}  // namespace dentsph::iisph

@@ -1,0 +1,138 @@
+// The iisph solver's pressure: the paper's equation of state, P = max(0, Kp (rho - rho0)), taken at
+// the end of the step (backward Euler) instead of its start, with every particle's density as in the
+// paper (material, boundary and tool particles each have one, and a pressure). The pressures p >= 0
+// are those for which the density predicted at the end of the step,
+//   rho_pred,i = rho_i + dt sum_j m_j (v_i - v_j) . gradW_ij,   v = v* + dt a_p for material, given otherwise,
+// satisfies p_i = Kp_i (rho_pred,i - rho0_i) where p_i > 0, and rho_pred,i <= rho0_i where p_i = 0.
+// Only material moves, by the symmetric pressure acceleration
+//   a_p,i = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij      (j over every neighbour)
+// (gradW: the cubic spline's, kernels.hpp). Its power is -sum_i m_i p_i/rho_i^2 (d rho_i / dt): the
+// pressure force is the adjoint of the density's rate, so the system below is symmetric (in
+// m p / rho^2) and the pressure of the linearised step only takes kinetic energy out. For row i,
+//   (A p)_i = dt^2 sum_j m_j (a_p,i - a_p,j) . gradW_ij        (a_p = 0 for boundary and tool)
+//   (A p)_i - p_i / Kp_i = rho0_i - rho_adv_i,                   rho_adv from v* (no pressure)
+// solved by relaxed Jacobi, p_i += omega r_i / a_ii, clamped at 0 (the paper's pressure only repels),
+// from the last step's pressure times model.iisph.warm_start. The compliance 1 / Kp is what makes
+// this cheap: at the dental paste's Kp and dt = 1 ms it outweighs the kernel part of the diagonal,
+// and the pressure changes little from step to step, so two or three iterations from the last
+// pressure reach 0.03% (docs/model.md). As Kp grows the solve becomes IISPH's (Ihmsen et al. 2014,
+// "Implicit Incompressible SPH"). Each iteration is two sweeps over the pair rows; it stops after
+// min_iterations once the mean error of the material rows is below density_error, and after
+// max_iterations in any case.
+#include <algorithm>
+
+#include "solver/iisph.hpp"
+
+namespace dentsph::iisph {
+
+namespace {
+
+const SolverPair* row_of(const IisphScratch& x, std::uint32_t i) {
+  return x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
+}
+
+// The pressure acceleration of every material particle from the pressures q = p / rho^2.
+void pressure_accelerations(State& s, int threads) {
+  IisphScratch& x = s.iisph;
+  const std::int64_t n = std::int64_t(x.material.size());
+  const real* q = x.q.data();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t m = 0; m < n; ++m) {
+    const std::uint32_t i = x.material[m];
+    const SolverPair* row = row_of(x, i);
+    Vec3 a = x.grad_sum[i] * q[i];
+    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) a += row[e].grad * q[row[e].j];
+    for (std::uint32_t e = IisphScratch::kPairStride - x.n_other[i]; e < IisphScratch::kPairStride; ++e)
+      a += row[e].grad * q[row[e].j];
+    x.accel[i] = -a;
+  }
+}
+
+// The density change the pressure accelerations make over the step, dt^2 sum_j m_j (a_i - a_j) . gradW_ij.
+real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool material, real dt2) {
+  const SolverPair* row = row_of(x, i);
+  real ap = material ? dot(x.accel[i], x.grad_sum[i]) : 0;
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) ap -= dot(x.accel[row[e].j], row[e].grad);
+  return ap * dt2;
+}
+
+// The predicted density without pressure (from v*), the right-hand side and the start of row i.
+void start_row(const Model& model, State& s, std::uint32_t i) {
+  IisphScratch& x = s.iisph;
+  const real dt = model.dt;
+  const std::vector<Vec3>& v = x.v_a;  // v* (boundary, tool: their velocity)
+  const SolverPair* row = row_of(x, i);
+  const bool material = s.role[i] == Role::material;
+  // material: v_i . S_i - sum_j v_j . m_j gradW_ij over every neighbour; boundary and tool: the
+  // material neighbours' motion alone (what the solve can change).
+  real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad);
+  x.source[i] = s.rho0[i] - (s.rho[i] + dt * div);
+  const real p = model.iisph.warm_start * s.pressure[i];
+  s.pressure[i] = p;
+  x.q[i] = p * x.inv_rho[i] * x.inv_rho[i];
+}
+
+}  // namespace
+
+void solve_pressure(const Model& model, State& s, int threads) {
+  IisphScratch& x = s.iisph;
+  const std::int64_t rows = x.active_count, n_material = std::int64_t(x.material.size());
+  const real dt2 = model.dt * model.dt;
+  const IisphParams& ip = model.iisph;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t k = 0; k < rows; ++k) start_row(model, s, x.active[k]);
+  int it = 0;
+  real mean_error = 0, mean_compression = 0, last_error = -1;
+  real omega = ip.omega;
+  while (it < ip.max_iterations) {
+    pressure_accelerations(s, threads);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t k = 0; k < rows; ++k) {
+      const std::uint32_t i = x.active[k];
+      const bool material = s.role[i] == Role::material;
+      const real compliance = 1 / s.Kp[i];  // kg/m^3 per Pa: rho - rho0 = p / Kp
+      // rho0 - rho_predicted + p / Kp: zero where the equation of state holds at the end of the step
+      const real residual = x.source[i] - pressure_density_change(x, i, material, dt2) + s.pressure[i] * compliance;
+      // The solve's error: where the pressure pushes, the equation of state's; where it is 0, the
+      // compression it leaves (expansion is free).
+      if (material) {
+        x.error[i] = (s.pressure[i] > 0 ? std::abs(residual) : std::max<real>(0, -residual)) / s.rho0[i];
+        x.compression[i] = std::max<real>(0, s.pressure[i] * compliance - residual) / s.rho0[i];
+      }
+      const real ir2 = x.inv_rho[i] * x.inv_rho[i];
+      const real diag = -dt2 * ir2 * x.diag_x[i] - compliance;
+      const real p = std::max<real>(0, s.pressure[i] + omega * residual / diag);
+      s.pressure[i] = p;
+      x.q[i] = p * ir2;
+    }
+    ++it;
+    // The mean in a fixed order: every thread count takes the same number of iterations.
+    real sum = 0, compressed = 0;
+    for (std::int64_t m = 0; m < n_material; ++m) {
+      sum += x.error[x.material[m]];
+      compressed += x.compression[x.material[m]];
+    }
+    mean_error = n_material > 0 ? sum / real(n_material) : 0;
+    mean_compression = n_material > 0 ? compressed / real(n_material) : 0;
+    if (it >= ip.min_iterations && mean_error <= ip.density_error) break;
+    // Relaxed Jacobi converges for omega below 2 / (largest eigenvalue of diag^-1 A), which grows
+    // with dt^2 / compliance: where the error grows, the relaxation halves (for the rest of the solve).
+    if (last_error >= 0 && mean_error > 1.25 * last_error) omega *= 0.5;
+    last_error = mean_error;
+  }
+  pressure_accelerations(s, threads);  // of the pressures the solve ends with
+  // v* + dt a_p: the viscosity's start and right-hand side.
+  const real dt = model.dt;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t m = 0; m < n_material; ++m) {
+    const std::uint32_t i = x.material[m];
+    x.v_star[i] += x.accel[i] * dt;
+    x.v_a[i] = x.v_star[i];
+  }
+  s.diagnostics.pressure_iterations = it;
+  s.diagnostics.density_error = mean_compression;
+  s.diagnostics.pressure_residual = mean_error;
+}
+
+}  // namespace dentsph::iisph

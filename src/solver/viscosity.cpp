@@ -1,0 +1,95 @@
+// The iisph solver's viscosity: the paper's viscosity (eq. 4, the viscosity kernel's Laplacian)
+// integrated backward in time after the pressure, v** - dt a_visc(v**) = v* + dt a_p. Multiplied by
+// m_i it is the symmetric, positive definite system
+//   m_i v_i + dt sum_j c_ij (v_i - v_j) = m_i v_i',   c_ij = (mu_i + mu_j)/2 m_i m_j lapW_visc(r) / (rho_i rho_j),
+// with the boundary's (v = 0) and the tool's (its velocity) terms on the right-hand side, solved by
+// conjugate gradients with the diagonal as preconditioner, model.iisph.viscosity_iterations iterations
+// from v'. Backward Euler is stable for any dt (the explicit limit, 0.125 h^2 rho0 / mu, is 90 us
+// for the dental paste), each iteration lowers the error's energy norm, and conjugate gradients
+// reach the long wavelengths (the slumping of a heap of paste) that as many Jacobi sweeps leave
+// undamped. After the pressure, so that the velocities the pressure gives are damped within the
+// same step, as the paste's viscosity does over the step's millisecond (docs/model.md).
+//
+// The three components are three independent solves sharing each sweep. The sums over particles
+// are taken in a fixed order, so every thread count gives the same result.
+#include "solver/iisph.hpp"
+
+namespace dentsph::iisph {
+
+namespace {
+
+// Component-wise product and quotient of Vec3 (the three solves side by side).
+inline Vec3 mul(const Vec3& a, const Vec3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+inline Vec3 quotient(const Vec3& a, const Vec3& b) {
+  return {b.x != 0 ? a.x / b.x : 0, b.y != 0 ? a.y / b.y : 0, b.z != 0 ? a.z / b.z : 0};
+}
+
+class ViscositySolve {
+ public:
+  ViscositySolve(const Model& model, State& s, int threads)
+      : s_(s), x_(s.iisph), dt_(model.dt), threads_(threads), n_(std::int64_t(x_.material.size())) {}
+
+  // Conjugate gradients from v' (in v_a, also the right-hand side's v_star), `iterations` of them.
+  void run(int iterations) {
+    Vec3* v = x_.v_a.data();
+    Vec3* p = x_.cg_p.data();
+    Vec3* r = x_.cg_r.data();
+    Vec3* ap = x_.cg_ap.data();
+    each([&](std::uint32_t i) {
+      r[i] = x_.v_star[i] * s_.mass[i] + x_.visc_fixed[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]) - apply(v, i);
+      p[i] = r[i] / diagonal(i);
+    });
+    Vec3 rz = sum([&](std::uint32_t i) { return mul(r[i], p[i]); });
+    for (int it = 0; it < iterations; ++it) {
+      each([&](std::uint32_t i) { ap[i] = apply(p, i); });
+      const Vec3 alpha = quotient(rz, sum([&](std::uint32_t i) { return mul(p[i], ap[i]); }));
+      each([&](std::uint32_t i) {
+        v[i] += mul(alpha, p[i]);
+        r[i] -= mul(alpha, ap[i]);
+      });
+      const Vec3 rz_next = sum([&](std::uint32_t i) { return mul(r[i], r[i] / diagonal(i)); });
+      const Vec3 beta = quotient(rz_next, rz);
+      rz = rz_next;
+      each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
+    }
+  }
+
+ private:
+  // Row i (material) of the system times v: m_i v_i (1 + dt/rho_i sum_j visc_ij) - dt m_i/rho_i
+  // sum_{j material} visc_ij v_j, visc_ij = (mu_i + mu_j)/2 m_j lapW / rho_j (advection.cpp).
+  Vec3 apply(const Vec3* v, std::uint32_t i) const {
+    const SolverPair* row = x_.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
+    Vec3 neighbours;
+    for (std::uint32_t q = 0; q < x_.n_material[i]; ++q) neighbours += v[row[q].j] * row[q].visc;
+    const real a = dt_ * s_.mass[i] * x_.inv_rho[i];
+    return v[i] * (s_.mass[i] + a * x_.visc_diag[i]) - neighbours * a;
+  }
+  real diagonal(std::uint32_t i) const { return s_.mass[i] * (1 + dt_ * x_.inv_rho[i] * x_.visc_diag[i]); }
+  // fn(i) for every material particle, in parallel.
+  template <class F>
+  void each(F&& fn) const {
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::int64_t m = 0; m < n_; ++m) fn(x_.material[m]);
+  }
+  // The sum of f(i) over material particles, in their order.
+  template <class F>
+  Vec3 sum(F&& f) const {
+    Vec3 t;
+    for (std::int64_t m = 0; m < n_; ++m) t += f(x_.material[m]);
+    return t;
+  }
+
+  State& s_;
+  IisphScratch& x_;
+  real dt_;
+  int threads_;
+  std::int64_t n_;
+};
+
+}  // namespace
+
+void implicit_viscosity(const Model& model, State& s, int threads) {
+  ViscositySolve(model, s, threads).run(model.iisph.viscosity_iterations);
+}
+
+}  // namespace dentsph::iisph
