@@ -25,6 +25,11 @@ Backend parse_backend(const std::string& name) {
 
 std::unique_ptr<Stepper> make_stepper(Backend backend, const Model& model, const State& state, int threads,
                                       ThreadPolicy policy) {
+  // The GPU backends run the paper's step only.
+  if (backend != Backend::cpu && model.solver != Solver::paper)
+    throw std::invalid_argument(fmt::format("the {} solver has no {} backend: step it on the CPU (--backend cpu), or "
+                                            "choose the paper's step for the GPU",
+                                            solver_name(model.solver), backend_name(backend)));
   switch (backend) {
     case Backend::cpu: return make_cpu_stepper(model, threads, policy);
     case Backend::cuda: return make_cuda_stepper(model, state);

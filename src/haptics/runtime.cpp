@@ -102,7 +102,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   // ends before its recording of the steps outgrows limits::max_recorded_steps.
   const double end_s = opt.duration_s > 0 ? opt.duration_s : limits::max_realtime_s;
   sim.run(t0, [&](std::int64_t now) {
-    return double(now - t0) * 1e-9 >= end_s || state.steps >= limits::max_recorded_steps ||
+    return double(now - t0) * 1e-9 >= end_s || core.state().steps >= limits::max_recorded_steps ||
            shared.device_finished.load(std::memory_order_acquire) ||
            (opt.stop && opt.stop->load(std::memory_order_relaxed));
   });

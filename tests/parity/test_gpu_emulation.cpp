@@ -115,6 +115,21 @@ TEST(Backend, CpuStepperIsTheGridStepBitForBit) {
   EXPECT_STREQ(make_stepper(Backend::cuda_emulation, model, st, 1)->name(), "cuda-emulation");
 }
 
+// The GPU backends run the paper's step only: a model of another solver is refused by name.
+TEST(Backend, AGpuBackendRefusesAnotherSolverByName) {
+  const GpuScene scene{5, 0.2, 1, false, 3};
+  Model model = gpu_scene_model(scene);
+  const State st = gpu_scene_state(model, scene);
+  model.solver = Solver::iisph;
+  try {
+    make_stepper(Backend::cuda_emulation, model, st, 1);
+    ADD_FAILURE() << "the emulation took the iisph solver";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("iisph solver has no cuda-emulation backend"), std::string::npos) << e.what();
+  }
+  EXPECT_STREQ(make_stepper(Backend::cpu, model, st, 1)->name(), "cpu");
+}
+
 TEST(Backend, NamesParseAndUnknownNamesAreRefused) {
   EXPECT_EQ(parse_backend("cpu"), Backend::cpu);
   EXPECT_EQ(parse_backend("cuda"), Backend::cuda);
