@@ -126,8 +126,7 @@ int replay_recording(const Scene& scene, const std::string& dir, int threads, Ba
              "(largest difference {:.3g} N; recorded peak {:.4g} N)\n",
              f.size(), r.events.size(), dir, backend_name(backend), r.backend, c.differ, c.largest, c.peak);
   if (exact) return c.differ == 0 ? 0 : 4;
-  fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} relative, or of the "
-             "peak where forces are small)\n",
+  fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} of the recorded peak)\n",
              c.outside, kBackendParityTolerance);
   return c.outside == 0 ? 0 : 4;
 }
