@@ -26,10 +26,11 @@ const char* backend_name(Backend b);
 // "cpu", "cuda" or "cuda-emulation"; anything else throws std::invalid_argument naming the choices.
 Backend parse_backend(const std::string& name);
 
-// How closely a GPU backend (or its emulation) agrees with the CPU step, relative to each value
-// (or to a small share of the field's largest where values are small): the particles after a
-// hundred steps (tests/parity, tests/cuda), the tool forces of a recorded session replayed on
-// another backend (dentsph replay, tests/haptics). They differ only in the order of summation.
+// How closely a GPU backend (or its emulation) agrees with the CPU step: the particles after a
+// hundred steps relative to each value (or to a small share of the field's largest where values
+// are small; tests/parity, tests/cuda), and the tool forces of a recorded session replayed on
+// another backend relative to the session's peak force (compare_replay: dentsph replay,
+// tests/haptics). They differ only in the order of summation.
 inline constexpr real kBackendParityTolerance = 1e-4;
 
 // Whether the CUDA backend can run here: built with CUDA, and a device present. `reason` says why

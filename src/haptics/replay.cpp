@@ -68,19 +68,17 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
   return forces;
 }
 
-ReplayComparison compare_replay(const std::vector<Vec3>& f, const Recording& r, double rel, double floor_share) {
+ReplayComparison compare_replay(const std::vector<Vec3>& f, const Recording& r, double rel) {
   if (f.size() != r.steps.size())
     throw std::invalid_argument(fmt::format("compare_replay: {} replayed steps against {} recorded", f.size(), r.steps.size()));
   ReplayComparison c;
   for (const StepSample& s : r.steps) c.peak = std::max(c.peak, double(norm(s.tool_force)));
-  const double floor = floor_share * c.peak;
+  const double bound = rel * c.peak;
   for (std::size_t k = 0; k < f.size(); ++k) {
-    const Vec3& rec = r.steps[k].tool_force;
-    c.largest = std::max(c.largest, double(norm(f[k] - rec)));
-    c.differ += !(f[k] == rec);
-    bool out = false;
-    for (int ax = 0; ax < 3; ++ax) out |= !(std::abs(f[k][ax] - rec[ax]) <= rel * std::max(std::abs(double(rec[ax])), floor));
-    c.outside += out;
+    const Vec3 d = f[k] - r.steps[k].tool_force;
+    c.largest = std::max(c.largest, double(norm(d)));
+    c.differ += !(f[k] == r.steps[k].tool_force);
+    c.outside += !(std::abs(d.x) <= bound && std::abs(d.y) <= bound && std::abs(d.z) <= bound);
   }
   return c;
 }
