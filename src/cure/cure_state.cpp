@@ -1,6 +1,8 @@
 // The per-particle cure state kept by id (include/dentsph/cure_state.hpp).
 #include "dentsph/cure_state.hpp"
 
+#include <limits>
+
 #include "dentsph/state.hpp"
 
 namespace dentsph {
@@ -38,6 +40,10 @@ void CureState::compact(const std::vector<std::uint32_t>& new_id, std::uint32_t 
   };
   rekey(alpha), rekey(dose), rekey(irradiance), rekey(increment), rekey(curable), rekey(rigid);
   rekey(mixed_at), rekey(mu0), rekey(Kp0), rekey(rho00), rekey(Ka0), rekey(gel_pos);
+  // The lit list names old ids: the next cure call makes a pass, which lists the lit paste anew.
+  lit_ids.clear();
+  lit_irradiance.clear();
+  next_pass = -std::numeric_limits<real>::infinity();
 }
 
 std::uint16_t CureState::begin_increment(std::uint32_t first_id, std::uint32_t count) {

@@ -139,5 +139,26 @@ TEST(CureTransition, SetPasteIsStillFillingForTheAssessment) {
   EXPECT_EQ(after.fill_fraction, before.fill_fraction);
 }
 
+// Removing particles renumbers ids: a light on at the time keeps adding dose to the right
+// particles (the next call lists the lit paste anew).
+TEST(CureState, ALitCureSurvivesAToolSwitch) {
+  Box b;
+  State& st = b.st;
+  const CureModel cm = make_cure_model(b.model, cure_material_preset("composite"), b.s, kPaste);
+  const CuringLight light = light_above({0.9 * mm, 0.9 * mm, 4 * mm});
+  st.time += b.model.dt;
+  cure_between_steps(cm, st, light, b.model.dt);
+  switch_tool(st, b.model, flat_plugger(5 * b.s, 3 * b.s, b.s), st.mass[0], kWall);  // ids renumbered
+  st.time += b.model.dt;
+  const CureUpdate up = cure_between_steps(cm, st, light, b.model.dt);
+  EXPECT_GT(up.lit, 0u);
+  for (std::uint32_t id : st.cure.lit_ids) EXPECT_EQ(st.cure.curable[id], 1) << id;
+  for (std::uint32_t id = 0; id < st.size(); ++id) {
+    if (!st.cure.curable[id]) {
+      EXPECT_EQ(st.cure.dose[id], 0) << "no dose on the instrument or the walls";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dentsph::testing
