@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "solver/iisph.hpp"
+#include "step/stages.hpp"
 
 namespace dentsph::iisph {
 
@@ -76,12 +77,7 @@ void finish(const Model& model, State& s, int threads) {
         break;
     }
   }
-  s.diagnostics.max_accel = std::sqrt(a2max);
-  s.diagnostics.max_speed = std::sqrt(v2max);
-  s.diagnostics.non_finite = non_finite;
-  s.tool_pose_applied = s.tool_pose;
-  s.time += dt;
-  ++s.steps;
+  stages::close_step(s, a2max, v2max, non_finite, dt);
 }
 
 }  // namespace dentsph::iisph

@@ -27,6 +27,10 @@ void integrate(const Model& model, State& s, int threads) {
       v2max = std::max(v2max, m.v2);
     }
   }
+  close_step(s, a2max, v2max, non_finite, dt);
+}
+
+void close_step(State& s, real a2max, real v2max, std::uint64_t non_finite, real dt) {
   s.diagnostics.max_accel = std::sqrt(a2max);
   s.diagnostics.max_speed = std::sqrt(v2max);
   s.diagnostics.non_finite = non_finite;

@@ -30,6 +30,9 @@ void compute_forces(const Model& model, State& state, int threads);
 void compute_tool_wrench(State& state);
 // 6. Semi-implicit Euler for material; the tool moves to its pose (integrate.cpp).
 void integrate(const Model& model, State& state, int threads);
+// The end of every step, whichever solver took it: the largest acceleration and speed of the
+// material (from their squares), its non-finite particles, the tool at its pose, the clock advanced.
+void close_step(State& state, real a2max, real v2max, std::uint64_t non_finite, real dt);
 
 // The all-pairs versions of the neighbour stages (brute_force.cpp), and its stage 4 as a pass of
 // its own over all particles (the grid step applies pressure.hpp inside its density pass).
