@@ -22,13 +22,15 @@
 #include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
+#include "io/summary.hpp"
 #include "report/viewer_report.hpp"
 
 namespace {
 
 // What a run of the viewer did, for scripts and tests; and its report for a tutor beside it.
 void write_summary(const std::string& file, const dentsph::viewer::ViewerResult& r,
-                   const std::optional<dentsph::RealtimeResult>& realtime, const dentsph::Scene& scene) {
+                   const std::optional<dentsph::RealtimeResult>& realtime, const dentsph::Scene& scene,
+                   const std::vector<dentsph::viewer::SimSession::ForceSample>& forces) {
   using nlohmann::json;
   std::uint32_t material = 0;
   for (dentsph::Role role : r.last.role) material += role == dentsph::Role::material;
@@ -53,6 +55,15 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
   std::vector<dentsph::Vec3> positions(r.last.xyz.size() / 3);
   for (std::size_t i = 0; i < positions.size(); ++i)
     positions[i] = {r.last.xyz[3 * i], r.last.xyz[3 * i + 1], r.last.xyz[3 * i + 2]};
+  // The viewer's own loop keeps the tool force of every step: the report plots it (under a device
+  // the recording has it).
+  const std::filesystem::path dir = dentsph::report::viewer_report_dir(file);
+  std::filesystem::remove(dir / "tool_force.csv");  // an earlier session's, in a folder used again
+  if (!realtime && !forces.empty()) {
+    std::filesystem::create_directories(dir);
+    dentsph::io::ToolForceCsv csv(dir / "tool_force.csv");
+    for (const auto& f : forces) csv.add(f.t, f.wrench);
+  }
   const auto report = dentsph::report::write_viewer_report(file, scene, positions, r.last.role, j,
                                                            realtime ? &*realtime : nullptr);
   fmt::print("wrote {}\n", report.string());
@@ -127,7 +138,7 @@ int main(int argc, char** argv) {
                r.frames, r.fps_median, r.frame_p50_ms, r.frame_p99_ms, r.sim_steps, r.sim_steps_per_second);
     if (!screenshot.empty() && !r.closed_by_user && !r.timed_out) fmt::print("wrote {}\n", screenshot);
     if (session.realtime_result()) fmt::print("\n{}", realtime_report(*session.realtime_result()));
-    if (!summary_file.empty()) write_summary(summary_file, r, session.realtime_result(), session.scene());
+    if (!summary_file.empty()) write_summary(summary_file, r, session.realtime_result(), session.scene(), session.force_log());
     if (r.closed_by_user) fmt::print("viewer: closed before the end; the simulation stopped cleanly\n");
     if (r.timed_out) {
       fmt::print(stderr, "error: gave up after {:.0f} s (--timeout) before the frames and the script were done\n",

@@ -46,6 +46,7 @@ void SimSession::reset() {
   tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
   diverged_ = false;
+  force_log_.clear();
   steps_.store(0, std::memory_order_release);
 }
 
@@ -303,7 +304,10 @@ void SimSession::run() {
       const real len = norm(d);
       Pose pose = applied;
       pose.position = len > max_move ? applied.position + d * (max_move / len) : goal;
-      if (!sim.step(pose)) {
+      const real t_forces = sim.state().time;
+      const bool going = sim.step(pose);
+      force_log_.push_back({t_forces, sim.state().tool_wrench});
+      if (!going) {
         diverged_ = true;
         message_ = fmt::format("the simulation diverged: {}; reset it (R) and soften the paste", sim.divergence());
       }

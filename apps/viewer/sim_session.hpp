@@ -104,6 +104,13 @@ class SimSession {
   void stop();  // joins the thread; idempotent
   // The runtime's result once stopped (use_device sessions).
   const std::optional<RealtimeResult>& realtime_result() const { return realtime_result_; }
+  // The session's own loop (no device): the simulated time and tool force after each step since the
+  // last reset, for the report's force plot; read once stopped.
+  struct ForceSample {
+    real t = 0;        // s, simulated, at the start of the step
+    ToolWrench wrench;
+  };
+  const std::vector<ForceSample>& force_log() const { return force_log_; }
 
   // Applies `c` before the next step.
   void post(const Command& c);
@@ -165,6 +172,7 @@ class SimSession {
   HapticLive live_;
   std::atomic<bool> rt_stop_{false};
   std::optional<RealtimeResult> realtime_result_;
+  std::vector<ForceSample> force_log_;
   std::string run_error_;
   std::uint64_t live_ticks0_ = 0;
   std::chrono::steady_clock::time_point live_t0_, last_publish_, last_assess_, rate_t0_;

@@ -4,6 +4,7 @@
 // missing (scripts/install-deps.sh installs it; CI always has it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -217,6 +218,12 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
   EXPECT_EQ(j["backend"], "cuda-emulation");
   EXPECT_GT(j["sim"]["steps"].get<int>(), 0);
   EXPECT_EQ(j["particles"]["material"], 1600);
+  // Without a device the viewer's own loop keeps every step's tool force: its report plots it.
+  const fs::path report = sum.parent_path() / (sum.stem().string() + "_report");
+  const std::string csv = slurp(report / "tool_force.csv");
+  EXPECT_GE(long(std::count(csv.begin(), csv.end(), '\n')), j["sim"]["steps"].get<long>() + 1)
+      << "a header and a row for every step";
+  EXPECT_NE(slurp(report / "report.html").find("id=\"force-plot\""), std::string::npos);
 
   r = run_viewer(fmt::format("--backend cuda-emulation --device scripted --frames 30 --summary '{}'", sum.string()));
   ASSERT_EQ(r.status, 0) << r.out << r.err;
@@ -224,6 +231,7 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
   EXPECT_EQ(j["backend"], "cuda-emulation");
   EXPECT_EQ(j["realtime"]["sim"]["backend"], "cuda-emulation");
   EXPECT_GT(j["realtime"]["sim"]["steps"].get<int>(), 0);
+  EXPECT_FALSE(fs::exists(report / "tool_force.csv")) << "under a device the recording holds the forces";
 }
 
 // --backend cuda where it cannot run: exit status 2 and the reason, no window.
