@@ -55,13 +55,25 @@ std::vector<IncrementThickness> ProcedureLog::thickness(const Scene& scene, cons
   std::vector<std::uint32_t> material;
   for (std::uint32_t id = 0; id < state.size(); ++id)
     if (state.role[state.index_of_id[id]] == Role::material) material.push_back(state.index_of_id[id]);
+  // Each increment's particles: logged with its event, or, where the log does not know them (an
+  // increment of the device's button in a realtime session), counted from the state's increment
+  // numbers (every dispense numbers its increment, in the order they came: CureState).
+  std::vector<std::uint32_t> tagged;
+  if (state.cure.increment.size() == state.size())
+    for (std::uint32_t id = 0; id < state.size(); ++id) {
+      const std::uint16_t k = state.cure.increment[id];
+      if (k == 0) continue;
+      if (tagged.size() < k) tagged.resize(k, 0);
+      ++tagged[k - 1];
+    }
   std::vector<std::uint32_t> counts;
   std::uint64_t total = initial_material_;
   for (const LoggedEvent& e : events_) {
     if (e.kind != "dispense") continue;
-    if (e.particles < 0) return {};  // not known: no thickness
-    counts.push_back(std::uint32_t(e.particles));
-    total += std::uint64_t(e.particles);
+    const std::size_t k = counts.size();
+    if (e.particles < 0 && k >= tagged.size()) return {};  // not known: no thickness
+    counts.push_back(e.particles >= 0 ? std::uint32_t(e.particles) : tagged[k]);
+    total += counts.back();
   }
   if (total != material.size()) return {};
   const ToothFrame& fr = scene.tooth->frame();

@@ -4,6 +4,7 @@
 // and increments, and the session store (migrations, queries, two writers at once).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <regex>
 #include <thread>
@@ -11,6 +12,7 @@
 #include <sqlite3.h>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/scene.hpp"
 #include "report/chartjs.hpp"
 #include "report/class_report.hpp"
@@ -200,6 +202,30 @@ TEST(Report, IncrementThicknessFromTheFinalState) {
   ProcedureLog wrong(0u);
   wrong.add({0, 0.0, "dispense", "procedure", "", 5});
   EXPECT_TRUE(wrong.thickness(scene, state).empty());
+}
+
+// Increments of the device's button (their particle counts not in the log) are counted from the
+// increment numbers every dispense gives its particles.
+TEST(Report, ButtonIncrementsThicknessFromTheirNumbers) {
+  const Scene scene = default_dental_scene();
+  State state = make_state(scene);
+  const std::uint32_t initial = state.count(Role::material);
+  const real volume = 40 * std::pow(scene.material_spacing, 3);
+  const std::size_t a = dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+  const std::size_t b = dispense_increment(scene, state, volume, increment_axis(scene), scene_paste(scene));
+  ASSERT_GT(a, 0u);
+  ASSERT_GT(b, 0u);
+  ProcedureLog log(initial);
+  log.add({0, 0.0, "dispense", "button", "", -1});
+  log.add({5, 0.1, "dispense", "button", "", -1});
+  const auto t = log.thickness(scene, state);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].particles, a);
+  EXPECT_EQ(t[1].particles, b);
+  EXPECT_GT(t[0].median_mm, 0);
+  // A third button increment the state never saw: not measured.
+  log.add({9, 0.2, "dispense", "button", "", -1});
+  EXPECT_TRUE(log.thickness(scene, state).empty());
 }
 
 TEST(Report, StoreMigratesFindsAndKeepsSessions) {
