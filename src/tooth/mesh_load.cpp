@@ -27,6 +27,10 @@ void check_face_indices(const aiScene& scene, const std::string& name) {
       throw MeshError(fmt::format("{}: mesh {} is incomplete; the file is damaged: export it again", name, m));
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
+      // A face of no vertex (a PLY face list of length 0) passes assimp's validation and then
+      // aborts its triangulation (an assertion in TriangulateProcess: found by fuzz_mesh).
+      if (face.mNumIndices == 0 || (face.mNumIndices > 0 && !face.mIndices))
+        throw MeshError(fmt::format("{}: face {} has no vertices; the file is damaged: export it again", name, f));
       for (unsigned k = 0; k < face.mNumIndices; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices)
           throw MeshError(fmt::format("{}: face {} refers to vertex {} of {}; the file is damaged: export it again",
