@@ -13,8 +13,8 @@ packages=(
   # dentsph-viewer, and its tests under a virtual display with Mesa's software OpenGL
   libglfw3-dev libepoxy-dev libimgui-dev libglm-dev xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
-# --sanitizers: also clang 14 and LLVM's OpenMP, for the tsan preset (Archer makes OpenMP visible
-# to ThreadSanitizer).
+# --sanitizers: also clang 14, its runtimes (libFuzzer, the sanitizers) and LLVM's OpenMP, for the
+# tsan preset (Archer makes OpenMP visible to ThreadSanitizer) and the fuzz preset (scripts/fuzz.sh).
 if [ "${1:-}" = "--sanitizers" ]; then
   packages+=(clang-14 libomp-14-dev libclang-rt-14-dev)
 fi

@@ -9,7 +9,7 @@
 #include "colour_map.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/tools.hpp"
-#include "scene/reader.hpp"
+#include "scene/parse.hpp"
 
 namespace dentsph::viewer {
 
@@ -28,13 +28,9 @@ constexpr KindName kKinds[] = {{ScriptAction::Kind::move, "move"},         {Scri
 }  // namespace
 
 InputScript parse_input_script(const std::string& json_text, const std::string& source) {
-  scene::Json doc;
-  try {
-    doc = scene::Json::parse(json_text);
-  } catch (const scene::Json::parse_error& e) {
-    scene::fail(source, "(file)", fmt::format("is not valid JSON ({})", e.what()),
-                "fix the syntax (a missing comma or bracket)");
-  }
+  // The scene files' JSON reading: a syntax error, or a number beyond a double's range (1e8880),
+  // is a SceneError naming the line and column.
+  const scene::Json doc = scene::parse_json(json_text, source);
   const scene::Reader top(doc, "", source, "an input script");
   top.only({"actions"});
   const scene::Json& actions = top.array("actions", "the list of actions, e.g. [{\"step\": 0, \"action\": \"dispense\"}]");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -60,9 +61,16 @@ std::uint64_t scene_bytes(std::uint64_t held, std::uint64_t simulated, int max_b
 }
 
 std::uint64_t memory_limit_bytes() {
+  std::uint64_t limit = max_scene_bytes;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return max_scene_bytes;
-  return std::min(max_scene_bytes, std::uint64_t(pages) * std::uint64_t(page));
+  if (pages > 0 && page > 0) limit = std::min(limit, std::uint64_t(pages) * std::uint64_t(page));
+  // A smaller limit asked for (a shared machine, the fuzzers): DENTSPH_MEMORY_LIMIT_MB.
+  if (const char* mb = std::getenv("DENTSPH_MEMORY_LIMIT_MB")) {
+    char* end = nullptr;
+    const double v = std::strtod(mb, &end);
+    if (end != mb && *end == '\0' && v > 0 && v < 1e12) limit = std::min(limit, std::uint64_t(v * 1024 * 1024));
+  }
+  return limit;
 }
 
 std::string memory_problem(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin,

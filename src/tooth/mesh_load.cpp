@@ -5,8 +5,11 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 
 #include "dentsph/tooth.hpp"
@@ -24,12 +27,56 @@ void check_face_indices(const aiScene& scene, const std::string& name) {
       throw MeshError(fmt::format("{}: mesh {} is incomplete; the file is damaged: export it again", name, m));
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
+      // A face of no vertex (a PLY face list of length 0) passes assimp's validation and then
+      // aborts its triangulation (an assertion in TriangulateProcess: found by fuzz_mesh).
+      if (face.mNumIndices == 0 || (face.mNumIndices > 0 && !face.mIndices))
+        throw MeshError(fmt::format("{}: face {} has no vertices; the file is damaged: export it again", name, f));
       for (unsigned k = 0; k < face.mNumIndices; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices)
           throw MeshError(fmt::format("{}: face {} refers to vertex {} of {}; the file is damaged: export it again",
                                       name, f, face.mIndices[k], mesh->mNumVertices));
     }
   }
+}
+
+// A PLY file's header, read before assimp sees the file: assimp 5.2 loops for ever on a header
+// without its end_header line (found by fuzz_mesh), and allocates what the header declares
+// whatever the file holds. Refuses both.
+void check_ply_header(const std::filesystem::path& file, const std::string& name, std::uintmax_t size) {
+  std::ifstream in(file, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
+  if (!first.starts_with("ply")) return;  // not a PLY file: assimp decides
+  constexpr std::size_t kMaxHeaderLines = 10000;
+  double declared = 0;  // bytes the elements need at the least: one per property of each
+  double properties = 0, count = 0;
+  auto close_element = [&] { declared += count * std::max(1.0, properties); };
+  std::string line;
+  for (std::size_t n = 0; n < kMaxHeaderLines && std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header") {
+      close_element();
+      if (declared > double(size))
+        throw MeshError(fmt::format("{}: its PLY header declares elements of at least {:.3g} bytes, but the file holds "
+                                    "{}; the file is truncated or damaged: export it again",
+                                    name, declared, size));
+      return;
+    }
+    if (word == "element") {
+      close_element();
+      std::string element;
+      words >> element >> count;
+      if (!words || !(count >= 0)) count = 0;
+      properties = 0;
+    } else if (word == "property") {
+      properties += 1;
+    }
+  }
+  throw MeshError(fmt::format("{}: is not a complete PLY file (its header has no end_header line); export it again",
+                              name));
 }
 
 }  // namespace
@@ -46,8 +93,15 @@ LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
     throw MeshError(fmt::format("{}: is a folder; name a mesh file (.stl, .obj or .ply)", name));
   if (!std::ifstream(file, std::ios::binary))
     throw MeshError(fmt::format("{}: cannot be opened for reading; check its permissions", name));
-  if (std::filesystem::file_size(file, ec) == 0)
-    throw MeshError(fmt::format("{}: is empty (0 bytes); export the mesh again", name));
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (size == 0) throw MeshError(fmt::format("{}: is empty (0 bytes); export the mesh again", name));
+  // STL, OBJ and PLY only: assimp reads dozens of formats, each an importer to trust.
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".stl" && ext != ".obj" && ext != ".ply")
+    throw MeshError(fmt::format("{}: is not an STL, OBJ or PLY file (by its name); save it as one, with its extension",
+                                name));
+  check_ply_header(file, name, size);
 
   Assimp::Importer importer;
   // Read first with no processing but assimp's own validation, which refuses a face that names a

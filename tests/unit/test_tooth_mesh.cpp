@@ -124,6 +124,35 @@ TEST(ToothMesh, MissingEmptyAndUnreadableFilesAreRefusedByName) {
   fs::remove_all(dir);
 }
 
+// What assimp would hang on, allocate for or abort on is refused first: a PLY header without its
+// end_header line (assimp 5.2 looped for ever: found by fuzz_mesh), a PLY header declaring more
+// than the file holds, a face of no vertex, and formats other than STL, OBJ and PLY (by name).
+TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
+  const fs::path dir = temp_dir("assimp_hangs");
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\nproperty list uchar int v\n";
+  std::ofstream(dir / "no_end.ply") << header << "3 1 2 3\n";
+  const std::string no_end = load_refusal(dir / "no_end.ply");
+  EXPECT_NE(no_end.find("no_end.ply: is not a complete PLY file (its header has no end_header line)"),
+            std::string::npos) << no_end;
+  std::ofstream(dir / "huge.ply") << "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
+                                     "property float x\nproperty float y\nproperty float z\nend_header\n\1\2\3";
+  const std::string huge = load_refusal(dir / "huge.ply");
+  EXPECT_NE(huge.find("huge.ply: its PLY header declares elements of at least 3e+09 bytes"), std::string::npos) << huge;
+  // A face list of length 0: assimp's validation passed it and its triangulation aborted the
+  // program (an assertion; found by fuzz_mesh).
+  std::ofstream(dir / "empty_face.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                                           "property float y\nproperty float z\nelement face 4\n"
+                                           "property list uchar int vertex_indices\nend_header\n"
+                                           "0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n0\n3 0 3 2\n3 1 2 3\n";
+  const std::string empty_face = load_refusal(dir / "empty_face.ply");
+  EXPECT_NE(empty_face.find("empty_face.ply: face 1 has no vertices"), std::string::npos) << empty_face;
+  std::ofstream(dir / "cube.off") << "OFF\n8 12 0\n";
+  const std::string off = load_refusal(dir / "cube.off");
+  EXPECT_NE(off.find("cube.off: is not an STL, OBJ or PLY file"), std::string::npos) << off;
+  fs::remove_all(dir);
+}
+
 // A face that names a vertex the file lacks: refused by name, before assimp's processing steps
 // (which index past the vertex array: a crash, or a garbage vertex that differs from run to run).
 TEST(ToothMesh, AFaceNamingAMissingVertexIsRefusedNotRead) {

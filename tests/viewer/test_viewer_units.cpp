@@ -115,7 +115,10 @@ TEST(InputScript, ErrorsNameTheFileTheFieldAndTheFix) {
   e = error_of(R"({"actions": [{"step": -1, "action": "end"}]})");
   EXPECT_NE(e.find("actions[0].step"), std::string::npos) << e;
   e = error_of(R"({"actions": [)");
-  EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+  EXPECT_NE(e.find("line 1, column 14: syntax error"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 1e8880, "action": "end"}]})");  // beyond a double (found by fuzz_input_script)
+  EXPECT_NE(e.find("inputs.json: JSON: number overflow parsing '1e8880'"), std::string::npos) << e;
+  EXPECT_NE(e.find("numbers within double range"), std::string::npos) << e;
   e = error_of(R"({"action": []})");
   EXPECT_NE(e.find("inputs.json"), std::string::npos) << e;
 }
