@@ -223,12 +223,8 @@ int main(int argc, char** argv) {
       return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
                                    replay_dir, replay_threads, parse_backend(replay_backend), replay_out);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
-  } catch (const CudaUnavailable& e) {
-    fmt::print(stderr, "error: --backend cuda: {}\n", e.what());
-    return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+    return cli::failed(e);
   }
   return 0;
 }

@@ -145,12 +145,8 @@ int main(int argc, char** argv) {
                  vo.timeout_s);
       return 4;
     }
-  } catch (const CudaUnavailable& e) {
-    fmt::print(stderr, "error: --backend cuda: {}\n", e.what());
-    return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+    return cli::failed(e);
   }
   return 0;
 }
