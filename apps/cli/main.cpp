@@ -35,8 +35,18 @@ void print_scene(const Scene& sc, const State& st) {
   fmt::print("grid       {} x {} x {} cells of {:.4g} m\n", sc.model.grid.dims[0], sc.model.grid.dims[1],
              sc.model.grid.dims[2], sc.model.grid.cell_size);
   const StabilityLimits l = stability_limits(sc.model, st);
-  fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
-             l.viscous);
+  if (sc.model.solver == Solver::iisph) {
+    const real v = scene_tool_speed(sc);
+    fmt::print("solver     iisph (implicit pressure and viscosity; docs/model.md)\n");
+    fmt::print("time step  dt = {:.4g} s; limit: velocity CFL {:.4g} s = {:.2g} h / {:.4g} m/s (the tool's fastest); the "
+               "paper's step's acoustic {:.4g} s and viscous {:.4g} s do not bind it\n",
+               sc.model.dt, velocity_time_step_limit(sc.model, v), sc.model.iisph.cfl, v, l.paper_acoustic,
+               l.paper_viscous);
+  } else {
+    fmt::print("solver     paper (the paper's explicit step)\n");
+    fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
+               l.viscous);
+  }
 }
 
 int cmd_validate(const std::string& file) {
@@ -66,11 +76,24 @@ int cmd_bench(BenchOptions opt, const std::string& json_file, bool quick) {
   return 0;
 }
 
-int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
-            cli::RealtimeCommand& rt) {
+// The scene of a scene file, or without one the filling procedure the dental options describe;
+// --solver (when given) chooses its step over the scene's simulation.solver.
+Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const std::string& solver) {
+  Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  if (!solver.empty()) select_solver(sc, *solver_from_name(solver));
+  return sc;
+}
+
+int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver, RunOptions opt,
+            bool quiet, cli::RealtimeCommand& rt) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
-  const Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  const Scene sc = scene_of(file, dental, solver);
+  if (opt.backend != Backend::cpu && sc.model.solver != Solver::paper)
+    throw std::invalid_argument(fmt::format(
+        "--backend {}: the GPU backend has the paper's step only, and the scene's solver is {}; pass --solver paper "
+        "to step the paper's model on the GPU, or leave out --backend to run the {} solver on the CPU",
+        backend_name(opt.backend), solver_name(sc.model.solver), solver_name(sc.model.solver)));
   if (!quiet) print_scene(sc, make_state(sc));
   std::fflush(stdout);  // before the progress on stderr
   if (rt.enabled()) return rt.run(sc, opt, quiet);
@@ -126,6 +149,12 @@ int main(int argc, char** argv) {
   cli::RealtimeCommand realtime;
   realtime.add_options(*run);
   const std::vector<std::string> backends = {"cpu", "cuda", "cuda-emulation"};
+  const std::vector<std::string> solvers = {"paper", "iisph"};
+  const std::string solver_help =
+      "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: the "
+      "scene's simulation.solver";
+  std::string run_solver, replay_solver, bench_solver;
+  run->add_option("--solver", run_solver, solver_help)->check(CLI::IsMember(solvers));
   std::string run_backend = "cpu", bench_backend = "cpu";
   run->add_option("--backend", run_backend, "Where the step runs: cpu, cuda (a GPU), cuda-emulation (its algorithm on the CPU, slow)")
       ->check(CLI::IsMember(backends))
@@ -142,6 +171,8 @@ int main(int argc, char** argv) {
   bench->add_option("--grid-reach", bench_opt.sweep_grid_reach, "The sweep's grid: cells of h / N searched N deep")
       ->check(CLI::Range(1, 3))
       ->capture_default_str();
+  bench->add_option("--solver", bench_solver, "The step the built-in dental scene and the sweep run: paper (default) or iisph")
+      ->check(CLI::IsMember(solvers));
   bench->add_option("--backend", bench_backend, "cpu (thread counts), or cuda: the sweep then reaches 2 million particles")
       ->check(CLI::IsMember(backends))
       ->capture_default_str();
@@ -158,6 +189,7 @@ int main(int argc, char** argv) {
   cli::DentalOptions replay_dental;
   replay_dental.add_options(*replay, replay_scene_opt, true);
   replay->add_option("--threads", replay_threads, "Threads for the parallel stages")->check(CLI::Range(1, 1024));
+  replay->add_option("--solver", replay_solver, solver_help + " (give the one the run used)")->check(CLI::IsMember(solvers));
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -170,13 +202,12 @@ int main(int argc, char** argv) {
       opt.backend = parse_backend(run_backend);
       if (realtime.enabled() && opt.backend != Backend::cpu)
         throw std::invalid_argument("--realtime runs the step on the CPU: leave out --backend, or run offline with it");
-      return cmd_run(run_scene, run_dental, opt, quiet, realtime);
+      return cmd_run(run_scene, run_dental, run_solver, opt, quiet, realtime);
     }
     if (*validate) return cmd_validate(validate_scene);
     bench_opt.backend = parse_backend(bench_backend);
-    if (*replay)
-      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
-                                   replay_dir, replay_threads);
+    if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
+    if (*replay) return cli::replay_recording(scene_of(replay_scene, replay_dental, replay_solver), replay_dir, replay_threads);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -36,6 +36,9 @@ struct BenchOptions {
   Backend backend = Backend::cpu;
   std::vector<int> cuda_sweep_sides{8, 16, 26, 40, 64, 80, 100, 126};
   int sweep_grid_reach = 1;  // the sweep scenes' grid: cells of h / reach, searched reach deep
+  // The step every scene runs: the dental scene at the solver's dental time step, the sweep at its
+  // own; the all-pairs reference is the paper's step's and runs with it alone.
+  Solver solver = Solver::paper;
 };
 
 struct BenchRow {
@@ -50,6 +53,7 @@ struct BenchRow {
 };
 
 struct BenchResult {
+  Solver solver = Solver::paper;                // the step measured
   std::string default_scene;                    // default_dental_scene(): the paper's counts
   std::map<std::string, std::uint32_t> default_particles;  // per role
   std::map<int, double> default_steps_per_second;           // by thread count (median)

@@ -61,6 +61,13 @@ struct RunSummary {
   std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
+  Solver solver = Solver::paper;     // the step that ran
+  // The iisph solver's pressure solve over the run: iterations per step and the mean compression
+  // of the paste it left (StepDiagnostics::density_error), mean and largest; the solve's largest
+  // error (StepDiagnostics::pressure_residual).
+  double iterations_mean = 0;
+  int iterations_max = 0;
+  double density_error_mean = 0, density_error_max = 0, pressure_residual_max = 0;
   std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",
                                      // "consumer", "device") are added to summary.json
 };

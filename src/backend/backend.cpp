@@ -21,6 +21,11 @@ Backend parse_backend(const std::string& name) {
 }
 
 std::unique_ptr<GpuStepper> make_gpu_stepper(Backend backend, const Model& model, const State& state) {
+  if (model.solver != Solver::paper && backend != Backend::cpu)
+    throw std::invalid_argument(fmt::format(
+        "--backend {}: the GPU backend has the paper's step only, and the scene's solver is {}; pass --solver paper "
+        "to step the paper's model on the GPU, or leave out --backend to run the {} solver on the CPU",
+        backend_name(backend), solver_name(model.solver), solver_name(model.solver)));
   if (backend == Backend::cuda) return make_cuda_stepper(model, state);
   if (backend == Backend::cuda_emulation) return make_emulated_gpu_stepper(model, state);
   throw std::invalid_argument("make_gpu_stepper: the cpu backend has no GPU stepper");

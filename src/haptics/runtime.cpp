@@ -67,6 +67,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sum.scene = scene.name;
   sum.threads = opt.threads;
   sum.dt = scene.model.dt;
+  sum.solver = scene.model.solver;
   const StabilityLimits limits = check_time_step(scene, state, opt.allow_unstable);
   sum.acoustic_violated = sum.dt > limits.acoustic;
   sum.viscous_violated = sum.dt > limits.viscous;

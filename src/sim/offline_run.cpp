@@ -21,14 +21,26 @@ namespace dentsph {
 StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable) {
   const StabilityLimits l = stability_limits(scene.model, state);
   const real dt = scene.model.dt;
+  if (scene.model.solver == Solver::iisph) {
+    // The velocity CFL condition, against the fastest the scene's tool moves (the material moves
+    // with it or slower; a device's hand is checked as it goes, by the force limit entry).
+    const real v = scene_tool_speed(scene), limit = velocity_time_step_limit(scene.model, v);
+    if (dt > limit && !allow_unstable)
+      throw UnstableTimeStep(fmt::format(
+          "{}: simulation.dt: {:.3g} s is over the iisph solver's velocity CFL limit of {:.3g} s (cfl {:.3g} * h {:.3g} m "
+          "/ {:.3g} m/s, the tool's fastest speed between its keyframes); set simulation.dt to at most {:.3g}, slow "
+          "the tool, or pass --allow-unstable to run anyway",
+          scene.source, dt, limit, scene.model.iisph.cfl, scene.model.kernel.h, v, limit));
+    return l;
+  }
   const real limit = std::min(l.acoustic, l.viscous);
   if (dt > limit && !allow_unstable) {
     const char* which = l.acoustic <= l.viscous ? "acoustic (lambda h / sqrt(max stiffness))"
                                                 : "viscous (0.125 h^2 rest_density / viscosity)";
     throw UnstableTimeStep(fmt::format(
         "{}: simulation.dt: {:.3g} s is over the {} stability limit of {:.3g} s (acoustic {:.3g} s, viscous {:.3g} s); "
-        "set simulation.dt to at most {:.3g}, lower the stiffest material's stiffness or viscosity, or pass "
-        "--allow-unstable to run anyway",
+        "set simulation.dt to at most {:.3g}, lower the stiffest material's stiffness or viscosity, choose the "
+        "iisph solver (simulation.solver, --solver iisph), or pass --allow-unstable to run anyway",
         scene.source, dt, which, limit, l.acoustic, l.viscous, limit));
   }
   return l;
@@ -69,6 +81,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   sum.force_scale = scene.force_scale;
   sum.threads = opt.threads;
   sum.dt = scene.model.dt;
+  sum.solver = scene.model.solver;
   sum.limits = check_time_step(scene, state, opt.allow_unstable);
   sum.acoustic_violated = sum.dt > sum.limits.acoustic;
   sum.viscous_violated = sum.dt > sum.limits.viscous;
@@ -104,6 +117,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   std::unique_ptr<GpuStepper> gpu;
   if (opt.backend != Backend::cpu) gpu = make_gpu_stepper(opt.backend, scene.model, state);
   std::size_t next_event = 0;
+  std::uint64_t solver_steps = 0;  // iisph: steps whose solve statistics were summed
   for (std::uint64_t k = 0; k < total; ++k) {
     // Events due by this step (a half step early, so that an event at t lands on the step at t).
     while (next_event < scene.events.size() && scene.events[next_event].t <= state.time + 0.5 * scene.model.dt) {
@@ -121,6 +135,15 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
       step(scene.model, state, StepOptions{opt.threads, nullptr});
     }
     if (csv) csv->add(t_forces, state.tool_wrench);
+    if (sum.solver == Solver::iisph) {
+      ++solver_steps;
+      const StepDiagnostics& d = state.diagnostics;
+      sum.iterations_mean += d.pressure_iterations;
+      sum.iterations_max = std::max(sum.iterations_max, d.pressure_iterations);
+      sum.density_error_mean += d.density_error;
+      sum.density_error_max = std::max<double>(sum.density_error_max, d.density_error);
+      sum.pressure_residual_max = std::max<double>(sum.pressure_residual_max, d.pressure_residual);
+    }
     sum.peak_tool_force_N = std::max(sum.peak_tool_force_N, norm(state.tool_wrench.force));
     forces.add(state.tool_wrench.force, scene.model.dt);
     const real force_limit = force_time_step_limit(scene.model, state.diagnostics);
@@ -133,12 +156,13 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
       const bool non_finite = state.diagnostics.non_finite > 0;
       sum.status = "diverged";
       sum.message = fmt::format(
-          "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
+          "{} at t = {:.6g} s (step {}); the smallest {} limit seen was {:.3g} s against dt = {:.3g} s: lower "
           "simulation.dt or the stiffness",
           non_finite ? fmt::format("{} material particles became non-finite", state.diagnostics.non_finite)
                      : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
                                    state.diagnostics.max_speed, explosion_speed_factor, sum.limits.sound_speed),
-          state.time, state.steps, sum.limits.force, sum.dt);
+          state.time, state.steps, scene.model.solver == Solver::iisph ? "velocity CFL" : "force", sum.limits.force,
+          sum.dt);
       break;
     }
     if (snaps && gpu && snaps->due(state)) gpu->download(state);
@@ -150,6 +174,10 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   }
   if (gpu) gpu->download(state);
   sum.steps = state.steps;
+  if (solver_steps > 0) {
+    sum.iterations_mean /= double(solver_steps);
+    sum.density_error_mean /= double(solver_steps);
+  }
   sum.material = state.count(Role::material);  // at the end: increments add material
   sum.boundary = state.count(Role::boundary);
   sum.tool = state.count(Role::tool);
