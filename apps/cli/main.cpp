@@ -42,8 +42,18 @@ void print_scene(const Scene& sc, const State& st) {
   fmt::print("grid       {} x {} x {} cells of {:.4g} m\n", sc.model.grid.dims[0], sc.model.grid.dims[1],
              sc.model.grid.dims[2], sc.model.grid.cell_size);
   const StabilityLimits l = stability_limits(sc.model, st);
-  fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
-             l.viscous);
+  if (sc.model.solver == Solver::iisph) {
+    const real v = scene_tool_speed(sc);
+    fmt::print("solver     iisph (implicit pressure and viscosity; docs/model.md)\n");
+    fmt::print("time step  dt = {:.4g} s; limit: velocity CFL {:.4g} s = {:.2g} h / {:.4g} m/s (the tool's fastest); the "
+               "paper's step's acoustic {:.4g} s and viscous {:.4g} s do not bind it\n",
+               sc.model.dt, velocity_time_step_limit(sc.model, v), sc.model.iisph.cfl, v, l.paper_acoustic,
+               l.paper_viscous);
+  } else {
+    fmt::print("solver     paper (the paper's explicit step)\n");
+    fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
+               l.viscous);
+  }
 }
 
 int cmd_validate(const std::string& file) {
@@ -85,11 +95,29 @@ void check_run_length(const Scene& sc, const RunOptions& opt) {
                                               double(limits::max_run_steps) * sc.model.dt));
 }
 
-int cmd_run(const std::string& file, const cli::DentalOptions& dental, RunOptions opt, bool quiet,
-            cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
+// The scene of a scene file, or without one the filling procedure the dental options describe;
+// --solver (when given) chooses its step over the scene's simulation.solver.
+Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const std::string& solver) {
+  Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  if (!solver.empty()) select_solver(sc, *solver_from_name(solver));
+  return sc;
+}
+
+// The GPU backends step the paper's model only: a scene of another solver is refused before it runs.
+void check_backend_solver(const Scene& sc, Backend backend) {
+  if (backend != Backend::cpu && sc.model.solver != Solver::paper)
+    throw std::invalid_argument(fmt::format(
+        "--backend {}: the GPU backend has the paper's step only, and the scene's solver is {}; pass --solver paper "
+        "to step the paper's model on the GPU, or leave out --backend to run the {} solver on the CPU",
+        backend_name(backend), solver_name(sc.model.solver), solver_name(sc.model.solver)));
+}
+
+int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver, RunOptions opt,
+            bool quiet, cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
-  Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
+  Scene sc = scene_of(file, dental, solver);
+  check_backend_solver(sc, opt.backend);
   session.apply(sc);
   // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
   if (rt.enabled())
@@ -158,6 +186,12 @@ int main(int argc, char** argv) {
   report.add_subcommand(app);
   std::string run_backend = "cpu", bench_backend = "cpu", replay_backend = "cpu";
   cli::add_backend_option(*run, run_backend);
+  const std::vector<std::string> solvers = {"paper", "iisph"};
+  const std::string solver_help =
+      "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: the "
+      "scene's simulation.solver";
+  std::string run_solver, replay_solver, bench_solver;
+  run->add_option("--solver", run_solver, solver_help)->check(CLI::IsMember(solvers));
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -173,6 +207,8 @@ int main(int argc, char** argv) {
   cli::add_backend_option(*bench, bench_backend,
                           "cpu (thread counts), or cuda: the sweep then reaches 2 million particles (cuda-emulation: "
                           "the GPU's algorithm on the CPU)");
+  bench->add_option("--solver", bench_solver, "The step the built-in dental scene and the sweep run: paper (default) or iisph")
+      ->check(CLI::IsMember(solvers));
 
   std::string replay_dir, replay_scene;
   int replay_threads = 1;
@@ -191,6 +227,7 @@ int main(int argc, char** argv) {
                           "agrees within the backends' parity tolerance");
   std::string replay_out;
   replay->add_option("--out", replay_out, "Also write the replay as a run folder with its report (report.html)");
+  replay->add_option("--solver", replay_solver, solver_help + " (give the one the run used)")->check(CLI::IsMember(solvers));
 
   std::string validate_scene;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
@@ -211,7 +248,7 @@ int main(int argc, char** argv) {
       if (out_dir.empty()) cli::prepare_output_dir(out_dir, "--out");  // refused: writes nothing
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
-      const int rc = cmd_run(run_scene, run_dental, opt, quiet, realtime, session);
+      const int rc = cmd_run(run_scene, run_dental, run_solver, opt, quiet, realtime, session);
       if (rc == 0) session.record(opt.out_dir);
       return rc;
     }
@@ -219,9 +256,12 @@ int main(int argc, char** argv) {
     if (report.chosen()) return report.run();
     if (material_test.chosen()) return material_test.run();
     bench_opt.backend = parse_backend(bench_backend);
-    if (*replay)
-      return cli::replay_recording(!replay_scene.empty() ? load_scene(replay_scene) : replay_dental.procedure_scene(),
-                                   replay_dir, replay_threads, parse_backend(replay_backend), replay_out);
+    if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
+    if (*replay) {
+      const Scene sc = scene_of(replay_scene, replay_dental, replay_solver);
+      check_backend_solver(sc, parse_backend(replay_backend));
+      return cli::replay_recording(sc, replay_dir, replay_threads, parse_backend(replay_backend), replay_out);
+    }
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     return cli::failed(e);

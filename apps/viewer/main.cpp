@@ -93,6 +93,11 @@ int main(int argc, char** argv) {
   app.add_option("--threads", so.threads, "Threads of the simulation step")->check(CLI::Range(1, 1024))->capture_default_str();
   std::string backend = "cpu";
   cli::add_backend_option(app, backend);
+  std::string solver;
+  app.add_option("--solver", solver,
+                 "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: "
+                 "the scene's simulation.solver")
+      ->check(CLI::IsMember({"paper", "iisph"}));
   app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed or bonds")->capture_default_str();
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
   app.add_flag("--paused", so.start_paused, "Start paused");
@@ -120,6 +125,7 @@ int main(int argc, char** argv) {
     (void)viewer::colour_by_from_name(vo.colour_by);
     if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
     Scene sc = !scene_file.empty() ? load_scene(scene_file) : dental.filled_scene();
+    if (!solver.empty()) select_solver(sc, *solver_from_name(solver));
     so.backend = parse_backend(backend);
     const bool with_device = app.count("--device") > 0;
     RealtimeOptions ro;

@@ -39,6 +39,9 @@ struct BenchOptions {
   // CPU: the dental scene again with one core kept busy by a spinning thread, for each thread
   // count and for the ThreadGovernor (what a run does when another program takes a core).
   bool busy_core = true;
+  // The step every scene runs: the dental scene at the solver's dental time step, the sweep at its
+  // own; the all-pairs reference is the paper's step's and runs with it alone.
+  Solver solver = Solver::paper;
 };
 
 struct BusyCoreRow {
@@ -60,6 +63,7 @@ struct BenchRow {
 };
 
 struct BenchResult {
+  Solver solver = Solver::paper;                // the step measured
   std::string default_scene;                    // default_dental_scene(): the paper's counts
   std::map<std::string, std::uint32_t> default_particles;  // per role
   std::map<int, double> default_steps_per_second;           // by thread count (median)

@@ -33,6 +33,9 @@ struct ToolKeyframe {
 struct ToolTrajectory {
   std::vector<ToolKeyframe> keyframes;  // strictly increasing t
   Pose at(real t) const;
+  // m/s, the fastest any of the points `anchors` (tool frame) moves from one keyframe to the next
+  // (its chord over the interval's time); 0 without two keyframes.
+  real max_speed(const std::vector<Vec3>& anchors) const;
 };
 
 // Something that happens to a run at a time: an increment of material dropped in, another
@@ -82,7 +85,18 @@ struct Scene {
   // Who ran it and which exercise it is, when a scene file or the command line says (the
   // report's title, the session store's index; docs/report.md).
   std::string student, exercise;
+  // Dental scenes: dt is the solver's dental time step (dental_time_step), so choosing another
+  // solver (select_solver) chooses its time step too. Scene files give dt themselves.
+  bool dt_follows_solver = false;
 };
+
+// Chooses the step that runs the scene (the command line's --solver over the scene's
+// simulation.solver) and rebuilds its Model; a dental scene takes the solver's dental time step.
+void select_solver(Scene& scene, Solver solver);
+// m/s, the fastest any tool particle moves between the scene's keyframes (the first instrument's
+// and those a switch_tool event takes up): what the velocity CFL limit of the iisph solver is
+// checked against before a run.
+real scene_tool_speed(const Scene& scene);
 
 // Reads and checks a scene file. Throws SceneError.
 Scene load_scene(const std::filesystem::path& file);

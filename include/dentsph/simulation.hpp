@@ -34,8 +34,9 @@ class UnstableTimeStep : public std::runtime_error {
 // ...)" when `dt` is over the acoustic or viscous limit of `l`; empty otherwise.
 std::string time_step_excess(real dt, const StabilityLimits& l);
 
-// The acoustic and viscous limits of a scene's initial state, and an error (UnstableTimeStep)
-// when dt exceeds one of them and `allow_unstable` is false.
+// The limits of a scene's initial state, and an error (UnstableTimeStep) when dt exceeds one of
+// them and `allow_unstable` is false: the paper's step's acoustic and viscous limits, or the iisph
+// solver's velocity CFL limit against the tool's fastest speed between its keyframes.
 StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable);
 
 // What a run did, as summary.json reports it (docs/outputs.md). The Simulation fills what it
@@ -64,6 +65,13 @@ struct RunSummary {
   std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
+  Solver solver = Solver::paper;     // the step that ran
+  // The iisph solver's pressure solve over the run: iterations per step and the mean compression
+  // of the paste it left (StepDiagnostics::density_error), mean and largest; the solve's largest
+  // error (StepDiagnostics::pressure_residual).
+  double iterations_mean = 0;
+  int iterations_max = 0;
+  double density_error_mean = 0, density_error_max = 0, pressure_residual_max = 0;
   std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",
                                      // "consumer", "device") are added to summary.json
 };
@@ -155,6 +163,10 @@ class Simulation {
   std::uint64_t force_violation_steps_ = 0;
   real first_force_violation_t_ = -1;
   std::uint64_t events_applied_ = 0;
+  // The iisph solver's solve statistics: sums over the steps taken, largest values.
+  std::uint64_t solver_steps_ = 0;
+  double iterations_sum_ = 0, density_error_sum_ = 0, density_error_max_ = 0, pressure_residual_max_ = 0;
+  int iterations_max_ = 0;
   bool diverged_ = false;
   std::string divergence_;
 };

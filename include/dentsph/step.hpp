@@ -43,18 +43,30 @@ void step_all_pairs(const Model& model, State& state);
 // Mean number of neighbours within h per particle (self excluded), over the 27-cell grid.
 real mean_neighbours(const Model& model, State& state);
 
-// Time-step limits of MODEL.md, "Stability", in seconds.
+// Time-step limits (MODEL.md, "Stability"; docs/model.md, "Solvers"), in seconds. Which hold
+// depends on the model's solver: the paper's explicit step has its acoustic, viscous and force
+// limits; the iisph solver treats pressure, viscosity and adhesion so that none of those binds, and
+// is limited by the velocity CFL condition dt <= cfl h / max|v| alone.
 struct StabilityLimits {
-  real acoustic = 0;  // lambda h / sqrt(max Kp)
-  real viscous = 0;   // 0.125 h^2 min(rho0 / mu)
-  real force = 0;     // 0.25 sqrt(h / max|a|), from the last step (infinite before any)
-  real sound_speed = 0;  // m/s, c = sqrt(max Kp); material moving at many times c has exploded
+  real acoustic = 0;  // paper: lambda h / sqrt(max Kp); iisph: infinite
+  real viscous = 0;   // paper: 0.125 h^2 min(rho0 / mu); iisph: infinite
+  real force = 0;     // the limit the last step's motion sets (infinite before any step): paper
+                      // 0.25 sqrt(h / max|a|); iisph the velocity CFL cfl h / max|v|
+  real sound_speed = 0;  // m/s, the fastest signal the step carries: paper sqrt(max Kp), iisph h / dt;
+                         // material moving at many times it has exploded
+  // The paper's acoustic and viscous limits whatever the solver, for comparison (iisph: what its
+  // dt is above).
+  real paper_acoustic = 0, paper_viscous = 0;
 };
 // With `paste`: the limits the State would have if every material particle were of that material
 // (a paste edit checked before it is made).
 StabilityLimits stability_limits(const Model& model, const State& state, const Material* paste = nullptr);
-// The force limit alone, from the last step's largest acceleration (infinite before any).
+// The limit the last step's motion sets (StabilityLimits::force): the paper's force limit
+// 0.25 sqrt(h / max|a|), or for the iisph solver the velocity CFL limit cfl h / max|v|; infinite
+// before any step.
 real force_time_step_limit(const Model& model, const StepDiagnostics& diagnostics);
+// The velocity CFL limit cfl h / speed for a speed in m/s (infinite for 0).
+real velocity_time_step_limit(const Model& model, real speed);
 // Weakly compressible SPH keeps material far slower than its sound speed: material at
 // `explosion_speed_factor` times it, or non-finite, has exploded (the offline run, the haptic
 // runtime and the viewer stop on it).

@@ -14,6 +14,7 @@
 
 #include "dentsph/bench.hpp"
 #include "dentsph/thread_governor.hpp"
+#include "dentsph/dental.hpp"
 
 namespace dentsph {
 
@@ -30,7 +31,7 @@ StageTimes per_step(const StageTimes& sum, std::uint64_t steps) {
   StageTimes t;
   for (double StageTimes::*f : {&StageTimes::hash_us, &StageTimes::sort_us, &StageTimes::reorder_us,
                                 &StageTimes::density_us, &StageTimes::pressure_us, &StageTimes::forces_us,
-                                &StageTimes::wrench_us, &StageTimes::integrate_us})
+                                &StageTimes::wrench_us, &StageTimes::integrate_us, &StageTimes::viscosity_us})
     t.*f = sum.*f / double(steps);
   t.steps = steps;
   return t;
@@ -157,7 +158,7 @@ nlohmann::json stages_json(const StageTimes& t) {
   return {{"hash", t.hash_us},     {"sort", t.sort_us},     {"reorder", t.reorder_us},
           {"density", t.density_us + t.pressure_us},        {"forces", t.forces_us},
           {"wrench", t.wrench_us}, {"integrate", t.integrate_us},
-          {"total", t.total_us()}};
+          {"viscosity", t.viscosity_us}, {"total", t.total_us()}};
 }
 
 // Material and tool particles: the ones the step moves.
@@ -225,6 +226,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
   const bool gpu = opt.backend != Backend::cpu;
   BenchResult res;
   res.backend = opt.backend;
+  res.solver = opt.solver;
   res.machine = gpu ? gpu_machine(opt.backend) : machine_name();
   const std::string gpu_method = backend_name(opt.backend);
   // A configuration: the method, and the thread count on the CPU; each_scene: those every scene
@@ -243,7 +245,9 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     return measure(model, st, c.second, opt, prepare);
   };
 
-  const Scene paper = default_dental_scene();
+  DentalSceneParams dental;
+  dental.solver = opt.solver;
+  const Scene paper = default_dental_scene(dental);  // the paper's counts
   res.default_scene = paper.name;
   const State paper_start = make_state(paper);
   for (Role r : {Role::material, Role::boundary, Role::tool}) res.default_particles[role_name(r)] = paper_start.count(r);
@@ -279,11 +283,13 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     for (int side : opt.cuda_sweep_sides) sizes.push_back({side, 1});
   }
   for (const SweepSize& size : sizes) {
-    const Scene sc = sweep_cups_scene(size.side, size.cups, opt.sweep_grid_reach);
+    Scene sc = sweep_cups_scene(size.side, size.cups, opt.sweep_grid_reach);
+    if (opt.solver != sc.model.solver) select_solver(sc, opt.solver);
     State start = make_state(sc);
     const real neighbours = mean_neighbours(sc.model, start);  // sorts `start` by cell
     std::vector<Config> configs = each_scene;
-    if (!gpu && start.size() <= opt.all_pairs_max_particles) configs.push_back({"all_pairs", 1});
+    if (!gpu && opt.solver == Solver::paper && start.size() <= opt.all_pairs_max_particles)
+      configs.push_back({"all_pairs", 1});
     for (const Config& c : configs) {
       const Measured m = run(sc.model, start, c, [](State&) {});
       res.sweep.push_back({size.cups, start.size(), moving_count(start), neighbours, c.first, c.second,
@@ -300,6 +306,7 @@ std::string bench_json(const BenchResult& r) {
   nlohmann::json j;
   j["machine"] = r.machine;
   j["backend"] = backend_name(r.backend);
+  j["solver"] = solver_name(r.solver);
   nlohmann::json sps = nlohmann::json::object(), stages = nlohmann::json::object();
   for (const auto& [t, v] : r.default_steps_per_second) sps[std::to_string(t)] = v;
   for (const auto& [t, v] : r.default_stage_us) stages[std::to_string(t)] = stages_json(v);

@@ -33,6 +33,11 @@ std::string summary_json(const RunSummary& s) {
                 {"formed", s.bonds.formed},
                 {"broken", s.bonds.broken},
                 {"overflowed", s.bonds.overflowed}};
+  j["solver"] = {{"name", solver_name(s.solver)}};
+  if (s.solver == Solver::iisph)
+    j["solver"].update({{"pressure_iterations", {{"mean", s.iterations_mean}, {"max", s.iterations_max}}},
+                        {"density_error", {{"mean", s.density_error_mean}, {"max", s.density_error_max}}},
+                        {"pressure_residual_max", s.pressure_residual_max}});
   j["stability"] = {{"dt_s", s.dt},
                     {"limits_s", {{"acoustic", seconds(s.limits.acoustic)},
                                   {"viscous", seconds(s.limits.viscous)},

@@ -1,5 +1,7 @@
 // Time-step limits (MODEL.md, "Stability"). Kp has the units of a squared sound speed
-// (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material.
+// (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material. The iisph solver
+// (src/solver) is implicit in pressure and viscosity: its step is limited by the velocity CFL
+// condition alone.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,8 +10,13 @@
 
 namespace dentsph {
 
+namespace {
+
+constexpr real inf = std::numeric_limits<real>::infinity();
+
+}  // namespace
+
 StabilityLimits stability_limits(const Model& model, const State& s, const Material* paste) {
-  constexpr real inf = std::numeric_limits<real>::infinity();
   const real h = model.kernel.h;
   real kp_max = 0, rho_over_mu_min = inf;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
@@ -20,15 +27,28 @@ StabilityLimits stability_limits(const Model& model, const State& s, const Mater
     if (mu > 0) rho_over_mu_min = std::min(rho_over_mu_min, rho0 / mu);
   }
   StabilityLimits l;
-  l.sound_speed = std::sqrt(kp_max);
-  l.acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
-  l.viscous = 0.125 * h * h * rho_over_mu_min;
+  l.paper_acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
+  l.paper_viscous = 0.125 * h * h * rho_over_mu_min;
   l.force = force_time_step_limit(model, s.diagnostics);
+  if (model.solver == Solver::iisph) {
+    l.acoustic = inf;
+    l.viscous = inf;
+    l.sound_speed = h / model.dt;
+  } else {
+    l.acoustic = l.paper_acoustic;
+    l.viscous = l.paper_viscous;
+    l.sound_speed = std::sqrt(kp_max);
+  }
   return l;
 }
 
+real velocity_time_step_limit(const Model& model, real speed) {
+  return speed > 0 ? model.iisph.cfl * model.kernel.h / speed : inf;
+}
+
 real force_time_step_limit(const Model& model, const StepDiagnostics& d) {
-  return d.max_accel > 0 ? 0.25 * std::sqrt(model.kernel.h / d.max_accel) : std::numeric_limits<real>::infinity();
+  if (model.solver == Solver::iisph) return velocity_time_step_limit(model, d.max_speed);
+  return d.max_accel > 0 ? 0.25 * std::sqrt(model.kernel.h / d.max_accel) : inf;
 }
 
 }  // namespace dentsph

@@ -49,6 +49,7 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   sc.material_spacing = s;
   sc.output.snapshot_interval = 0.02;
   sc.force_scale = dental_force_scale;
+  sc.dt_follows_solver = !(dp.dt > 0);
   return sc;
 }
 

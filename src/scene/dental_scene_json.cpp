@@ -67,7 +67,7 @@ CavityParams read_cavity(const Reader& c) {
 }
 
 Scene parse_dental_scene(const Reader& root) {
-  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise"});
+  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise", "simulation"});
   const std::string name = root.string("name", "the scene's name, e.g. \"class2_fill\"");
   if (name.empty()) root.fail("name", "is empty", "give the scene a name");
   (void)root.optional_string("description", "a description of the scene");
@@ -105,7 +105,14 @@ Scene parse_dental_scene(const Reader& root) {
   } catch (const ToothAxisError& e) {
     root.fail("tooth", e.what(), "give the tooth's axes in the mesh's coordinates, or leave them out");
   }
-  Scene sc = procedure_or_built_in(*tooth, procedure);
+  // The step that runs it; its time step is the solver's for dental scenes (dental_time_step).
+  DentalSceneParams params;
+  if (const std::optional<Reader> sim = root.optional_object(
+          "simulation", "the simulation settings of a dental scene: {\"solver\": \"iisph\"}")) {
+    sim->only({"solver"});
+    params.solver = read_solver(*sim);
+  }
+  Scene sc = procedure_or_built_in(*tooth, procedure, params);
   sc.name = name;
   sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
   read_haptics(root, sc);

@@ -37,6 +37,9 @@ void read_session_names(const Reader& root, Scene& scene);
 // A scene file with a "tooth", "cavity" or "procedure" field is a dental scene: a procedure on a
 // tooth with a cavity, which builds its own particles.
 bool is_dental_scene(const Reader& root);
+// "solver" of a "simulation" object: "paper" (the default) or "iisph"; anything else names the
+// field and the choices.
+Solver read_solver(const Reader& simulation);
 // Reads one; paths in it are relative to the folder of root.source().
 Scene parse_dental_scene(const Reader& root);
 // A "cavity" object into CavityParams (missing fields keep the defaults).

@@ -13,6 +13,17 @@
 
 namespace dentsph::scene {
 
+Solver read_solver(const Reader& simulation) {
+  const std::optional<std::string> name =
+      simulation.optional_string("solver", "the step that runs the scene: \"paper\" or \"iisph\"");
+  if (!name) return Solver::paper;
+  const std::optional<Solver> s = solver_from_name(*name);
+  if (!s)
+    simulation.fail("solver", fmt::format("unknown solver \"{}\"", *name),
+                    "give \"paper\" (the paper's explicit step) or \"iisph\" (the implicit solver, docs/model.md)");
+  return *s;
+}
+
 namespace {
 
 // nlohmann's messages read "[json.exception.parse_error.101] parse error at line 3, column 7:
@@ -62,8 +73,10 @@ struct Domain {
 ModelParams read_simulation(const Reader& root, Domain& domain) {
   const Reader sim =
       root.object("simulation", "the simulation settings {\"dt\": 5e-4, \"h\": 0.02, ...}");
-  sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "neighbour_skin", "grid_reach", "domain"});
+  sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "neighbour_skin", "grid_reach", "domain",
+            "solver"});
   ModelParams p;
+  p.solver = read_solver(sim);
   p.dt = sim.number("dt", "the time step in s, e.g. 5e-4", Range::positive);
   p.h = sim.number("h", "the kernel support in m, about twice the spacing, e.g. 0.02",
                    Range::positive);

@@ -17,4 +17,14 @@ Pose ToolTrajectory::at(real t) const {
   return interpolate(a.pose, b->pose, (t - a.t) / (b->t - a.t));
 }
 
+real ToolTrajectory::max_speed(const std::vector<Vec3>& anchors) const {
+  real v = 0;
+  for (std::size_t k = 1; k < keyframes.size(); ++k) {
+    const real dt = keyframes[k].t - keyframes[k - 1].t;
+    for (const Vec3& a : anchors)
+      v = std::max(v, norm(keyframes[k].pose.apply(a) - keyframes[k - 1].pose.apply(a)) / dt);
+  }
+  return v;
+}
+
 }  // namespace dentsph

@@ -91,16 +91,25 @@ bool Simulation::step(const Pose& tool_pose) {
   const real force_limit = force_time_step_limit(model_, d);
   limits_.force = std::min(limits_.force, force_limit);
   if (model_.dt > force_limit && force_violation_steps_++ == 0) first_force_violation_t_ = t;
+  if (model_.solver == Solver::iisph) {
+    ++solver_steps_;
+    iterations_sum_ += d.pressure_iterations;
+    iterations_max_ = std::max(iterations_max_, d.pressure_iterations);
+    density_error_sum_ += d.density_error;
+    density_error_max_ = std::max<double>(density_error_max_, d.density_error);
+    pressure_residual_max_ = std::max<double>(pressure_residual_max_, d.pressure_residual);
+  }
   // Exploded material: the run says so instead of stepping garbage.
   if (!diverged_ && exploded(d, limits_.sound_speed)) {
     diverged_ = true;
     divergence_ = fmt::format(
-        "{} at t = {:.6g} s (step {}); the smallest force limit seen was {:.3g} s against dt = {:.3g} s: lower "
+        "{} at t = {:.6g} s (step {}); the smallest {} limit seen was {:.3g} s against dt = {:.3g} s: lower "
         "simulation.dt or the stiffness",
         d.non_finite > 0 ? fmt::format("{} material particles became non-finite", d.non_finite)
                          : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
                                        d.max_speed, explosion_speed_factor, limits_.sound_speed),
-        state_.time, state_.steps, limits_.force, model_.dt);
+        state_.time, state_.steps, model_.solver == Solver::iisph ? "velocity CFL" : "force", limits_.force,
+        model_.dt);
   }
   return !diverged_;
 }
@@ -111,6 +120,14 @@ RunSummary Simulation::summary() {
   s.scene = scene_.name;
   s.backend = stepper_->name();
   s.threads = options_.threads;
+  s.solver = model_.solver;
+  if (solver_steps_ > 0) {
+    s.iterations_mean = iterations_sum_ / double(solver_steps_);
+    s.iterations_max = iterations_max_;
+    s.density_error_mean = density_error_sum_ / double(solver_steps_);
+    s.density_error_max = density_error_max_;
+    s.pressure_residual_max = pressure_residual_max_;
+  }
   if (diverged_) {
     s.status = "diverged";
     s.message = divergence_;

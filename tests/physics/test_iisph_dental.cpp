@@ -20,8 +20,8 @@ TEST(IisphDental, StableAndNoLeakWhilePressing) {
   ASSERT_EQ(sc.model.dt, 1e-3);
   State st = make_state(sc);
   const StabilityLimits paper = stability_limits(sc.model, st);
-  EXPECT_GT(sc.model.dt, 15 * paper.acoustic) << "the paper's step's acoustic limit";
-  EXPECT_GT(sc.model.dt, 10 * paper.viscous) << "and its viscous limit";
+  EXPECT_GT(sc.model.dt, 15 * paper.paper_acoustic) << "the paper's step's acoustic limit";
+  EXPECT_GT(sc.model.dt, 10 * paper.paper_viscous) << "and its viscous limit";
 
   const ToothScene ts = default_tooth_scene();
   const real s = ts.boundary.spacing;

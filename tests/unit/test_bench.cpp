@@ -88,6 +88,31 @@ TEST(Bench, JsonHasDefaultSceneSweepAndMemory) {
   EXPECT_NE(table.find("one core kept busy"), std::string::npos);
 }
 
+TEST(Bench, TheIisphSolverRunsTheDentalSceneAndTheSweep) {
+  BenchOptions opt;
+  opt.threads = {1};
+  opt.sweep = {{4, 1}};
+  opt.repeats = 1;
+  opt.seconds_per_run = 0.01;
+  opt.solver = Solver::iisph;
+  const BenchResult r = run_benchmarks(opt, [](const std::string&) {});
+  const auto j = nlohmann::json::parse(bench_json(r));
+  EXPECT_EQ(j["solver"], "iisph");
+  EXPECT_GT(j["default_scene"]["steps_per_second"]["1"].get<double>(), 0);
+  EXPECT_GT(j["default_scene"]["stage_us"]["1"]["viscosity"].get<double>(), 0) << "the implicit viscosity ran";
+  ASSERT_EQ(j["sweep"].size(), 1u) << "no all-pairs row: the reference is the paper's step";
+  EXPECT_EQ(j["sweep"][0]["method"], "grid");
+  EXPECT_EQ(nlohmann::json::parse(bench_json(run_benchmarks([] {
+              BenchOptions o;
+              o.threads = {1};
+              o.sweep = {};
+              o.repeats = 1;
+              o.seconds_per_run = 0.01;
+              return o;
+            }(), [](const std::string&) {})))["solver"],
+            "paper");
+}
+
 // The CPU sweep's rows: the single blocks first, then the cup series up to 100k particles, whose
 // cups are all the side-16 block in its box (7488 particles, 4096 of them paste).
 TEST(Bench, DefaultSweepIsSmallBlocksThenCupsOfOneSize) {

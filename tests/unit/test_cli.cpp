@@ -240,5 +240,58 @@ TEST(Cli, TheDepthOfCureTest) {
   expect_refused("material-test depth-of-cure --irradiance 0", {"--irradiance"});
 }
 
+TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
+  // validate says which limits hold: the paper's acoustic and viscous, or the iisph velocity CFL.
+  const Result paper = dentsph_cli("validate scenes/tool_press.json");
+  EXPECT_EQ(paper.code, 0) << paper.output;
+  EXPECT_NE(paper.output.find("solver     paper"), std::string::npos) << paper.output;
+  EXPECT_NE(paper.output.find("limits: acoustic"), std::string::npos) << paper.output;
+  nlohmann::json scene;
+  std::ifstream("scenes/tool_press.json") >> scene;
+  scene["simulation"]["solver"] = "iisph";
+  write(dir() / "press_iisph.json", scene.dump());
+  const Result iisph = dentsph_cli("validate " + (dir() / "press_iisph.json").string());
+  EXPECT_EQ(iisph.code, 0) << iisph.output;
+  EXPECT_NE(iisph.output.find("solver     iisph"), std::string::npos) << iisph.output;
+  EXPECT_NE(iisph.output.find("velocity CFL"), std::string::npos) << iisph.output;
+  // A dt over the velocity CFL limit of the tool's speed is refused, naming the field and the fix.
+  scene["simulation"]["dt"] = 0.1;
+  write(dir() / "press_fast.json", scene.dump());
+  expect_refused("validate " + (dir() / "press_fast.json").string(),
+                 {"press_fast.json: simulation.dt", "velocity CFL limit", "set simulation.dt to at most"});
+  // An unknown solver in the file names the field and the choices.
+  scene["simulation"]["solver"] = "fast";
+  write(dir() / "press_unknown.json", scene.dump());
+  expect_refused("validate " + (dir() / "press_unknown.json").string(),
+                 {"simulation.solver", "unknown solver \"fast\"", "\"paper\"", "\"iisph\""});
+  // --solver over the scene's, written to the summary.
+  const fs::path out = dir() / "press_solver";
+  const Result r = dentsph_cli("run scenes/tool_press.json --solver iisph --steps 3 --threads 1 -q --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json sum = read_json(out / "summary.json");
+  EXPECT_EQ(sum.at("solver").at("name"), "iisph");
+  EXPECT_GE(sum.at("solver").at("pressure_iterations").at("max").get<int>(), 1);
+  EXPECT_EQ(sum.at("stability").at("dt_s"), 5e-4) << "a scene file keeps its dt";
+  // The built-in procedure takes the solver's dental time step with it.
+  const fs::path dental = dir() / "dental_solver";
+  const Result d = dentsph_cli("run --solver iisph --steps 2 --threads 1 -q --out " + dental.string());
+  ASSERT_EQ(d.code, 0) << d.output;
+  EXPECT_EQ(read_json(dental / "summary.json").at("stability").at("dt_s"), 1e-3);
+  EXPECT_EQ(read_json(dental / "summary.json").at("solver").at("name"), "iisph");
+  const Result p = dentsph_cli("run --solver paper --steps 2 --threads 1 -q --out " + dental.string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  EXPECT_EQ(read_json(dental / "summary.json").at("stability").at("dt_s"), 5e-5);
+  EXPECT_EQ(read_json(dental / "summary.json").at("solver").at("name"), "paper");
+  // The GPU backend has the paper's step only: refused with exit status 2, the solver and the fix named.
+  for (const char* backend : {"cuda", "cuda-emulation"}) {
+    const Result g = dentsph_cli(std::string("run --solver iisph --backend ") + backend + " --steps 2 -q --out " +
+                                 (dir() / "gpu").string());
+    EXPECT_EQ(g.code, 2) << g.output;
+    for (const char* phrase : {"the GPU backend has the paper's step only", "solver is iisph", "--solver paper"})
+      EXPECT_NE(g.output.find(phrase), std::string::npos) << "'" << phrase << "' in:\n" << g.output;
+  }
+  expect_refused("run --solver fast --steps 2", {"--solver"});
+}
+
 }  // namespace
 }  // namespace dentsph

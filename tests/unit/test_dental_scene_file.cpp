@@ -62,6 +62,20 @@ TEST(DentalSceneFile, AClassTwoCavityOnTheBuiltInCrown) {
   EXPECT_GT(boundary(sc), boundary(parse(R"({"name": "c1", "tooth": {}})")) + 200);
 }
 
+TEST(DentalSceneFile, TheSolverChoosesTheStepAndItsTimeStep) {
+  const Scene paper = parse(R"({"name": "p", "tooth": {}, "simulation": {"solver": "paper"}})");
+  EXPECT_EQ(paper.model.solver, Solver::paper);
+  EXPECT_EQ(paper.model.dt, dental_time_step(Solver::paper));
+  Scene iisph = parse(R"({"name": "i", "tooth": {}, "simulation": {"solver": "iisph"}})");
+  EXPECT_EQ(iisph.model.solver, Solver::iisph);
+  EXPECT_EQ(iisph.model.dt, dental_time_step(Solver::iisph));
+  EXPECT_EQ(dental_time_step(Solver::iisph), 1e-3);
+  // --solver over the file's: a dental scene takes the solver's time step with it.
+  select_solver(iisph, Solver::paper);
+  EXPECT_EQ(iisph.model.solver, Solver::paper);
+  EXPECT_EQ(iisph.model.dt, paper.model.dt);
+}
+
 TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {
   const Scene sc = load_scene("scenes/class2_fill.json");
   ASSERT_TRUE(sc.tooth);
@@ -162,6 +176,8 @@ TEST(DentalSceneFile, ErrorsNameTheFileTheFieldAndTheFix) {
       {R"({"name": "x", "procedure": "none.json"})", {"scene.json: procedure", "no such file", "relative to the scene file"}},
       {R"({"name": "x", "tooth": {}, "blocks": []})", {"scene.json: blocks", "unknown field"}},
       {R"({"tooth": {}})", {"scene.json: name", "missing"}},
+      {R"({"name": "x", "tooth": {}, "simulation": {"solver": "fast"}})", {"scene.json: simulation.solver", "\"fast\"", "\"paper\"", "\"iisph\""}},
+      {R"({"name": "x", "tooth": {}, "simulation": {"dt": 1e-3}})", {"scene.json: simulation.dt", "unknown field", "solver"}},
   };
   for (const auto& [text, phrases] : cases) {
     try {

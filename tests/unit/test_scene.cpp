@@ -164,6 +164,23 @@ TEST(SceneParse, AppliesDefaults) {
   }
 }
 
+TEST(SceneParse, ReadsTheSolverAndTheCommandLineChoosesAnother) {
+  json j = base_scene();
+  EXPECT_EQ(parse(j).model.solver, Solver::paper) << "the default";
+  j["simulation"]["solver"] = "iisph";
+  Scene sc = parse(j);
+  EXPECT_EQ(sc.params.solver, Solver::iisph);
+  EXPECT_EQ(sc.model.solver, Solver::iisph);
+  const real dt = sc.model.dt;
+  // --solver over the scene's: a scene file keeps its dt.
+  select_solver(sc, Solver::paper);
+  EXPECT_EQ(sc.model.solver, Solver::paper);
+  EXPECT_EQ(sc.model.dt, dt);
+  EXPECT_EQ(make_state(sc).iisph.pairs.size(), 0u) << "the paper's step sizes no iisph scratch";
+  select_solver(sc, Solver::iisph);
+  EXPECT_GT(make_state(sc).iisph.pairs.size(), 0u);
+}
+
 TEST(SceneParse, ReadsGivenSettings) {
   json j = base_scene();
   j["simulation"]["gravity"] = {0, -1, 0};
@@ -513,6 +530,9 @@ const BrokenCase broken_cases[] = {
      },
      "run.duration", "> 0"},
     {"empty name", [](json& j) { j["name"] = ""; }, "name", "empty"},
+    {"unknown solver", [](json& j) { j["simulation"]["solver"] = "isph"; }, "simulation.solver",
+     "give \"paper\" (the paper's explicit step) or \"iisph\""},
+    {"solver not a string", [](json& j) { j["simulation"]["solver"] = 2; }, "simulation.solver", "expected a string"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},
 };
 
