@@ -46,6 +46,46 @@ void BM_DentalStep(benchmark::State& bs) {
 }
 BENCHMARK(BM_DentalStep)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
+// The built-in dental scene's step on either solver at its dental time step over the same window of
+// the procedure (0.4 s of simulated time from its start, the first increment's dispensing and
+// compaction), each stage's mean time as a counter (us per step), the share of steps that rebuilt
+// the grid, and the simulated seconds per wall second (`realtime`). Arg: threads.
+void dental_solver(benchmark::State& bs, Solver solver) {
+  DentalSceneParams dp;
+  dp.solver = solver;
+  const Scene sc = default_dental_scene(dp);
+  State st = make_state(sc);
+  StageTimes times;
+  const StepOptions opt{int(bs.range(0)), &times};
+  auto one = [&] {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, opt);
+  };
+  for (int k = 0; k < 10; ++k) one();
+  times = {};
+  std::uint64_t rebuilds = 0, steps = 0, iterations = 0;
+  for (auto _ : bs) {
+    one();
+    rebuilds += st.diagnostics.rebuilt;
+    iterations += std::uint64_t(st.diagnostics.pressure_iterations);
+    ++steps;
+  }
+  const double n = double(std::max<std::uint64_t>(steps, 1));
+  bs.counters["rebuilt"] = double(rebuilds) / n;
+  bs.counters["grid_us"] = (times.hash_us + times.sort_us + times.reorder_us) / n;
+  bs.counters["pairs_us"] = times.density_us / n;
+  bs.counters["forces_us"] = (times.forces_us + times.wrench_us) / n;
+  bs.counters["pressure_us"] = times.pressure_us / n;
+  bs.counters["viscosity_us"] = times.viscosity_us / n;
+  bs.counters["integrate_us"] = times.integrate_us / n;
+  bs.counters["iterations"] = double(iterations) / n;
+  bs.counters["realtime"] = benchmark::Counter(double(bs.iterations()) * sc.model.dt, benchmark::Counter::kIsRate);
+}
+void BM_DentalPaper(benchmark::State& bs) { dental_solver(bs, Solver::paper); }
+void BM_DentalIisph(benchmark::State& bs) { dental_solver(bs, Solver::iisph); }
+BENCHMARK(BM_DentalPaper)->Arg(1)->Arg(2)->Iterations(8000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_DentalIisph)->Arg(1)->Arg(2)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
 // The same steps through the run core every loop uses (a Simulation: the CPU's Stepper, the tool
 // force statistics, the force limit, the divergence check): beside BM_DentalStep, the cost of the
 // core around the step.

@@ -111,12 +111,17 @@ struct GridIndex {
   std::vector<PairData> pair_data;
 };
 
-// One neighbour within h of a particle, as the iisph solver's pair pass leaves it.
+// One neighbour within h of a particle, as the iisph solver's pair pass leaves it. Stored in single
+// precision (20 bytes instead of 40): the rows are the solver's largest memory stream (a material
+// row holds about 30 of them and every pressure iteration and viscosity iteration sweeps them), and
+// a kernel weight's seventh digit is far below the solve's tolerance (docs/model.md). Sums over
+// them are taken in double precision.
 struct SolverPair {
-  Vec3 grad;           // m_j gradW_cubic(r_i - r_j), kg/m^4
-  real visc;           // (mu_i + mu_j)/2 m_j lapW_visc(r) / rho_j, Pa s / m^5 (rho_j: the pair pass's density,
+  float gx = 0, gy = 0, gz = 0;  // m_j gradW_cubic(r_i - r_j), kg/m^4
+  float visc = 0;      // (mu_i + mu_j)/2 m_j lapW_visc(r) / rho_j, Pa s / m^5 (rho_j: the pair pass's density,
                        // rest density for boundary and tool; material rows only)
-  std::uint32_t j;     // the neighbour's index
+  std::uint32_t j = 0; // the neighbour's index
+  Vec3 grad() const { return {real(gx), real(gy), real(gz)}; }
 };
 
 // The iisph solver's scratch (src/solver), sized when particles are added (a step allocates

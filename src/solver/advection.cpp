@@ -54,7 +54,7 @@ void advect(const Model& model, State& s, int threads) {
     SolverPair* row = x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
     real diag = 0;
     for (std::uint32_t q = 0; q < x.n_material[i]; ++q) {
-      row[q].visc *= x.inv_rho[row[q].j];
+      row[q].visc = float(row[q].visc * x.inv_rho[row[q].j]);
       diag += row[q].visc;
     }
     if (s.role[i] == Role::tool) {
@@ -65,10 +65,10 @@ void advect(const Model& model, State& s, int threads) {
     real div_fixed = 0;
     for (std::uint32_t q = IisphScratch::kPairStride - x.n_other[i]; q < IisphScratch::kPairStride; ++q) {
       const std::uint32_t j = row[q].j;
-      row[q].visc *= x.inv_rho[j];
+      row[q].visc = float(row[q].visc * x.inv_rho[j]);
       diag += row[q].visc;
       visc_fixed += s.vel[j] * row[q].visc;
-      div_fixed += dot(s.vel[j], row[q].grad);
+      div_fixed += dot(s.vel[j], row[q].grad());
     }
     x.visc_diag[i] = diag;
     x.visc_fixed[i] = visc_fixed;

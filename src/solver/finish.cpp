@@ -20,7 +20,7 @@ Vec3 tool_particle_force(const State& s, std::uint32_t i) {
   Vec3 pressure, viscous;
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
     const std::uint32_t j = row[e].j;
-    pressure += row[e].grad * (x.q[i] + x.q[j]);
+    pressure += row[e].grad() * (x.q[i] + x.q[j]);
     viscous += (x.v_a[j] - s.vel[i]) * row[e].visc;  // v** of material, the tool's own velocity
   }
   return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];

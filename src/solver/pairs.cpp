@@ -30,8 +30,8 @@ class RowBuilder {
  public:
   RowBuilder(const Model& model, State& s, std::uint32_t i)
       : k_(model.kernel), s_(s), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
-        A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A),
-        pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+        A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
+        grad6_(6 * k_.cubic / k_.h), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
   // Neighbour j at d = r_i - r_j, r2 = |d|^2 (anything beyond h, and i itself, is skipped).
   void add(std::uint32_t j, const Vec3& d, real r2) {
@@ -45,12 +45,24 @@ class RowBuilder {
       ++overflow_;
       return;
     }
-    const real r = std::sqrt(r2);
-    const Vec3 grad = r > 0 ? d * (mj * kernels::cubic_grad_radial(r, k_) / r) : Vec3{};
-    const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * kernels::visc_laplacian(r, k_);
-    pairs_[material ? front_++ : --back_] = {grad, visc, j};
+    // The cubic spline's gradient (kernels::cubic_grad_radial, r < h here) divided by r, with one
+    // division at most: for q = r / h <= 1/2 the radial derivative is grad6 q (3 q - 2), so over r
+    // it is grad6 (3 q - 2) / h.
+    const real r = std::sqrt(r2), q = r * inv_h_;
+    real g_over_r = 0, g = 0;
+    if (q <= 0.5) {
+      g_over_r = grad6_ * inv_h_ * (3 * q - 2);
+      g = g_over_r * r;
+    } else {
+      const real e = 1 - q;
+      g = -grad6_ * e * e;
+      g_over_r = g / r;
+    }
+    const Vec3 grad = d * (mj * g_over_r);
+    const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * k_.visc_lap * (k_.h - r);
+    pairs_[material ? front_++ : --back_] = {float(grad.x), float(grad.y), float(grad.z), float(visc), j};
     S_ += grad;
-    if (material) g2_ += norm2(grad) / mj;
+    if (material) g2_ += mj * g * g;  // |m_j gradW|^2 / m_j
     if (r2 < A2_) {
       if (n_close_ == kClose) flush_bonds();
       close_[n_close_++] = j;
@@ -87,7 +99,7 @@ class RowBuilder {
   State& s_;
   std::uint32_t i_;
   Role role_;
-  real mi_, mu_i_, A2_;
+  real mi_, mu_i_, A2_, inv_h_, grad6_;
   SolverPair* pairs_;
   std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
   real rho_sum_ = 0, g2_ = 0;

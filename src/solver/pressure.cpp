@@ -41,9 +41,9 @@ void pressure_accelerations(State& s, int threads) {
     const std::uint32_t i = x.material[m];
     const SolverPair* row = row_of(x, i);
     Vec3 a = x.grad_sum[i] * q[i];
-    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) a += row[e].grad * q[row[e].j];
+    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) a += row[e].grad() * q[row[e].j];
     for (std::uint32_t e = IisphScratch::kPairStride - x.n_other[i]; e < IisphScratch::kPairStride; ++e)
-      a += row[e].grad * q[row[e].j];
+      a += row[e].grad() * q[row[e].j];
     x.accel[i] = -a;
   }
 }
@@ -52,7 +52,7 @@ void pressure_accelerations(State& s, int threads) {
 real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool material, real dt2) {
   const SolverPair* row = row_of(x, i);
   real ap = material ? dot(x.accel[i], x.grad_sum[i]) : 0;
-  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) ap -= dot(x.accel[row[e].j], row[e].grad);
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) ap -= dot(x.accel[row[e].j], row[e].grad());
   return ap * dt2;
 }
 
@@ -66,7 +66,7 @@ void start_row(const Model& model, State& s, std::uint32_t i) {
   // material: v_i . S_i - sum_j v_j . m_j gradW_ij over every neighbour; boundary and tool: the
   // material neighbours' motion alone (what the solve can change).
   real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
-  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad);
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad());
   x.source[i] = s.rho0[i] - (s.rho[i] + dt * div);
   const real p = model.iisph.warm_start * s.pressure[i];
   s.pressure[i] = p;
