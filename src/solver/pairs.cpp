@@ -25,7 +25,17 @@ namespace dentsph::iisph {
 
 namespace {
 
-// Builds the row of particle i from the pairs handed to add(), in the order given.
+// The neighbours of one particle within h, gathered without branches before its row is made (a
+// neighbour list holds about a quarter of candidates beyond h, in no order a branch predictor
+// could follow). Full, it is handed to the row and starts again.
+struct Within {
+  static constexpr std::uint32_t capacity = 64;
+  std::uint32_t j[capacity + 1];
+  real dx[capacity + 1], dy[capacity + 1], dz[capacity + 1], r2[capacity + 1];
+  std::uint32_t n = 0;
+};
+
+// Builds the row of particle i from the neighbours handed to it, in the order given.
 class RowBuilder {
  public:
   RowBuilder(const Model& model, State& s, std::uint32_t i)
@@ -33,44 +43,21 @@ class RowBuilder {
         A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
         grad6_(6 * k_.cubic / k_.h), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
-  // Neighbour j at d = r_i - r_j, r2 = |d|^2 (anything beyond h, and i itself, is skipped).
-  void add(std::uint32_t j, const Vec3& d, real r2) {
-    if (!(r2 < k_.h2) || j == i_) return;
-    const real mj = s_.mass[j];
-    const real w = k_.h2 - r2;
-    rho_sum_ += mj * w * w * w;
-    const bool material = s_.role[j] == Role::material;
-    if (!material && role_ != Role::material) return;  // boundary and tool rows list material alone
-    if (front_ == back_) {  // the row is full: counted, never expected near rest density
-      ++overflow_;
-      return;
-    }
-    // The cubic spline's gradient (kernels::cubic_grad_radial, r < h here) divided by r, with one
-    // division at most: for q = r / h <= 1/2 the radial derivative is grad6 q (3 q - 2), so over r
-    // it is grad6 (3 q - 2) / h.
-    const real r = std::sqrt(r2), q = r * inv_h_;
-    real g_over_r = 0, g = 0;
-    if (q <= 0.5) {
-      g_over_r = grad6_ * inv_h_ * (3 * q - 2);
-      g = g_over_r * r;
-    } else {
-      const real e = 1 - q;
-      g = -grad6_ * e * e;
-      g_over_r = g / r;
-    }
-    const Vec3 grad = d * (mj * g_over_r);
-    const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * k_.visc_lap * (k_.h - r);
-    pairs_[material ? front_++ : --back_] = {float(grad.x), float(grad.y), float(grad.z), float(visc), j};
-    S_ += grad;
-    if (material) g2_ += mj * g * g;  // |m_j gradW|^2 / m_j
-    if (r2 < A2_) {
-      if (n_close_ == kClose) flush_bonds();
-      close_[n_close_++] = j;
-    }
+  // Candidate j at d = r_i - r_j, r2 = |d|^2: kept when within h and not i itself.
+  void offer(std::uint32_t j, const Vec3& d, real r2) {
+    Within& w = within_;
+    w.j[w.n] = j;
+    w.dx[w.n] = d.x;
+    w.dy[w.n] = d.y;
+    w.dz[w.n] = d.z;
+    w.r2[w.n] = r2;
+    w.n += std::uint32_t(r2 < k_.h2) & std::uint32_t(j != i_);
+    if (w.n == Within::capacity) take();
   }
 
   // Writes the row's sums and the density; forms the bonds of the close pairs.
   void finish(bonds::Events& ev, std::uint64_t& overflow) {
+    take();
     flush_bonds();
     ev += events_;
     IisphScratch& x = s_.iisph;
@@ -89,12 +76,58 @@ class RowBuilder {
   }
 
  private:
+  // The gathered neighbours into the row: the density's sum over all of them; a material row lists
+  // every one (material from the front, boundary and tool from the back), a boundary or tool row
+  // its material ones.
+  void take() {
+    const Within& w = within_;
+    const bool row_material = role_ == Role::material;
+    for (std::uint32_t e = 0; e < w.n; ++e) {
+      const std::uint32_t j = w.j[e];
+      const real r2 = w.r2[e];
+      const real mj = s_.mass[j];
+      const real wk = k_.h2 - r2;
+      rho_sum_ += mj * wk * wk * wk;
+      const bool material = s_.role[j] == Role::material;
+      if (!material && !row_material) continue;  // boundary and tool rows list material alone
+      if (front_ == back_) {  // the row is full: counted, never expected near rest density
+        ++overflow_;
+        continue;
+      }
+      // The cubic spline's gradient (kernels::cubic_grad_radial; r < h here) over r, one division
+      // at most: for q = r / h <= 1/2 the radial derivative is grad6 q (3 q - 2), over r grad6 (3 q - 2) / h.
+      const real r = std::sqrt(r2), q = r * inv_h_;
+      real g_over_r, g;
+      if (q <= 0.5) {
+        g_over_r = grad6_ * inv_h_ * (3 * q - 2);
+        g = g_over_r * r;
+      } else {
+        const real c = 1 - q;
+        g = -grad6_ * c * c;
+        g_over_r = g / r;
+      }
+      const real f = mj * g_over_r;
+      const Vec3 grad{w.dx[e] * f, w.dy[e] * f, w.dz[e] * f};
+      const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * k_.visc_lap * (k_.h - r);
+      const std::uint32_t slot = material ? front_ : back_ - 1;
+      front_ += std::uint32_t(material);
+      back_ -= std::uint32_t(!material);
+      pairs_[slot] = {float(grad.x), float(grad.y), float(grad.z), float(visc), j};
+      S_ += grad;
+      g2_ += material ? mj * g * g : 0;  // |m_j gradW|^2 / m_j
+      close_[n_close_] = j;
+      n_close_ += std::uint32_t(r2 < A2_);
+    }
+    within_.n = 0;
+    if (n_close_ > kClose - Within::capacity) flush_bonds();
+  }
+
   void flush_bonds() {
     if (n_close_ > 0) bonds::form_bonds(s_, i_, close_, n_close_, events_);
     n_close_ = 0;
   }
 
-  static constexpr std::uint32_t kClose = 128;
+  static constexpr std::uint32_t kClose = 2 * Within::capacity + 1;
   const KernelCoeffs& k_;
   State& s_;
   std::uint32_t i_;
@@ -104,6 +137,7 @@ class RowBuilder {
   std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
   real rho_sum_ = 0, g2_ = 0;
   Vec3 S_;
+  Within within_;
   std::uint32_t close_[kClose];
   std::uint32_t n_close_ = 0;
   bonds::Events events_;
@@ -143,7 +177,7 @@ void build_list_and_row(const Model& model, State& s, std::uint32_t i, RowBuilde
     const std::uint32_t within = (r2 < reach2) & (j != i);
     list[count < cap ? count : cap] = j;
     count += within;
-    row.add(j, d, r2);
+    row.offer(j, d, r2);
   });
   g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
 }
@@ -162,14 +196,14 @@ void compute_pairs(const Model& model, State& s, int threads, bool build_lists) 
     if (build_lists) {
       build_list_and_row(model, s, i, row);
     } else if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) {
-      search(model, s, i, false, [&](std::uint32_t j, const Vec3& d, real r2) { row.add(j, d, r2); });
+      search(model, s, i, false, [&](std::uint32_t j, const Vec3& d, real r2) { row.offer(j, d, r2); });
     } else {
       const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
       const Vec3 pi = s.pos[i];
       for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
         const std::uint32_t j = list[q];
         const Vec3 d = pi - s.pos[j];
-        row.add(j, d, norm2(d));
+        row.offer(j, d, norm2(d));
       }
     }
     bonds::Events ev;
