@@ -147,14 +147,14 @@ struct IisphScratch {
   std::vector<real> div_fixed;       // material rows: sum over boundary and tool neighbours of v_j . m_j gradW_ij
   std::vector<Vec3> v_star;          // material: velocity after gravity and adhesion, then after the pressure
   std::vector<real> source;          // target density - max(rho_adv, target)
-  std::vector<real> error;           // material: the solve's error of the last iteration (relative)
-  std::vector<real> compression;     // material: max(0, rho_predicted - rho0) / rho0 of the last iteration
   std::vector<Vec3> tool_force;      // N, tool particles: adhesion on them
   std::vector<real> inv_rho;         // 1 / rho (this step's density)
   std::vector<real> q;               // p / rho^2
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
+  std::vector<Vec3> partial;         // [n / kSumBlock + 1] sums of fixed blocks of rows (solver/block_sum.hpp)
+  static constexpr int kSumBlock = 64;
 
   std::size_t bytes() const;
 };

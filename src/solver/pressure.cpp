@@ -21,6 +21,7 @@
 // max_iterations in any case.
 #include <algorithm>
 
+#include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
 
 namespace dentsph::iisph {
@@ -87,8 +88,9 @@ void solve_pressure(const Model& model, State& s, int threads) {
   real omega = ip.omega;
   while (it < ip.max_iterations) {
     pressure_accelerations(s, threads);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t k = 0; k < rows; ++k) {
+    // The update of every active row, and the sums of the material rows' error and compression
+    // in the same pass (block_sum.hpp: the same sums, bit for bit, on every thread count).
+    const Vec3 sums = for_rows_summed(rows, threads, x.partial.data(), [&](std::int64_t k) {
       const std::uint32_t i = x.active[k];
       const bool material = s.role[i] == Role::material;
       const real compliance = 1 / s.Kp[i];  // kg/m^3 per Pa: rho - rho0 = p / Kp
@@ -96,25 +98,21 @@ void solve_pressure(const Model& model, State& s, int threads) {
       const real residual = x.source[i] - pressure_density_change(x, i, material, dt2) + s.pressure[i] * compliance;
       // The solve's error: where the pressure pushes, the equation of state's; where it is 0, the
       // compression it leaves (expansion is free).
+      Vec3 terms;
       if (material) {
-        x.error[i] = (s.pressure[i] > 0 ? std::abs(residual) : std::max<real>(0, -residual)) / s.rho0[i];
-        x.compression[i] = std::max<real>(0, s.pressure[i] * compliance - residual) / s.rho0[i];
+        terms.x = (s.pressure[i] > 0 ? std::abs(residual) : std::max<real>(0, -residual)) / s.rho0[i];
+        terms.y = std::max<real>(0, s.pressure[i] * compliance - residual) / s.rho0[i];
       }
       const real ir2 = x.inv_rho[i] * x.inv_rho[i];
       const real diag = -dt2 * ir2 * x.diag_x[i] - compliance;
       const real p = std::max<real>(0, s.pressure[i] + omega * residual / diag);
       s.pressure[i] = p;
       x.q[i] = p * ir2;
-    }
+      return terms;
+    });
     ++it;
-    // The mean in a fixed order: every thread count takes the same number of iterations.
-    real sum = 0, compressed = 0;
-    for (std::int64_t m = 0; m < n_material; ++m) {
-      sum += x.error[x.material[m]];
-      compressed += x.compression[x.material[m]];
-    }
-    mean_error = n_material > 0 ? sum / real(n_material) : 0;
-    mean_compression = n_material > 0 ? compressed / real(n_material) : 0;
+    mean_error = n_material > 0 ? sums.x / real(n_material) : 0;
+    mean_compression = n_material > 0 ? sums.y / real(n_material) : 0;
     if (it >= ip.min_iterations && mean_error <= ip.density_error) break;
     // Relaxed Jacobi converges for omega below 2 / (largest eigenvalue of diag^-1 A), which grows
     // with dt^2 / compliance: where the error grows, the relaxation halves (for the rest of the solve).

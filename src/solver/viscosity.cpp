@@ -11,7 +11,9 @@
 // same step, as the paste's viscosity does over the step's millisecond (docs/model.md).
 //
 // The three components are three independent solves sharing each sweep. The sums over particles
-// are taken in a fixed order, so every thread count gives the same result.
+// are taken in fixed blocks in a fixed order (block_sum.hpp), so every thread count gives the same
+// result.
+#include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
 
 namespace dentsph::iisph {
@@ -30,24 +32,30 @@ class ViscositySolve {
       : s_(s), x_(s.iisph), dt_(model.dt), threads_(threads), n_(std::int64_t(x_.material.size())) {}
 
   // Conjugate gradients from v' (in v_a, also the right-hand side's v_star), `iterations` of them.
+  // Three parallel passes an iteration, each sum taken in the pass that computes its terms
+  // (block_sum.hpp); z = D^-1 r is kept in cg_p's place only until the direction is updated.
   void run(int iterations) {
     Vec3* v = x_.v_a.data();
     Vec3* p = x_.cg_p.data();
     Vec3* r = x_.cg_r.data();
     Vec3* ap = x_.cg_ap.data();
-    each([&](std::uint32_t i) {
+    Vec3 rz = summed([&](std::uint32_t i) {
       r[i] = x_.v_star[i] * s_.mass[i] + x_.visc_fixed[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]) - apply(v, i);
       p[i] = r[i] / diagonal(i);
+      return mul(r[i], p[i]);
     });
-    Vec3 rz = sum([&](std::uint32_t i) { return mul(r[i], p[i]); });
     for (int it = 0; it < iterations; ++it) {
-      each([&](std::uint32_t i) { ap[i] = apply(p, i); });
-      const Vec3 alpha = quotient(rz, sum([&](std::uint32_t i) { return mul(p[i], ap[i]); }));
-      each([&](std::uint32_t i) {
+      const Vec3 pap = summed([&](std::uint32_t i) {
+        ap[i] = apply(p, i);
+        return mul(p[i], ap[i]);
+      });
+      const Vec3 alpha = quotient(rz, pap);
+      const Vec3 rz_next = summed([&](std::uint32_t i) {
         v[i] += mul(alpha, p[i]);
         r[i] -= mul(alpha, ap[i]);
+        return mul(r[i], r[i] / diagonal(i));
       });
-      const Vec3 rz_next = sum([&](std::uint32_t i) { return mul(r[i], r[i] / diagonal(i)); });
+      if (it + 1 == iterations) break;  // the last direction would not be used
       const Vec3 beta = quotient(rz_next, rz);
       rz = rz_next;
       each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
@@ -71,12 +79,10 @@ class ViscositySolve {
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::int64_t m = 0; m < n_; ++m) fn(x_.material[m]);
   }
-  // The sum of f(i) over material particles, in their order.
+  // fn(i) for every material particle, in parallel, and the sum of what it returns (block_sum.hpp).
   template <class F>
-  Vec3 sum(F&& f) const {
-    Vec3 t;
-    for (std::int64_t m = 0; m < n_; ++m) t += f(x_.material[m]);
-    return t;
+  Vec3 summed(F&& fn) const {
+    return for_rows_summed(n_, threads_, x_.partial.data(), [&](std::int64_t m) { return fn(x_.material[m]); });
   }
 
   State& s_;

@@ -128,8 +128,6 @@ void State::size_iisph_scratch(const Model& model, std::uint32_t n) {
   size(x.div_fixed, per);
   size(x.v_star, per);
   size(x.source, per);
-  size(x.error, per);
-  size(x.compression, per);
   size(x.tool_force, per);
   size(x.inv_rho, per);
   size(x.q, per);
@@ -138,13 +136,14 @@ void State::size_iisph_scratch(const Model& model, std::uint32_t n) {
   size(x.cg_p, per);
   size(x.cg_r, per);
   size(x.cg_ap, per);
+  size(x.partial, x.sized ? n / IisphScratch::kSumBlock + 1 : 0);
 }
 
 std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
-         b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(error) + b(compression) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap);
+         b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
+         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial);
 }
 
 std::size_t State::bytes_per_particle() const {
