@@ -66,8 +66,9 @@ TEST(Filling, PressingAFullCavityAtTheLargestRenderedForceLeaksNothing) {
   EXPECT_EQ(inside_tooth(st, ts.tooth, s), 0) << "material inside the tooth wall or below the floor";
 }
 
-// The built-in procedure on a scanned molar's cavity of the given class.
-void fills_the_molar(const char* file, CavityClass kind) {
+// The built-in procedure on a scanned molar's cavity of the given class, on the given solver (at its
+// dental time step).
+void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver::paper) {
   const std::filesystem::path mesh = std::filesystem::path("../shared/data") / file;
   if (!std::filesystem::exists(mesh))
     GTEST_SKIP() << "the real molar scans are absent (expected " << mesh << " relative to the project root): skipped";
@@ -75,17 +76,19 @@ void fills_the_molar(const char* file, CavityClass kind) {
   cavity.kind = kind;
   const ToothScene ts = tooth_scene_from_mesh(mesh, cavity);
   Scene sc = dental_procedure(ts, std::string(default_procedure_json()), "built-in default_procedure");
+  select_solver(sc, solver);
   sc.output.snapshot_interval = 0;  // the first and the last state only, and the preview
   RunOptions opt;
   opt.threads = 1;
-  opt.out_dir = std::filesystem::temp_directory_path() / ("dentsph_filling_" + std::string(file) +
-                                                              (kind == CavityClass::class_1 ? "_I_" : "_II_") + std::to_string(::getpid()));
+  opt.out_dir = std::filesystem::temp_directory_path() /
+                ("dentsph_filling_" + std::string(file) + (kind == CavityClass::class_1 ? "_I_" : "_II_") +
+                 solver_name(solver) + "_" + std::to_string(::getpid()));
   const RunSummary s = run_offline(sc, opt);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
-  std::printf("%s, Class %s: %zu boundary particles, %u material, fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, "
-              "lost %d; %.1f s wall (output in %s)\n",
-              file, kind == CavityClass::class_1 ? "I" : "II", ts.boundary.points.size(), s.material,
+  std::printf("%s, Class %s, %s: %zu boundary particles, %u material, fill %.3f, %d voids, overfill %.2f mm^3, "
+              "leaked %d, lost %d; %.1f s wall (output in %s)\n",
+              file, kind == CavityClass::class_1 ? "I" : "II", solver_name(solver), ts.boundary.points.size(), s.material,
               a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["overfill_mm3"].get<double>(),
               a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(), s.wall_time_s, opt.out_dir.c_str());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.9);
@@ -96,22 +99,26 @@ void fills_the_molar(const char* file, CavityClass kind) {
 
 // The README's main command: the built-in procedure on the built-in crown, which must fill it
 // (measured: fill 0.981, no voids, nothing leaked or lost; 54,560 steps).
-TEST(Filling, TheBuiltInProcedureFillsTheBuiltInCrown) {
-  Scene sc = default_dental_procedure();
+void fills_the_crown(Solver solver) {
+  DentalSceneParams params;
+  params.solver = solver;
+  Scene sc = default_dental_procedure(params);
   sc.output.snapshot_interval = 0;
   RunOptions opt;
   opt.threads = 2;
   const RunSummary s = run_offline(sc, opt);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
-  std::printf("built-in crown: fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, lost %d\n",
-              a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["overfill_mm3"].get<double>(),
-              a["leaked_particles"].get<int>(), a["lost_particles"].get<int>());
+  std::printf("built-in crown, %s: fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, lost %d\n",
+              solver_name(solver), a["fill_fraction"].get<double>(), a["void_count"].get<int>(),
+              a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
   EXPECT_EQ(a["void_count"].get<int>(), 0);
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
 }
+
+TEST(Filling, TheBuiltInProcedureFillsTheBuiltInCrown) { fills_the_crown(Solver::paper); }
 
 constexpr const char* kFdi36 = "molar_FDI36_lower_left_first.stl";
 constexpr const char* kFdi46 = "molar_FDI46_lower_right_first.stl";
@@ -120,6 +127,14 @@ TEST(Filling, TheProcedureFillsFdi36ClassI) { fills_the_molar(kFdi36, CavityClas
 TEST(Filling, TheProcedureFillsFdi36ClassII) { fills_the_molar(kFdi36, CavityClass::class_2); }
 TEST(Filling, TheProcedureFillsFdi46ClassI) { fills_the_molar(kFdi46, CavityClass::class_1); }
 TEST(Filling, TheProcedureFillsFdi46ClassII) { fills_the_molar(kFdi46, CavityClass::class_2); }
+
+// The same procedures on the iisph solver (at its dental time step): they must fill as the paper's
+// step does, with nothing leaked (docs/model.md, "The iisph solver", has the numbers of both).
+TEST(Filling, IisphFillsTheBuiltInCrown) { fills_the_crown(Solver::iisph); }
+TEST(Filling, IisphFillsFdi36ClassI) { fills_the_molar(kFdi36, CavityClass::class_1, Solver::iisph); }
+TEST(Filling, IisphFillsFdi36ClassII) { fills_the_molar(kFdi36, CavityClass::class_2, Solver::iisph); }
+TEST(Filling, IisphFillsFdi46ClassI) { fills_the_molar(kFdi46, CavityClass::class_1, Solver::iisph); }
+TEST(Filling, IisphFillsFdi46ClassII) { fills_the_molar(kFdi46, CavityClass::class_2, Solver::iisph); }
 
 }  // namespace
 }  // namespace dentsph
