@@ -127,6 +127,20 @@ struct LoopTiming {
   std::uint64_t deadline_misses = 0;  // ticks that started more than half a period late
 };
 
+// The force the device rendered while the simulated tool touched nothing: the ticks at which no
+// step of the last `window_s` of wall time had a force on the tool (without material within reach
+// the tool's force is exactly zero), against the ticks in contact. What a student feels in air is
+// the coupling's lag behind the hand, not the material.
+struct FreeAirForce {
+  double window_s = 0.02;
+  std::uint64_t free_ticks = 0, contact_ticks = 0;
+  double free_mean_N = 0, free_p95_N = 0;        // |force sent to the device| over the free ticks
+  double contact_mean_N = 0, contact_p95_N = 0;  // the same in contact
+};
+// From a recording (its ticks and steps, both on the runtime's wall clock). Ticks before the first
+// step, or with no step in their window, count as neither.
+FreeAirForce free_air_force(const Recording& recording, double window_s = 0.02);
+
 struct HapticReport {
   double target_rate_hz = 0;
   DeviceProfile profile;                  // the force limits the loop kept to
@@ -143,6 +157,7 @@ struct HapticReport {
   std::uint64_t dispense_presses_refused = 0;  // presses over limits::max_dispense_presses_per_s
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
+  FreeAirForce free_air;                  // from the recording, after the run
 };
 
 struct SimReport {

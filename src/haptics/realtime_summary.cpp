@@ -39,6 +39,13 @@ std::string realtime_json(const RealtimeResult& r) {
                                {"sim_stale_ticks", h.sim_stale_ticks},
                                {"pose_stale_ticks", h.pose_stale_ticks},
                                {"zero_gain_ticks", h.zero_gain_ticks}}},
+                 {"free_air", {{"window_s", h.free_air.window_s},
+                               {"free_ticks", h.free_air.free_ticks},
+                               {"free_mean_N", h.free_air.free_mean_N},
+                               {"free_p95_N", h.free_air.free_p95_N},
+                               {"contact_ticks", h.free_air.contact_ticks},
+                               {"contact_mean_N", h.free_air.contact_mean_N},
+                               {"contact_p95_N", h.free_air.contact_p95_N}}},
                  {"recorded_ticks", r.recording.haptic.size()},
                  {"recording_dropped_ticks", r.recording.haptic_dropped}};
   j["sim"] = {{"backend", r.run.backend},
@@ -66,13 +73,16 @@ std::string realtime_report(const RealtimeResult& r) {
       "{} deadline misses in {} ticks\n"
       "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
+      "force in air (no tool force for {:.0f} ms): mean {:.3f} N, p95 {:.3f} N over {} ticks; in contact: mean {:.3f} N, "
+      "p95 {:.3f} N over {} ticks\n"
       "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
       "dispensed by the button ({} presses over {} a second refused)\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
       r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
-      h.watchdog_trips, h.zero_gain_ticks, r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
+      h.watchdog_trips, h.zero_gain_ticks, h.free_air.window_s * 1e3, h.free_air.free_mean_N, h.free_air.free_p95_N,
+      h.free_air.free_ticks, h.free_air.contact_mean_N, h.free_air.contact_p95_N, h.free_air.contact_ticks, r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
       r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, h.dispense_presses_refused,
       limits::max_dispense_presses_per_s, r.consumer.frames, r.consumer.rate_hz);
 }

@@ -489,3 +489,45 @@ TEST(SceneFile, HapticsForceScaleIsReadAndChecked) {
 
 }  // namespace
 }  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// The force in air: ticks whose last 20 ms of steps had no tool force are free, the others in
+// contact; ticks before any step count as neither.
+TEST(FreeAir, TicksAreSplitByTheToolForceOfTheLastWindow) {
+  Recording r;
+  // Steps every 2 ms from t = 0.010 s; the tool touches paste from 0.100 s to 0.200 s.
+  for (int k = 0; k < 150; ++k) {
+    StepSample s;
+    s.step = std::uint64_t(k);
+    s.wall_t = 0.010 + 0.002 * k;
+    if (k >= 45 && k < 95) s.tool_force = {0, 0, 1e-4};  // steps at 0.100 to 0.198 s
+    r.steps.push_back(s);
+  }
+  // Ticks every 1 ms from 0 to 0.300 s; rendered 0.01 N in air, 2 N in contact (3 N after 0.150 s),
+  // a tick inside the contact's ends.
+  for (int k = 0; k <= 300; ++k) {
+    HapticSample h;
+    h.t = 0.001 * k;
+    const bool touching = k >= 102 && k <= 215;
+    h.force = {0, touching ? (h.t < 0.150 ? 2.0 : 3.0) : 0.01, 0};
+    r.haptic.push_back(h);
+  }
+  const FreeAirForce f = free_air_force(r);
+  // Before 0.010 s: no step yet (10 ticks). In contact: a step with force within the last 20 ms,
+  // from the first touching step (0.100) to 20 ms after the last (0.198 + 0.020).
+  EXPECT_EQ(f.free_ticks + f.contact_ticks, 301u - 10u);
+  EXPECT_NEAR(double(f.contact_ticks), 118.0, 2.0);
+  EXPECT_NEAR(f.free_mean_N, 0.01, 1e-12) << "only the air's ticks";
+  EXPECT_NEAR(f.free_p95_N, 0.01, 1e-12);
+  EXPECT_NEAR(f.contact_p95_N, 3.0, 1e-12);
+  EXPECT_GT(f.contact_mean_N, 2.0);
+  EXPECT_LT(f.contact_mean_N, 3.0);
+  // A longer window makes more ticks contact.
+  EXPECT_GT(free_air_force(r, 0.05).contact_ticks, f.contact_ticks);
+  EXPECT_EQ(free_air_force(Recording{}).free_ticks, 0u) << "an empty recording";
+}
+
+}  // namespace
+}  // namespace dentsph
