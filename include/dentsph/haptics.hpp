@@ -48,6 +48,12 @@ struct CouplingParams {
   double damping_N_s_per_m = 2;      // relative velocity of proxy and device
   double proxy_mass_kg = 0.05;
   double proxy_drag_N_s_per_m = 2;   // proxy against the world (dissipates energy)
+  // Set by the runtime, not a user's setting: the proxy's largest speed (device m/s; 0: none), the
+  // velocity CFL limit of the step (cfl h / dt, in the device's frame). The proxy is the simulated
+  // tool: a tool that moves more than cfl h in one step outruns the solver (at the iisph solver's
+  // 1 ms a contact pushed the proxy 7 mm in two steps and the paste exploded). Slowing the proxy
+  // only takes energy out.
+  double max_speed_m_per_s = 0;
   // Set by the runtime, not a user's setting: where the haptic loop announces a new device
   // session (DeviceSample::session), at which the proxy is put where the device is.
   haptics::TripleBuffer<haptics::SessionStart>* sessions = nullptr;

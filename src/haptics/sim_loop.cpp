@@ -23,7 +23,9 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   bool stalled = false;
   ToolCommand cmd;
   const State& state = sim_.state();
-  VirtualCoupling proxy(opt_.coupling);
+  CouplingParams coupling = opt_.coupling;
+  coupling.max_speed_m_per_s = sim_.model().iisph.cfl * sim_.model().kernel.h / dt / opt_.workspace.scale;
+  VirtualCoupling proxy(coupling);
   bool proxy_started = false;
   std::uint64_t presses_handled = 0;
   const real dispense_volume = increment_volume_or_default(sim_.scene(), opt_.dispense_volume);

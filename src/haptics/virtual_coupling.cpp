@@ -9,7 +9,7 @@
 namespace dentsph::haptics {
 
 VirtualCoupling::VirtualCoupling(const CouplingParams& p) : p_(p) {
-  if (!(p.stiffness_N_per_m > 0) || !(p.proxy_mass_kg > 0) || !(p.damping_N_s_per_m >= 0) ||
+  if (!(p.stiffness_N_per_m > 0) || !(p.proxy_mass_kg > 0) || !(p.damping_N_s_per_m >= 0) || !(p.max_speed_m_per_s >= 0) ||
       !(p.proxy_drag_N_s_per_m >= 0) || !std::isfinite(p.stiffness_N_per_m + p.proxy_mass_kg + p.damping_N_s_per_m +
                                                         p.proxy_drag_N_s_per_m))
     throw std::invalid_argument(
@@ -25,8 +25,10 @@ void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_forc
   // m (v' - v) / dt = k (xd - x - dt v') + b (vd - v') - c v' + F   (x' = x + dt v')
   const Vec3 rhs = v_ + (k * (xd - x_) + b * vd + tool_force) * (dt / m);
   const double lhs = 1 + dt * (b + c) / m + dt * dt * k / m;
-  const Vec3 v = rhs / lhs;
+  Vec3 v = rhs / lhs;
   if (!is_finite(v)) return;  // keep the proxy where it is
+  const double speed = norm(v);
+  if (p_.max_speed_m_per_s > 0 && speed > p_.max_speed_m_per_s) v *= p_.max_speed_m_per_s / speed;
   v_ = v;
   x_ += v_ * dt;
 }

@@ -531,3 +531,34 @@ TEST(FreeAir, TicksAreSplitByTheToolForceOfTheLastWindow) {
 
 }  // namespace
 }  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// The proxy never outruns the step's velocity CFL limit however hard the tool is pushed, and the
+// limit only slows it (the same direction, the same position without it when it does not bind).
+TEST(VirtualCouplingSpeed, TheProxyIsSlowedToTheStepsLimit) {
+  CouplingParams p;
+  p.max_speed_m_per_s = 0.24;  // 0.4 h / dt at h = 0.6 mm, dt = 1 ms
+  haptics::VirtualCoupling limited(p), free(CouplingParams{});
+  limited.reset({0, 0, 0});
+  free.reset({0, 0, 0});
+  for (int k = 0; k < 50; ++k) {
+    limited.step({0, 0, 0}, {}, {0, 0, 500}, 1e-3);  // a contact force of 500 N
+    free.step({0, 0, 0}, {}, {0, 0, 500}, 1e-3);
+    EXPECT_LE(norm(limited.velocity()), 0.24 * (1 + 1e-12)) << "tick " << k;
+    EXPECT_NEAR(limited.velocity().x, 0, 1e-15);
+  }
+  EXPECT_GT(norm(free.velocity()), 1.0) << "unlimited, the same push throws the proxy";
+  haptics::VirtualCoupling slow(p), ref(CouplingParams{});
+  slow.reset({0, 0, 0});
+  ref.reset({0, 0, 0});
+  for (int k = 0; k < 50; ++k) {
+    slow.step({0.001, 0, 0}, {}, {}, 1e-3);  // a gentle pull by the spring
+    ref.step({0.001, 0, 0}, {}, {}, 1e-3);
+  }
+  EXPECT_EQ(slow.position().x, ref.position().x) << "below the limit nothing changes";
+}
+
+}  // namespace
+}  // namespace dentsph
