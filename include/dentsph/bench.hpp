@@ -42,6 +42,17 @@ struct BenchOptions {
   // The step every scene runs: the dental scene at the solver's dental time step, the sweep at its
   // own; the all-pairs reference is the paper's step's and runs with it alone.
   Solver solver = Solver::paper;
+  // CPU: the dental scene on each solver at its dental time step, for each thread count, the
+  // solvers' runs alternated (paper, iisph, paper, ...): steps/s and simulated s per wall s.
+  bool compare_solvers = true;
+};
+
+struct SolverRow {
+  Solver solver = Solver::paper;
+  real dt = 0;                 // s, the solver's dental time step
+  int threads = 1;
+  double steps_per_second = 0;  // median of the alternated runs
+  double realtime_factor = 0;   // simulated s per wall s: steps_per_second * dt
 };
 
 struct BusyCoreRow {
@@ -70,6 +81,7 @@ struct BenchResult {
   std::map<int, StageTimes> default_stage_us;               // by thread count, per step
   std::vector<BenchRow> sweep;
   std::vector<BusyCoreRow> busy_core;           // the dental scene with one core busy (CPU)
+  std::vector<SolverRow> solvers;               // the dental scene on each solver (CPU)
   std::size_t bytes_per_particle = 0;           // of the largest sweep scene
   std::string machine;                          // CPU model and core count, or the GPU
   Backend backend = Backend::cpu;               // a GPU backend: default_* are keyed 1 (one GPU)

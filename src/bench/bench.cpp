@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <thread>
@@ -277,6 +278,42 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     log(fmt::format("{}, one core busy: governor up to {} threads: {:.0f} steps/s", paper.name, most, m.steps_per_second));
   }
 
+  // The dental scene on both solvers at their dental time steps: single runs alternated, paper and
+  // iisph in turn, `repeats` times for each thread count; the median of each.
+  if (!gpu && opt.compare_solvers) {
+    BenchOptions one = opt;
+    one.repeats = 1;
+    const Solver both[] = {Solver::paper, Solver::iisph};
+    for (int t : opt.threads) {
+      std::map<Solver, std::vector<double>> rates;
+      std::map<Solver, std::pair<Scene, State>> scenes;
+      for (Solver s : both) {
+        DentalSceneParams dp;
+        dp.solver = s;
+        Scene sc = default_dental_scene(dp);
+        State st = make_state(sc);
+        scenes.emplace(s, std::make_pair(std::move(sc), std::move(st)));
+      }
+      for (int r = 0; r < std::max(1, opt.repeats); ++r)
+        for (Solver s : both) {
+          const auto& [sc, start] = scenes.at(s);
+          State st = start;
+          rates[s].push_back(
+              measure(sc.model, st, t, one, [&](State& x) { x.tool_pose = sc.tool.at(x.time + sc.model.dt); })
+                  .steps_per_second);
+        }
+      for (Solver s : both) {
+        std::vector<double>& v = rates[s];
+        std::sort(v.begin(), v.end());
+        const real dt = scenes.at(s).first.model.dt;
+        const double sps = v[v.size() / 2];
+        res.solvers.push_back({s, dt, t, sps, sps * dt});
+        log(fmt::format("{}, {} solver at dt = {:.3g} s: {} threads: {:.0f} steps/s, {:.3f} s simulated per s", paper.name,
+                        solver_name(s), dt, t, sps, sps * dt));
+      }
+    }
+  }
+
   std::vector<SweepSize> sizes = opt.sweep;
   if (gpu) {
     sizes.clear();
@@ -328,6 +365,13 @@ std::string bench_json(const BenchResult& r) {
                               {"threads", row.threads},
                               {"governor", row.governor},
                               {"steps_per_second", row.steps_per_second}});
+  j["solvers"] = nlohmann::json::array();
+  for (const SolverRow& row : r.solvers)
+    j["solvers"].push_back({{"solver", solver_name(row.solver)},
+                            {"dt_s", row.dt},
+                            {"threads", row.threads},
+                            {"steps_per_second", row.steps_per_second},
+                            {"realtime_factor", row.realtime_factor}});
   j["bytes_per_particle"] = r.bytes_per_particle;
   return j.dump(2);
 }
@@ -347,6 +391,14 @@ std::string bench_table(const BenchResult& r) {
     out += "  with one core kept busy by another thread:\n";
     for (const BusyCoreRow& row : r.busy_core)
       out += fmt::format("  {}: {:8.0f} steps/s\n", row.configuration, row.steps_per_second);
+  }
+  if (!r.solvers.empty()) {
+    out += "  by solver (each at its dental time step, runs alternated):\n";
+    out += fmt::format("  {:>8} {:>10} {:>8} {:>10} {:>24}\n", "solver", "dt (s)", "threads", "steps/s",
+                       "simulated s per wall s");
+    for (const SolverRow& row : r.solvers)
+      out += fmt::format("  {:>8} {:>10.3g} {:>8} {:>10.0f} {:>24.3f}\n", solver_name(row.solver), row.dt, row.threads,
+                         row.steps_per_second, row.realtime_factor);
   }
   // ns/moving: the time per material or tool particle. A single block's box takes a smaller share
   // of the particles the larger the block (static boundary particles cost less than moving ones),

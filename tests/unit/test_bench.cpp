@@ -81,11 +81,22 @@ TEST(Bench, JsonHasDefaultSceneSweepAndMemory) {
   EXPECT_EQ(j["busy_core"][1]["threads"], 2);
   EXPECT_EQ(j["busy_core"][2]["governor"], true);
   for (const auto& row : j["busy_core"]) EXPECT_GT(row["steps_per_second"].get<double>(), 0);
-  EXPECT_EQ(lines, 2 + 3 + 6);
+  ASSERT_EQ(j["solvers"].size(), 4u) << "both solvers at 1 and 2 threads";
+  for (const auto& row : j["solvers"]) {
+    EXPECT_GT(row["steps_per_second"].get<double>(), 0);
+    EXPECT_DOUBLE_EQ(row["realtime_factor"].get<double>(), row["steps_per_second"].get<double>() * row["dt_s"].get<double>());
+  }
+  EXPECT_EQ(j["solvers"][0]["solver"], "paper");
+  EXPECT_EQ(j["solvers"][0]["dt_s"], dental_time_step(Solver::paper));
+  EXPECT_EQ(j["solvers"][1]["solver"], "iisph");
+  EXPECT_EQ(j["solvers"][1]["dt_s"], dental_time_step(Solver::iisph));
+  EXPECT_EQ(j["solvers"][2]["threads"], 2);
+  EXPECT_EQ(lines, 2 + 3 + 4 + 6);
   const std::string table = bench_table(r);
   EXPECT_NE(table.find("steps/s"), std::string::npos);
   EXPECT_NE(table.find("cups"), std::string::npos);
   EXPECT_NE(table.find("one core kept busy"), std::string::npos);
+  EXPECT_NE(table.find("simulated s per wall s"), std::string::npos);
 }
 
 TEST(Bench, TheIisphSolverRunsTheDentalSceneAndTheSweep) {
