@@ -50,7 +50,7 @@ struct NamedMaterial {
   // the one CureModel the run loops are given.
 };
 
-// The Model's materials, at most 127, each with a name unique in the table.
+// The Model's materials, at most 128, each with a name unique in the table.
 class MaterialTable {
  public:
   static constexpr std::size_t kCapacity = kMaterialMask + 1;

@@ -268,10 +268,16 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   // The Model's table: the named materials (the paste and the instruments those roles.material and
   // roles.tool name), then the values of inline materials.
   MaterialTable& table = sc.model.materials;
-  for (const auto& [name, material] : materials.by_name) table.add(name, material);
-  if (!materials.role_name[int(Role::material)].empty()) table.paste = table.find(materials.role_name[int(Role::material)]);
-  if (!materials.role_name[int(Role::tool)].empty()) table.instrument = table.find(materials.role_name[int(Role::tool)]);
-  intern_scene_materials(sc);
+  try {
+    for (const auto& [name, material] : materials.by_name) table.add(name, material);
+    if (!materials.role_name[int(Role::material)].empty()) table.paste = table.find(materials.role_name[int(Role::material)]);
+    if (!materials.role_name[int(Role::tool)].empty()) table.instrument = table.find(materials.role_name[int(Role::tool)]);
+    intern_scene_materials(sc);
+  } catch (const std::invalid_argument& e) {  // the table is full
+    root.fail("materials", e.what(),
+              fmt::format("use at most {} different materials (the named ones, and inline ones with values of their own)",
+                          MaterialTable::kCapacity));
+  }
   return sc;
 }
 

@@ -269,5 +269,23 @@ TEST(MaterialTable, SceneFileRefusesAnUnknownMaterialNamingFileAndField) {
   }
 }
 
+// The table holds 128 materials (a one-byte index, its high bit the cure's): a scene file with more
+// is refused naming the file and the field, not with an error from deep inside.
+TEST(MaterialTable, SceneFileWithTooManyMaterialsIsRefused) {
+  nlohmann::json j = scene_json();
+  for (int k = 0; k < 130; ++k)
+    j["materials"]["extra" + std::to_string(k)] = {
+        {"viscosity", 0.5}, {"stiffness", 60 + k}, {"rest_density", 1000}, {"adhesion", 0}};
+  try {
+    (void)parse_scene(j.dump(), "many.json");
+    FAIL() << "131 materials were accepted";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("many.json"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("materials"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("at most 128"), std::string::npos) << msg;
+  }
+}
+
 }  // namespace
 }  // namespace dentsph
