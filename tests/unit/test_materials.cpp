@@ -136,7 +136,9 @@ TEST(MaterialTable, CuredPasteKeepsTheCuresValuesThroughTheReorder) {
   EXPECT_EQ(st.rho0[i], cured.rho0);
   EXPECT_EQ(st.Ka[i], cured.Ka);
   for (std::uint32_t j = 0; j < st.size(); ++j)
-    if (st.id[j] != id) ASSERT_EQ(st.mu[j], paste.mu);
+    if (st.id[j] != id) {
+      ASSERT_EQ(st.mu[j], paste.mu);
+    }
 }
 
 // The built-in dental scene names its paste, its instrument and its tooth; its particles carry them.
@@ -197,7 +199,9 @@ TEST(MaterialTable, PasteEditsApplyToPasteParticlesOnly) {
   sim.step(sim.keyframe_pose());
   const State& after = sim.synced();
   for (std::uint32_t i = 0; i < after.size(); ++i)
-    if (after.role[i] == Role::material) ASSERT_EQ(after.mu[i], 0.4);
+    if (after.role[i] == Role::material) {
+      ASSERT_EQ(after.mu[i], 0.4);
+    }
 }
 
 nlohmann::json scene_json() {
@@ -238,7 +242,9 @@ TEST(MaterialTable, SceneFileNamesItsMaterials) {
   std::uint32_t thick = 0;
   for (std::uint32_t i = 0; i < st.size(); ++i) {
     if (st.role[i] == Role::material && st.mu[i] == 2) ++thick;
-    if (st.role[i] == Role::material && st.mu[i] != 2) ASSERT_EQ(st.material[i], *t.paste);
+    if (st.role[i] == Role::material && st.mu[i] != 2) {
+      ASSERT_EQ(st.material[i], *t.paste);
+    }
   }
   EXPECT_GT(thick, 0u);
   EXPECT_EQ(scene_paste(sc).material_index, *t.paste);
