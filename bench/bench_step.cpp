@@ -217,6 +217,42 @@ void BM_DentalForces(benchmark::State& bs) {
 }
 BENCHMARK(BM_DentalForces)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
+// The reorder of a rebuild (stage 2b) on the dental scene after 200 steps: the cell order of that
+// state, applied again and again (near the identity, as between two rebuilds of a run). Counters:
+// the bytes per particle the reorder gathers, and the bytes every per-particle array holds.
+void BM_DentalReorder(benchmark::State& bs) {
+  const Scene sc = default_dental_scene();
+  State st = make_state(sc);
+  const StepOptions opt{int(bs.range(0)), nullptr};
+  for (int k = 0; k < 200; ++k) {
+    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+    step(sc.model, st, opt);
+  }
+  stages::compute_cell_keys(sc.model, st, opt.threads);
+  stages::sort_by_cell(sc.model, st);
+  for (auto _ : bs) stages::reorder(sc.model, st, opt.threads);
+  // id, role, pos, vel, anchor, mass, material (mu, Kp, rho0, Ka are written from the table)
+  bs.counters["gathered_bytes_per_particle"] =
+      double(sizeof(std::uint32_t) + sizeof(Role) + 3 * sizeof(Vec3) + sizeof(real) + sizeof(MaterialIndex));
+  bs.counters["state_bytes_per_particle"] = double(st.bytes_per_particle());
+  bs.counters["particles"] = st.size();
+}
+BENCHMARK(BM_DentalReorder)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The same on the sweep's largest scene (14 cups of a 16^3 block, about 100k particles: the arrays
+// no longer fit in the cache), after one step has put it in cell order.
+void BM_SweepReorder(benchmark::State& bs) {
+  const Scene sc = sweep_cups_scene(16, 14);
+  State st = make_state(sc);
+  const StepOptions opt{int(bs.range(0)), nullptr};
+  step(sc.model, st, opt);
+  stages::compute_cell_keys(sc.model, st, opt.threads);
+  stages::sort_by_cell(sc.model, st);
+  for (auto _ : bs) stages::reorder(sc.model, st, opt.threads);
+  bs.counters["particles"] = st.size();
+}
+BENCHMARK(BM_SweepReorder)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
 // The rows of `dentsph bench`'s CPU sweep, on 1 and 2 threads.
 void sweep_rows(benchmark::internal::Benchmark* b) {
   for (const SweepSize& s : BenchOptions{}.sweep)

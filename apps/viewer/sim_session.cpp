@@ -24,7 +24,6 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
   force_scale_ = scene_.force_scale;
   const IncrementPaste paste = scene_paste(scene_);
   paste_ = paste.material;
-  paste_mass_ = paste.mass;
   press_axis_ = increment_axis(scene_);
   if (scene_.tooth) {
     AssessParams ap;
@@ -140,7 +139,7 @@ void SimSession::apply(const Command& c, Simulation& sim, std::vector<EventSampl
     case Command::Kind::press: pressed_ = c.pressed; return;
     case Command::Kind::dispense:
       if (recorded) recorded->push_back({sim.state().steps, kButtonIncrement});
-      sim.dispense(opt_.dispense_volume, {paste_mass_, paste_});
+      sim.dispense(opt_.dispense_volume, scene_paste(scene_));  // the Model's paste, as edited
       return;
     case Command::Kind::switch_tool:
       try {
@@ -183,7 +182,11 @@ void SimSession::set_material(const MaterialEdit& m, Simulation& sim) {
     // Refused when dt would be over the acoustic or viscous limit: the paste would explode.
     sim.set_paste(model, paste);
     scene_.params = p;
+    // The new adhesion kernel; the scene keeps its materials as it gave them (a reset builds its
+    // particles from them, then edits the paste again), the Simulation's Model has the edit.
+    MaterialTable materials = std::move(scene_.model.materials);
     scene_.model = model;
+    scene_.model.materials = std::move(materials);
     paste_ = paste;
     paste_edited_ = true;
   } catch (const std::exception& e) {

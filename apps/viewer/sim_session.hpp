@@ -146,7 +146,6 @@ class SimSession {
   SessionOptions opt_;
   std::unique_ptr<Simulation> sim_;  // the session's own loop's (and the first snapshot's)
   std::optional<CavityAssessor> assessor_;
-  real paste_mass_ = 0;
   real force_scale_ = 1;  // device N per simulated N: the scene's, or the runtime's override
   Material paste_;
   bool paste_edited_ = false;

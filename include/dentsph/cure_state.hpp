@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "dentsph/curing_light.hpp"
+#include "dentsph/material.hpp"
 #include "dentsph/vec3.hpp"
 
 namespace dentsph {
 
 struct ParticleInit;
-struct Material;
 
 class CureState {
  public:
@@ -28,8 +28,11 @@ class CureState {
   std::vector<std::uint8_t> rigid;        // set past the gel point: now a static boundary particle
   std::vector<real> mixed_at;             // s, State::time when the particle was added
   // The parameters the paste was added with (mu, Kp, rho0, Ka): what the cure mapping starts from.
-  // A material table in the Model will replace them.
   std::vector<real> mu0, Kp0, rho00, Ka0;
+  // The parameters the conversion has given each particle (cured_parameters), where the State marks
+  // its material kCuredMaterial: what State::refresh_materials and the reorder write for it in place
+  // of the Model's table. Empty until the first conversion (set_cured).
+  std::vector<Material> cured;
   std::vector<Vec3> gel_pos;              // m, where the particle was when it set (rigid only)
 
   std::uint16_t increments = 0;           // increments begun so far
@@ -51,6 +54,8 @@ class CureState {
 
   // Appends the next id's entries for a particle added at `time`.
   void append(const ParticleInit& p, real time);
+  // Records `m` as the parameters the cure has given particle `id` (sizes `cured` the first time).
+  void set_cured(std::uint32_t id, const Material& m);
   // Re-keys after State::remove_particles: new_id[old] is the kept particle's new id (~0u: gone).
   void compact(const std::vector<std::uint32_t>& new_id, std::uint32_t kept);
   // The paste particles with ids in [first_id, first_id + count) are one new increment (a

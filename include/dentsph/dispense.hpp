@@ -15,16 +15,20 @@ namespace dentsph {
 // The first particle of `role` in the scene (its particles, then its events'), or null.
 const ParticleInit* first_particle(const Scene& scene, Role role);
 
-// The paste an increment is made of: the scene's first material particle's mass and material, or
-// a default paste on the increment's lattice when the scene has none.
+// The paste an increment is made of: the Model's named paste (MaterialTable::paste) with the mass
+// of the scene's first paste particle (or the lattice mass of the increment spacing); without a
+// named paste, the scene's first material particle's, or a default paste.
 struct IncrementPaste {
   real mass = 0;  // kg per particle
   Material material;
+  MaterialIndex material_index = kNoMaterial;  // its entry of Model::materials (kNoMaterial: by value)
 };
 IncrementPaste scene_paste(const Scene& scene);
 
-// The material of the scene's tool particles: its first tool particle's, or a default wall.
+// The material of the scene's instruments: the Model's named instrument material, else its first
+// tool particle's, or a default wall; and its entry of the table (kNoMaterial: by value).
 Material scene_tool_material(const Scene& scene);
+MaterialIndex scene_tool_material_index(const Scene& scene);
 
 // Replaces the tool by the instrument `name` (tool_by_name at the increment spacing, with the
 // paste's particle mass and the scene's tool material), at the tool's applied pose. Throws

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "dentsph/material.hpp"
 #include "dentsph/vec3.hpp"
 
 namespace dentsph {
@@ -95,6 +96,11 @@ struct Model {
   Vec3 domain_min, domain_max;
   Solver solver = Solver::paper;
   IisphParams iisph;
+  // The materials the particles' State::material indices name (material.hpp). A dental scene names
+  // "paste", "tooth" and each instrument; a scene file its `materials`. make_model() leaves it
+  // empty: the scene builders fill it, and State::add_particles with a Model it may grow adds the
+  // values of particles that name none.
+  MaterialTable materials;
 };
 
 // Checks `p` and derives the kernel constants, C_d and the grid. Throws std::invalid_argument

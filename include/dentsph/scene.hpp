@@ -103,8 +103,14 @@ Scene load_scene(const std::filesystem::path& file);
 // Parses scene JSON text; `source` names it in error messages. Throws SceneError.
 Scene parse_scene(const std::string& json_text, const std::string& source);
 
-// The initial state of a scene: tool at its first keyframe, particles added.
+// The initial state of a scene: tool at its first keyframe, particles added. Every particle's
+// material must be in scene.model.materials (std::invalid_argument otherwise).
 State make_state(const Scene& scene);
+// Adds to scene.model.materials the values of every particle (the scene's and its events') that
+// names no entry and whose values no entry has (for scenes built in code), and the default paste and
+// instrument material (kDefaultPaste, kDefaultInstrument) where the scene has no such particle and
+// names none.
+void intern_scene_materials(Scene& scene);
 
 // Applies a procedure event to a state between steps (adds the increment, numbered as the next
 // one in state.cure, or replaces the tool particles, which then follow the tool pose; a cure event

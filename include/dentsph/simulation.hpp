@@ -122,10 +122,12 @@ class Simulation {
   // The instrument `name` in place of the tool (switch_instrument; std::invalid_argument for an
   // unknown name, nothing changed).
   void switch_instrument(const std::string& name);
-  // Every material particle's viscosity, stiffness and adhesion strength become `paste`'s, and the
-  // Model becomes `model` (same dt, h and grid; the adhesion kernel may differ), unless dt would be
-  // over the acoustic or viscous limit of the State that gives: then nothing changes and it throws
-  // UnstableTimeStep naming the limit.
+  // An edit of the Model's paste material (MaterialTable::paste, or the entry of scene_paste's
+  // values): its viscosity, stiffness and adhesion strength become `paste`'s (its rest density
+  // stays), so every particle of it takes them (other materials, and paste the cure has changed,
+  // keep theirs), and the Model becomes `model` with the run's material table (same dt, h and grid;
+  // the adhesion kernel may differ), unless dt would be over the acoustic or viscous limit of the
+  // State that gives: then nothing changes and it throws UnstableTimeStep naming the limit.
   void set_paste(const Model& model, const Material& paste);
 
   // One step with the tool moved to `tool_pose`: the statistics and the force limit updated,

@@ -9,6 +9,7 @@
 
 #include "dentsph/bonds.hpp"
 #include "dentsph/cure_state.hpp"
+#include "dentsph/material.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -24,26 +25,20 @@ enum class Role : std::uint8_t {
 };
 const char* role_name(Role r);
 
-// Per-particle material parameters.
-struct Material {
-  real mu = 0;    // viscosity, Pa s
-  real Kp = 0;    // pressure stiffness, m^2/s^2 (P = Kp (rho - rho0))
-  real rho0 = 0;  // rest density, kg/m^3
-  real Ka = 0;    // adhesion strength, Pa
-};
-
 // One particle as the scene builder hands it in.
 struct ParticleInit {
   Role role = Role::material;
   Vec3 pos;        // m (for tool particles: position in the tool frame)
   Vec3 vel;        // m/s (ignored for boundary and tool particles)
   real mass = 0;   // kg
-  Material material;
+  Material material;  // its values (the table's entry where material_index names one)
+  // Its entry in Model::materials; kNoMaterial: the entry with the values of `material`.
+  MaterialIndex material_index = kNoMaterial;
 };
 
 inline ParticleInit make_particle(Role role, const Vec3& pos, real mass, const Material& material,
-                                  const Vec3& vel = {}) {
-  return {role, pos, vel, mass, material};
+                                  const Vec3& vel = {}, MaterialIndex material_index = kNoMaterial) {
+  return {role, pos, vel, mass, material, material_index};
 }
 
 // The wrench the particles exert on the tool (MODEL.md, "Haptic force").
@@ -167,6 +162,10 @@ class State {
   std::vector<Vec3> pos;             // m
   std::vector<Vec3> vel;             // m/s
   std::vector<real> mass;            // kg
+  std::vector<MaterialIndex> material;  // entry of Model::materials (| kCuredMaterial: the cure's)
+  // The material's values, a cache of the table the step reads (material.hpp): written from
+  // Model::materials[material[i]] (or, where kCuredMaterial is set, CureState::cured[id]) by
+  // refresh_materials and by the reorder, never permuted. The CUDA backend keeps its own copies.
   std::vector<real> mu;              // Pa s
   std::vector<real> Kp;              // m^2/s^2
   std::vector<real> rho0;            // kg/m^3
@@ -200,6 +199,7 @@ class State {
   std::vector<real> scratch_real;
   std::vector<std::uint32_t> scratch_u32;
   std::vector<Role> scratch_role;
+  std::vector<MaterialIndex> scratch_material;
   IisphScratch iisph;
 
   std::uint32_t size() const { return std::uint32_t(pos.size()); }
@@ -208,8 +208,15 @@ class State {
   bool is_paste(std::uint32_t i) const { return role[i] == Role::material || cure.rigid[id[i]]; }
 
   // Appends particles (between steps only); tool particles are placed at tool_pose. Sizes every
-  // buffer, the bond store and the grid scratch for `model`.
+  // buffer, the bond store and the grid scratch for `model`. Each particle's material is the
+  // table entry its material_index names, else the entry with its values: with a const Model,
+  // std::invalid_argument when there is none (nothing added); with a Model it may grow, the
+  // values are added to the table first (MaterialTable::intern).
   void add_particles(const Model& model, const std::vector<ParticleInit>& particles);
+  void add_particles(Model& model, const std::vector<ParticleInit>& particles);
+  // Rewrites the cache mu, Kp, rho0, Ka of every particle from model.materials (and the cure's
+  // parameters where kCuredMaterial is set): after an edit of the table, between steps.
+  void refresh_materials(const Model& model);
   // Removes (between steps) the particles whose current index has remove[i] != 0. Ids stay
   // dense: the kept particles are renumbered in their id order; bonds between kept particles
   // survive, bonds to removed ones are dropped (not counted as broken).

@@ -58,8 +58,9 @@ struct StabilityLimits {
   // dt is above).
   real paper_acoustic = 0, paper_viscous = 0;
 };
-// With `paste`: the limits the State would have if every material particle were of that material
-// (a paste edit checked before it is made).
+// With `paste`: the limits the State would have if the particles of the Model's paste material
+// (model.materials.paste; without one, every material particle) were of that material (a paste
+// edit checked before it is made).
 StabilityLimits stability_limits(const Model& model, const State& state, const Material* paste = nullptr);
 // The limit the last step's motion sets (StabilityLimits::force): the paper's force limit
 // 0.25 sqrt(h / max|a|), or for the iisph solver the velocity CFL limit cfl h / max|v|; infinite

@@ -33,20 +33,23 @@ const std::vector<std::string>& instrument_names();
 ToolShape tool_by_name(const std::string& name, real spacing);
 
 // The particles of an instrument (tool frame) with the given mass and material.
-std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material);
+// `index`: the material's entry of Model::materials (kNoMaterial: found by its values).
+std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material,
+                                         MaterialIndex index = kNoMaterial);
 // Replaces the tool particles of `state` (between steps) by `particles` (tool frame), placed at
 // the current tool pose.
 void replace_tool_particles(State& state, const Model& model, const std::vector<ParticleInit>& particles);
 // Replaces the tool particles of `state` by `shape`'s (between steps), placed at the current
 // tool pose, with the given mass and material.
-void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material);
+void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material,
+                 MaterialIndex index = kNoMaterial);
 
 // An increment of material: lattice points of `spacing` in a sphere of the given volume (m^3)
 // around `centre`, at least one particle. Throws std::invalid_argument, before making any, when
 // increment_points_bound is over limits::max_particles or the volume or spacing is not finite and
 // positive.
 std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
-                                             const Material& material);
+                                             const Material& material, MaterialIndex index = kNoMaterial);
 // At least the number of particles material_increment makes for `volume` and `spacing` (every
 // lattice point within R of the centre owns a cube of the lattice inside R + s: 4/3 pi (R + s)^3 /
 // s^3); infinity for a volume or spacing that is not finite and positive.

@@ -216,6 +216,7 @@ Scene sweep_cups_scene(int side, int cups, int grid_reach) {
           if (!inner) add(Role::boundary, i, j, k, wall);
         }
   }
+  intern_scene_materials(sc);
   return sc;
 }
 

@@ -29,6 +29,12 @@ void CureState::append(const ParticleInit& p, real time) {
   rho00.push_back(p.material.rho0);
   Ka0.push_back(p.material.Ka);
   gel_pos.push_back({});
+  if (!cured.empty()) cured.push_back(p.material);
+}
+
+void CureState::set_cured(std::uint32_t id, const Material& m) {
+  if (cured.size() != alpha.size()) cured.resize(alpha.size());
+  cured[id] = m;
 }
 
 void CureState::compact(const std::vector<std::uint32_t>& new_id, std::uint32_t kept) {
@@ -40,6 +46,7 @@ void CureState::compact(const std::vector<std::uint32_t>& new_id, std::uint32_t 
   };
   rekey(alpha), rekey(dose), rekey(irradiance), rekey(increment), rekey(curable), rekey(rigid);
   rekey(mixed_at), rekey(mu0), rekey(Kp0), rekey(rho00), rekey(Ka0), rekey(gel_pos);
+  if (!cured.empty()) rekey(cured);
   // The lit list names old ids: the next cure call makes a pass, which lists the lit paste anew.
   lit_ids.clear();
   lit_irradiance.clear();
@@ -58,7 +65,7 @@ std::size_t CureState::bytes() const {
   const std::size_t total = capacity_bytes(alpha) + capacity_bytes(dose) + capacity_bytes(irradiance) +
                             capacity_bytes(increment) + capacity_bytes(curable) + capacity_bytes(rigid) +
                             capacity_bytes(mixed_at) + capacity_bytes(mu0) + capacity_bytes(Kp0) +
-                            capacity_bytes(rho00) + capacity_bytes(Ka0) + capacity_bytes(gel_pos) + capacity_bytes(beam_x) + capacity_bytes(beam_y) +
+                            capacity_bytes(rho00) + capacity_bytes(Ka0) + capacity_bytes(cured) + capacity_bytes(gel_pos) + capacity_bytes(beam_x) + capacity_bytes(beam_y) +
                             capacity_bytes(beam_z);
   return total / particles();
 }

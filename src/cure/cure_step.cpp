@@ -55,6 +55,8 @@ std::uint32_t update_conversion(const CureModel& cm, State& s) {
     s.Kp[i] = p.Kp;
     s.rho0[i] = p.rho0;
     s.Ka[i] = p.Ka;
+    c.set_cured(id, p);  // kept by id: the reorder and refresh_materials rewrite s.mu... from it
+    s.material[i] |= kCuredMaterial;
     ++converted;
   }
   return converted;

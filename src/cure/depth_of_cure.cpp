@@ -48,7 +48,7 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
   p.adhesion.B = 3 * s;
   p.domain_min = {-R - 2 * s, -R - 2 * s, -o.mould_length - 2 * s};
   p.domain_max = {R + 2 * s, R + 2 * s, 2 * s};
-  const Model model = make_model(p);
+  Model model = make_model(p);  // its material table grows with the paste (add_particles)
   const Material paste{1.0, 10, 2000, 50};
   const real mass = lattice_particle_mass(paste.rho0, s, model.kernel);
   std::vector<ParticleInit> ps;

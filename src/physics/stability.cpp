@@ -19,8 +19,11 @@ constexpr real inf = std::numeric_limits<real>::infinity();
 StabilityLimits stability_limits(const Model& model, const State& s, const Material* paste) {
   const real h = model.kernel.h;
   real kp_max = 0, rho_over_mu_min = inf;
+  // The particles `paste` would change: those of the Model's paste material the cure has left as
+  // they were (or, where the Model names no paste, every material particle).
+  const std::optional<MaterialIndex> paste_index = model.materials.paste;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
-    const bool edited = paste && s.role[i] == Role::material;
+    const bool edited = paste && (paste_index ? s.material[i] == *paste_index : s.role[i] == Role::material);
     const real Kp = edited ? paste->Kp : s.Kp[i], mu = edited ? paste->mu : s.mu[i];
     const real rho0 = edited ? paste->rho0 : s.rho0[i];
     kp_max = std::max(kp_max, Kp);

@@ -42,9 +42,16 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   p.domain_min = cb.min - pad;
   p.domain_max = cb.max + pad;
   sc.model = make_model(p);
+  // The materials by name: the paste first, then the instruments, then the tooth, so that a particle
+  // given by its values alone (an instrument's, which has the tooth's values) finds its own.
+  MaterialTable& table = sc.model.materials;
+  table.paste = table.add(kPasteMaterial, dp.paste);
+  table.instrument = table.add(kInstrumentMaterial, dp.wall);
+  const MaterialIndex tooth_material = table.add(kToothMaterial, dp.wall);
   const real m = lattice_particle_mass(dp.paste.rho0, s, sc.model.kernel);
 
-  for (const Vec3& b : ts.boundary.points) sc.particles.push_back(make_particle(Role::boundary, b, m, dp.wall));
+  for (const Vec3& b : ts.boundary.points)
+    sc.particles.push_back(make_particle(Role::boundary, b, m, dp.wall, {}, tooth_material));
   sc.tooth = tooth;
   sc.material_spacing = s;
   sc.output.snapshot_interval = 0.02;
@@ -68,14 +75,16 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
     (p.in_cavity ? inside : above).push_back(fr.to_world(p.local));
   std::sort(above.begin(), above.end(),
             [&](const Vec3& a, const Vec3& b) { return dot(a - fr.origin, fr.z) < dot(b - fr.origin, fr.z); });
-  for (const Vec3& w : inside) sc.particles.push_back(make_particle(Role::material, w, m, dp.paste));
+  const MaterialIndex paste = *sc.model.materials.paste;
+  for (const Vec3& w : inside) sc.particles.push_back(make_particle(Role::material, w, m, dp.paste, {}, paste));
   for (std::size_t q = 0; q < above.size() && inside.size() + q < std::size_t(dp.material_particles); ++q)
-    sc.particles.push_back(make_particle(Role::material, above[q], m, dp.paste));
+    sc.particles.push_back(make_particle(Role::material, above[q], m, dp.paste, {}, paste));
 
   // The tool: a ball burnisher of 42 particles, pressing 2.5 spacings into the paste and lifting,
   // every 0.1 s.
   const ToolShape ball = tool_by_name("ball_burnisher", s);
-  for (const Vec3& b : ball.points) sc.particles.push_back(make_particle(Role::tool, b, m, dp.wall));
+  for (const Vec3& b : ball.points)
+    sc.particles.push_back(make_particle(Role::tool, b, m, dp.wall, {}, *sc.model.materials.instrument));
   real top = 0;
   for (const ParticleInit& q : sc.particles)
     if (q.role == Role::material) top = std::max(top, dot(q.pos - fr.origin, fr.z));

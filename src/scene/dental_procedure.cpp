@@ -101,7 +101,8 @@ void cavity_increment(const Reader& d, const ProcedureContext& ctx, ProcedureEve
   ctx.budget.add(d, field, double(sites.size()), double(count), "give fewer increments");
   const real m = lattice_particle_mass(ctx.params.paste.rho0, s, ctx.model.kernel);
   for (const Vec3& p : sites)
-    ev.particles.push_back(make_particle(Role::material, tooth.frame().to_world(p), m, ctx.params.paste));
+    ev.particles.push_back(make_particle(Role::material, tooth.frame().to_world(p), m, ctx.params.paste, {},
+                                           ctx.model.materials.paste.value_or(kNoMaterial)));
   ev.count = count;
   ev.clearance = 0.9 * s;
 }
@@ -141,7 +142,7 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
   }
   const real tool_mass = lattice_particle_mass(dp.wall.rho0, s, sc.model.kernel);
   budget.add(root, "tool", double(shape.points.size()), double(shape.points.size()), "choose another instrument");
-  for (const ParticleInit& p : tool_particles(shape, tool_mass, dp.wall)) sc.particles.push_back(p);
+  for (const ParticleInit& p : tool_particles(shape, tool_mass, dp.wall, *sc.model.materials.instrument)) sc.particles.push_back(p);
   sc.tool = scene::read_trajectory(root, place);
   if (root.has("events")) sc.events = scene::read_events(root, place, nullptr, dp.wall, sc.model.kernel);
   sc.duration = root.number_or("duration", sc.tool.keyframes.back().t,

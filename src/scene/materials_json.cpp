@@ -39,7 +39,7 @@ Material read_material(const Reader& m) {
 
 // An inline override: "base" (optional when the role has a default) plus any of the four fields.
 // Without a base, every field is required.
-Material read_override(const Reader& m, const MaterialTable& table,
+Material read_override(const Reader& m, const SceneMaterials& table,
                        const MaterialDefault& fallback) {
   m.only({"base", "viscosity", "stiffness", "rest_density", "adhesion"});
   std::optional<Material> base = fallback.material;
@@ -59,7 +59,7 @@ Material read_override(const Reader& m, const MaterialTable& table,
   return mat;
 }
 
-std::vector<std::string_view> names_of(const MaterialTable& table) {
+std::vector<std::string_view> names_of(const SceneMaterials& table) {
   std::vector<std::string_view> names;
   for (const auto& [name, mat] : table.by_name) names.push_back(name);
   return names;
@@ -67,7 +67,7 @@ std::vector<std::string_view> names_of(const MaterialTable& table) {
 
 }  // namespace
 
-const Material& MaterialTable::lookup(const Reader& at, std::string_view key,
+const Material& SceneMaterials::lookup(const Reader& at, std::string_view key,
                                       const std::string& name) const {
   if (const auto it = by_name.find(name); it != by_name.end()) return it->second;
   const std::vector<std::string_view> names = names_of(*this);
@@ -78,8 +78,8 @@ const Material& MaterialTable::lookup(const Reader& at, std::string_view key,
                       fmt::join(names, ", ")));
 }
 
-MaterialTable parse_materials(const Reader& root) {
-  MaterialTable table;
+SceneMaterials parse_materials(const Reader& root) {
+  SceneMaterials table;
   const Reader mats =
       root.object("materials",
                   "the materials by name, e.g. {\"paste\": {\"viscosity\": 0.5, \"stiffness\": "
@@ -101,12 +101,13 @@ MaterialTable parse_materials(const Reader& root) {
         const std::string name =
             roles->string(role_keys[r], "the name of a material under \"materials\"");
         table.role_default[r] = table.lookup(*roles, role_keys[r], name);
+        table.role_name[r] = name;
       }
   }
   return table;
 }
 
-Material resolve_material(const Reader& owner, const MaterialTable& table,
+Material resolve_material(const Reader& owner, const SceneMaterials& table,
                           const MaterialDefault& fallback) {
   const Json* v = owner.find("material");
   if (v == nullptr) {

@@ -48,9 +48,10 @@ CavityParams read_cavity(const Reader& cavity);
 // ---- materials (materials_json.cpp) ------------------------------------------------------------
 
 // The scene's named materials and the default material of each role ("roles").
-struct MaterialTable {
+struct SceneMaterials {
   std::map<std::string, Material, std::less<>> by_name;
   std::optional<Material> role_default[3];  // indexed by Role
+  std::string role_name[3];                 // the names "roles" gave (empty where it gave none)
 
   const std::optional<Material>& default_for(Role r) const { return role_default[int(r)]; }
   // The material called `name`, or a SceneError at field `key` of `at` listing the known ones.
@@ -58,7 +59,7 @@ struct MaterialTable {
 };
 
 // Reads "materials" (required) and "roles" (optional) of the top level.
-MaterialTable parse_materials(const Reader& root);
+SceneMaterials parse_materials(const Reader& root);
 
 // Where a block's material comes from when it gives none: the material and the field that set
 // it ("roles.boundary", "tool.material"), for messages.
@@ -69,14 +70,14 @@ struct MaterialDefault {
 
 // The material of the object read by `owner`: its "material" field (a name, or an inline object
 // overriding a base that defaults to `fallback`), else `fallback`.
-Material resolve_material(const Reader& owner, const MaterialTable& table,
+Material resolve_material(const Reader& owner, const SceneMaterials& table,
                           const MaterialDefault& fallback);
 
 // ---- blocks (block_json.cpp) --------------------------------------------------------------------
 
 struct BlockContext {
   Role role;  // Role::tool for the tool's blocks (which have no "role" field)
-  const MaterialTable& materials;
+  const SceneMaterials& materials;
   MaterialDefault fallback;    // the role's material
   const KernelCoeffs& kernel;  // h and the poly6 constants, for the default particle mass
   ParticleBudget* budget = nullptr;  // counts the block's particles before they are made
@@ -108,7 +109,7 @@ struct ToolPart {
 };
 
 // Reads the "tool" object, counting its particles and its events' in `budget`.
-ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel,
+ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const KernelCoeffs& kernel,
                     ParticleBudget& budget);
 
 // Where the keyframes and events of a file land. A scene file gives world metres (the default);
@@ -131,7 +132,7 @@ ToolTrajectory read_trajectory(const Reader& owner, const Placement& placement);
 // "events" of `owner` (dispense, switch_tool) in time order. `materials` gives roles.material
 // for a scene file's dispense; the instruments are of `tool_material`.
 std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& placement,
-                                        const MaterialTable* materials, const Material& tool_material,
+                                        const SceneMaterials* materials, const Material& tool_material,
                                         const KernelCoeffs& kernel);
 
 }  // namespace dentsph::scene

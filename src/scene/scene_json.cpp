@@ -139,7 +139,7 @@ real read_duration(const Reader& root, real dt) {
 }
 
 // The blocks, read, checked and counted; made by make_blocks once every other count is in.
-std::vector<BlockPlan> read_blocks(const Reader& root, const MaterialTable& materials,
+std::vector<BlockPlan> read_blocks(const Reader& root, const SceneMaterials& materials,
                                    const KernelCoeffs& kernel, ParticleBudget& budget) {
   const Json& blocks = root.array("blocks",
                                   "at least one block of particles, e.g. [{\"role\": \"material\", "
@@ -238,7 +238,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   sc.params.domain_max = domain.given ? domain.max : Vec3{1, 1, 1};
   const KernelCoeffs kernel = build_model(sc.params, source).kernel;
 
-  const MaterialTable materials = parse_materials(root);
+  const SceneMaterials materials = parse_materials(root);
   // Every block, the tool and every event counted before their particles are made: the blocks'
   // (the most) once every count is in.
   ParticleBudget budget(sc.params.max_bonds_per_particle, sc.params.neighbour_skin > 0);
@@ -265,6 +265,19 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   sc.params.domain_min = domain.min;
   sc.params.domain_max = domain.max;
   sc.model = build_model(sc.params, source);
+  // The Model's table: the named materials (the paste and the instruments those roles.material and
+  // roles.tool name), then the values of inline materials.
+  MaterialTable& table = sc.model.materials;
+  try {
+    for (const auto& [name, material] : materials.by_name) table.add(name, material);
+    if (!materials.role_name[int(Role::material)].empty()) table.paste = table.find(materials.role_name[int(Role::material)]);
+    if (!materials.role_name[int(Role::tool)].empty()) table.instrument = table.find(materials.role_name[int(Role::tool)]);
+    intern_scene_materials(sc);
+  } catch (const std::invalid_argument& e) {  // the table is full
+    root.fail("materials", e.what(),
+              fmt::format("use at most {} different materials (the named ones, and inline ones with values of their own)",
+                          MaterialTable::kCapacity));
+  }
   return sc;
 }
 

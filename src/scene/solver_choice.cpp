@@ -8,7 +8,9 @@ namespace dentsph {
 void select_solver(Scene& scene, Solver solver) {
   scene.params.solver = solver;
   if (scene.dt_follows_solver) scene.params.dt = dental_time_step(solver);
+  MaterialTable materials = std::move(scene.model.materials);  // the scene's, not the parameters'
   scene.model = make_model(scene.params);
+  scene.model.materials = std::move(materials);
 }
 
 real scene_tool_speed(const Scene& scene) {

@@ -38,7 +38,7 @@ ToolKeyframe read_keyframe(const Reader& k, const ToolKeyframe* previous, const 
 
 // The scene file's increment: {"volume": m^3, "at": [x, y, z], "spacing": m}, a sphere of lattice
 // points of roles.material (spacing default h / 2), counted in `budget` before it is made.
-std::vector<ParticleInit> sphere_increment(const Reader& d, const MaterialTable& materials, const KernelCoeffs& kernel,
+std::vector<ParticleInit> sphere_increment(const Reader& d, const SceneMaterials& materials, const KernelCoeffs& kernel,
                                            ParticleBudget* budget) {
   d.only({"volume", "at", "spacing"});
   const real volume = d.number("volume", "the increment's volume in m^3, e.g. 8e-9 (8 mm^3)", Range::positive);
@@ -93,7 +93,7 @@ void read_cure(const Reader& c, const Placement& place, ProcedureEvent& ev) {
 // "spacing": length}} or {"t": s, "cure": {...}} (read_cure). Spacing defaults to h / 2; the
 // instrument is of the tool's material.
 ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const Placement& place,
-                          const MaterialTable* materials, const Material& tool_material, const KernelCoeffs& kernel) {
+                          const SceneMaterials* materials, const Material& tool_material, const KernelCoeffs& kernel) {
   e.only({"t", "dispense", "switch_tool", "cure"});
   ProcedureEvent ev;
   ev.t = e.number("t", "the event time in s", Range::non_negative);
@@ -154,7 +154,7 @@ ToolTrajectory read_trajectory(const Reader& owner, const Placement& place) {
   return traj;
 }
 
-std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& place, const MaterialTable* materials,
+std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& place, const SceneMaterials* materials,
                                         const Material& tool_material, const KernelCoeffs& kernel) {
   const Json& evs = owner.array("events", "a list of events [{\"t\": 1.0, \"dispense\": {...}}]");
   check_event_count(owner, evs.size());
@@ -165,7 +165,7 @@ std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& pl
   return events;
 }
 
-ToolPart parse_tool(const Reader& tool, const MaterialTable& materials, const KernelCoeffs& kernel,
+ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const KernelCoeffs& kernel,
                     ParticleBudget& budget) {
   tool.only({"material", "blocks", "keyframes", "events"});
   // The tool's own material (default roles.tool) is the default of each of its blocks.

@@ -68,21 +68,30 @@ ToolShape tool_by_name(const std::string& name, real spacing) {
   throw std::invalid_argument(fmt::format("unknown tool \"{}\"; known: {}", name, fmt::join(instrument_names(), ", ")));
 }
 
-std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material) {
+std::vector<ParticleInit> tool_particles(const ToolShape& shape, real mass, const Material& material,
+                                         MaterialIndex index) {
   std::vector<ParticleInit> ps;
-  for (const Vec3& p : shape.points) ps.push_back(make_particle(Role::tool, p, mass, material));
+  for (const Vec3& p : shape.points) ps.push_back(make_particle(Role::tool, p, mass, material, {}, index));
   return ps;
 }
 
 void replace_tool_particles(State& state, const Model& model, const std::vector<ParticleInit>& particles) {
+  // The new tool's material checked before the old tool goes (add_particles refuses one the table lacks).
+  for (const ParticleInit& p : particles)
+    if (p.material_index == kNoMaterial ? !model.materials.find(p.material) : p.material_index >= model.materials.size())
+      throw std::invalid_argument(fmt::format(
+          "switch_tool: the instrument's material (mu {}, Kp {}, rho0 {}, Ka {}) is not in the Model's material table; "
+          "add it (Model::materials.add) and name it",
+          p.material.mu, p.material.Kp, p.material.rho0, p.material.Ka));
   std::vector<std::uint8_t> remove(state.size(), 0);
   for (std::uint32_t i = 0; i < state.size(); ++i) remove[i] = state.role[i] == Role::tool;
   state.remove_particles(model, remove);
   state.add_particles(model, particles);  // at tool_pose_applied
 }
 
-void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material) {
-  replace_tool_particles(state, model, tool_particles(shape, mass, material));
+void switch_tool(State& state, const Model& model, const ToolShape& shape, real mass, const Material& material,
+                 MaterialIndex index) {
+  replace_tool_particles(state, model, tool_particles(shape, mass, material, index));
 }
 
 double increment_points_bound(real volume, real spacing) {
@@ -93,7 +102,7 @@ double increment_points_bound(real volume, real spacing) {
 }
 
 std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, real spacing, real mass,
-                                             const Material& material) {
+                                             const Material& material, MaterialIndex index) {
   if (const double bound = increment_points_bound(volume, spacing); !(bound <= double(limits::max_particles)))
     throw std::invalid_argument(fmt::format(
         "material_increment: {:.3g} m^3 at a spacing of {:.3g} m is up to {:.3g} particles, over the limit of {}",
@@ -101,7 +110,7 @@ std::vector<ParticleInit> material_increment(const Vec3& centre, real volume, re
   const real R = std::cbrt(3 * volume / (4 * kernels::pi));
   const int n = int(std::ceil(R / spacing));
   std::vector<ParticleInit> ps;
-  auto add = [&](const Vec3& p) { ps.push_back(make_particle(Role::material, p, mass, material)); };
+  auto add = [&](const Vec3& p) { ps.push_back(make_particle(Role::material, p, mass, material, {}, index)); };
   for (int k = -n; k <= n; ++k)
     for (int j = -n; j <= n; ++j)
       for (int i = -n; i <= n; ++i) {

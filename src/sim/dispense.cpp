@@ -25,19 +25,33 @@ real increment_spacing(const Scene& scene) {
 }
 
 IncrementPaste scene_paste(const Scene& scene) {
-  if (const ParticleInit* p = first_particle(scene, Role::material)) return {p->mass, p->material};
-  const Material m{1.0, 10, 2000, 50};
-  return {lattice_particle_mass(m.rho0, increment_spacing(scene), scene.model.kernel), m};
+  const MaterialTable& table = scene.model.materials;
+  if (table.paste) {
+    const Material& m = table[*table.paste];
+    for (const ParticleInit& p : scene.particles)
+      if (p.material_index == *table.paste || (p.material_index == kNoMaterial && p.role == Role::material && p.material == m))
+        return {p.mass, m, *table.paste};
+    return {lattice_particle_mass(m.rho0, increment_spacing(scene), scene.model.kernel), m, *table.paste};
+  }
+  if (const ParticleInit* p = first_particle(scene, Role::material)) return {p->mass, p->material, kNoMaterial};
+  const Material m = kDefaultPaste;
+  return {lattice_particle_mass(m.rho0, increment_spacing(scene), scene.model.kernel), m, kNoMaterial};
 }
 
 Material scene_tool_material(const Scene& scene) {
+  const MaterialTable& table = scene.model.materials;
+  if (table.instrument) return table[*table.instrument];
   const ParticleInit* tool = first_particle(scene, Role::tool);
-  return tool ? tool->material : Material{1.0, 15, 2000, 0};
+  return tool ? tool->material : kDefaultInstrument;
+}
+
+MaterialIndex scene_tool_material_index(const Scene& scene) {
+  return scene.model.materials.instrument.value_or(kNoMaterial);
 }
 
 void switch_instrument(const Scene& scene, State& state, const std::string& name) {
   switch_tool(state, scene.model, tool_by_name(name, increment_spacing(scene)), scene_paste(scene).mass,
-              scene_tool_material(scene));
+              scene_tool_material(scene), scene_tool_material_index(scene));
 }
 
 real default_increment_volume(const Scene& scene) {
@@ -77,7 +91,7 @@ std::size_t dispense_increment(const Scene& scene, State& state, real volume, co
   for (std::uint32_t i = 0; i < state.size(); ++i)
     if (state.role[i] == Role::material) top = std::max(top, dot(state.pos[i] - axis_origin, up));
   const Vec3 centre = axis_origin + up * (top + r + 2 * s);
-  const std::vector<ParticleInit> ps = material_increment(centre, volume, s, paste.mass, paste.material);
+  const std::vector<ParticleInit> ps = material_increment(centre, volume, s, paste.mass, paste.material, paste.material_index);
   const std::uint32_t first = state.size();
   state.add_particles(scene.model, ps);
   state.cure.begin_increment(first, std::uint32_t(ps.size()));

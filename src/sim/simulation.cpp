@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/dispense.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph {
@@ -56,20 +57,27 @@ void Simulation::switch_instrument(const std::string& name) {
 }
 
 void Simulation::set_paste(const Model& model, const Material& paste) {
-  StabilityLimits l = stability_limits(model, synced(), &paste);
+  Model next = model;
+  next.materials = model_.materials;  // the run's table (`model` gives the adhesion kernel)
+  if (!next.materials.paste) next.materials.paste = next.materials.find(scene_paste(scene_).material);
+  StabilityLimits l = stability_limits(next, synced(), &paste);
   const std::string excess = time_step_excess(model.dt, l);
   if (!excess.empty())
     throw UnstableTimeStep(fmt::format("refused: {} with this paste; lower its stiffness (Kp) or viscosity (mu)", excess));
   State& st = edit();
-  for (std::uint32_t i = 0; i < st.size(); ++i)
-    if (st.role[i] == Role::material) {
-      st.Kp[i] = paste.Kp;
-      st.Ka[i] = paste.Ka;
-      st.mu[i] = paste.mu;
-    }
+  // The Model's paste material is edited (its rest density kept), then every particle of it takes
+  // the new values: other materials, and paste the cure has changed, keep theirs.
+  model_ = std::move(next);
+  MaterialTable& table = model_.materials;
+  if (table.paste) {
+    Material& m = table[*table.paste];
+    m.Kp = paste.Kp;
+    m.Ka = paste.Ka;
+    m.mu = paste.mu;
+  }
+  st.refresh_materials(model_);
   l.force = limits_.force;
   limits_ = l;
-  model_ = model;
   rebuild_stepper();
 }
 
@@ -81,6 +89,9 @@ void Simulation::rebuild_stepper() {
 
 bool Simulation::step(const Pose& tool_pose) {
   if (edited_) {
+    // Particles added between steps took their values from the scene's table: the Model's (with
+    // its edits) wins.
+    state_.refresh_materials(model_);
     stepper_->sync_from_host(state_);
     edited_ = false;
   }

@@ -15,7 +15,7 @@ void step(const Model& model, State& state, const StepOptions& opt) {
     clock.lap(&StageTimes::hash_us);
     stages::sort_by_cell(model, state);
     clock.lap(&StageTimes::sort_us);
-    stages::reorder(state, t);
+    stages::reorder(model, state, t);
     stages::remember_build_positions(state, t);
     list_material(state);
     clock.lap(&StageTimes::reorder_us);

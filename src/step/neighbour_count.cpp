@@ -9,7 +9,7 @@ real mean_neighbours(const Model& model, State& state) {
   if (state.size() == 0) return 0;
   stages::compute_cell_keys(model, state, 1);
   stages::sort_by_cell(model, state);
-  stages::reorder(state, 1);
+  stages::reorder(model, state, 1);
   state.grid.lists_valid = false;  // sorted anew: the lists no longer match the order
   std::uint64_t pairs = 0;
   for (std::uint32_t i = 0; i < state.size(); ++i)

@@ -1,6 +1,8 @@
 // Stage 2b: gather every per-particle array into cell order, so that the neighbour loops read
-// memory in sequence; then refresh the id -> index map that bonds and callers use, and the
-// coordinate arrays the neighbour searches read. One parallel region for all of it: the arrays
+// memory in sequence; then refresh the id -> index map that bonds and callers use, the coordinate
+// arrays the neighbour searches read, and the material cache (mu, Kp, rho0, Ka) from the Model's
+// table by each particle's one-byte material index (the cure's parameters by id for paste it has
+// changed): four arrays written in sequence instead of gathered. One parallel region for all of it: the arrays
 // that share a scratch buffer take turns, separated by the barrier at the end of each loop.
 #include "step/stages.hpp"
 
@@ -21,9 +23,10 @@ void gather(std::vector<T>& a, std::vector<T>& scratch, const std::vector<std::u
 
 }  // namespace
 
-void reorder(State& s, int threads) {
+void reorder(const Model& model, State& s, int threads) {
   const auto& order = s.grid.order;
   const std::int64_t n = s.size();
+  const MaterialTable& table = model.materials;
 #pragma omp parallel num_threads(threads)
   {
     gather(s.id, s.scratch_u32, order);
@@ -32,10 +35,7 @@ void reorder(State& s, int threads) {
     gather(s.vel, s.scratch_vec, order);
     gather(s.anchor, s.scratch_vec, order);
     gather(s.mass, s.scratch_real, order);
-    gather(s.mu, s.scratch_real, order);
-    gather(s.Kp, s.scratch_real, order);
-    gather(s.rho0, s.scratch_real, order);
-    gather(s.Ka, s.scratch_real, order);
+    gather(s.material, s.scratch_material, order);
     // The iisph solver starts each pressure solve from the last one (the paper's step recomputes
     // its pressure before reading it). rho and force are recomputed before they are read again.
     if (s.iisph.sized) gather(s.pressure, s.scratch_real, order);
@@ -45,6 +45,12 @@ void reorder(State& s, int threads) {
       s.grid.x[i] = s.pos[i].x;
       s.grid.y[i] = s.pos[i].y;
       s.grid.z[i] = s.pos[i].z;
+      const MaterialIndex mi = s.material[i];
+      const Material& m = (mi & kCuredMaterial) ? s.cure.cured[s.id[i]] : table[mi];
+      s.mu[i] = m.mu;
+      s.Kp[i] = m.Kp;
+      s.rho0[i] = m.rho0;
+      s.Ka[i] = m.Ka;
     }
   }
 }

@@ -11,8 +11,9 @@ namespace dentsph::stages {
 void compute_cell_keys(const Model& model, State& state, int threads);
 // 2a. Counting radix sort of the particles by cell key, and each cell's range (sort.cpp).
 void sort_by_cell(const Model& model, State& state);
-// 2b. Reorder every particle array into cell order; refresh index_of_id (reorder.cpp).
-void reorder(State& state, int threads);
+// 2b. Reorder every particle array into cell order; refresh index_of_id and the material cache
+// from model.materials (reorder.cpp).
+void reorder(const Model& model, State& state, int threads);
 // 3. Density: over the 27 neighbouring cells, building each moving particle's neighbour list
 // (radius h + skin), or, between rebuilds, over those lists (density.cpp); each particle's
 // pressure (stage 4, pressure.hpp) as soon as its density is known.

@@ -1,5 +1,8 @@
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include "dentsph/model.hpp"
 #include "dentsph/state.hpp"
@@ -68,6 +71,7 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
   for (std::uint32_t& x : id) x = new_id[x];
   compact(role);
   for (auto* v : {&pos, &vel, &anchor, &force}) compact(*v);
+  compact(material);
   for (auto* v : {&mass, &mu, &Kp, &rho0, &Ka, &rho, &pressure, &volume}) compact(*v);
   size_by_id_and_scratch(model, kept);
 }
@@ -104,6 +108,7 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   scratch_real.resize(n);
   scratch_u32.resize(n);
   scratch_role.resize(n);
+  scratch_material.resize(n);
   size_iisph_scratch(model, n);
 }
 
@@ -148,21 +153,58 @@ std::size_t IisphScratch::bytes() const {
 
 std::size_t State::bytes_per_particle() const {
   if (size() == 0) return 0;
-  const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(mu) + bytes(Kp) +
+  const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(material) + bytes(mu) + bytes(Kp) +
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
                             bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + cure.bytes() * size() + bytes(grid.key) +
                             bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
-                            bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role) + iisph.bytes();
+                            bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role) + bytes(scratch_material) + iisph.bytes();
   return total / size();
+}
+
+void State::refresh_materials(const Model& model) {
+  const MaterialTable& table = model.materials;
+  for (std::uint32_t i = 0; i < size(); ++i) {
+    const Material& m = (material[i] & kCuredMaterial) ? cure.cured[id[i]] : table[material[i]];
+    mu[i] = m.mu;
+    Kp[i] = m.Kp;
+    rho0[i] = m.rho0;
+    Ka[i] = m.Ka;
+  }
+}
+
+void State::add_particles(Model& model, const std::vector<ParticleInit>& particles) {
+  for (const ParticleInit& p : particles)
+    if (p.material_index == kNoMaterial && p.mass > 0 && p.material.rho0 > 0) model.materials.intern(p.material);
+  add_particles(std::as_const(model), particles);
 }
 
 void State::add_particles(const Model& model, const std::vector<ParticleInit>& particles) {
   // Checked before anything is added, so that a refused call leaves the state as it was.
-  for (const ParticleInit& p : particles)
-    if (!(p.mass > 0) || !(p.material.rho0 > 0))
+  const MaterialTable& table = model.materials;
+  std::vector<MaterialIndex> index(particles.size());
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const ParticleInit& p = particles[k];
+    if (p.material_index != kNoMaterial) {
+      if (p.material_index >= table.size())
+        throw std::invalid_argument(fmt::format("add_particles: particle {} names material {}, but the Model has {} materials",
+                                                k, int(p.material_index), table.size()));
+      index[k] = p.material_index;
+    } else if (const auto found = table.find(p.material)) {
+      index[k] = *found;
+    } else {
+      throw std::invalid_argument(fmt::format(
+          "add_particles: particle {}'s material (mu {}, Kp {}, rho0 {}, Ka {}) is not in the Model's material table; "
+          "add it (Model::materials.add) or name its entry (ParticleInit::material_index)",
+          k, p.material.mu, p.material.Kp, p.material.rho0, p.material.Ka));
+    }
+    if (!(p.mass > 0) || !(table[index[k]].rho0 > 0))
       throw std::invalid_argument("add_particles: a particle needs a positive mass and rest density");
+  }
   const std::uint32_t n = size() + std::uint32_t(particles.size());
-  for (const ParticleInit& p : particles) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    ParticleInit p = particles[k];
+    p.material = table[index[k]];  // the table's values (what the cure starts from)
+    material.push_back(index[k]);
     const std::uint32_t i = std::uint32_t(pos.size());
     id.push_back(i);
     role.push_back(p.role);

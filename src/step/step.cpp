@@ -19,7 +19,7 @@ void step(const Model& model, State& state, const StepOptions& opt) {
     clock.lap(&StageTimes::hash_us);
     stages::sort_by_cell(model, state);            // 2. sort, cell ranges
     clock.lap(&StageTimes::sort_us);
-    stages::reorder(state, t);                     //    and reorder
+    stages::reorder(model, state, t);                     //    and reorder
     stages::remember_build_positions(state, t);
     clock.lap(&StageTimes::reorder_us);
   } else {

@@ -57,7 +57,7 @@ TEST(Cuda, BondOverflowCountedAsOnTheCpu) {
 TEST(Cuda, AgreesWithItsHostEmulation) {
   DENTSPH_REQUIRE_DEVICE();
   const GpuScene scene{6, 0.25, 2, false, 9};
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   const State st = gpu_scene_state(model, scene);
   auto dev = make_cuda_stepper(model, st);
   auto emu = make_emulated_gpu_stepper(model, st);

@@ -372,6 +372,7 @@ TEST(HapticRuntime, NothingNonFiniteReachesADevice) {
   Scene scene = press_scene();
   scene.model.dt = 0.02;  // far over the stability limits: the simulation explodes
   for (ParticleInit& p : scene.particles) p.material.Kp *= 1e4;
+  for (std::size_t k = 0; k < scene.model.materials.size(); ++k) scene.model.materials[MaterialIndex(k)].Kp *= 1e4;
   Evil device;
   RealtimeOptions o = options(ForceMode::direct);
   o.allow_unstable = true;

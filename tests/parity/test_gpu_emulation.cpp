@@ -46,7 +46,7 @@ TEST(GpuEmulation, BondOverflowCountedAsOnTheCpu) { gpu_overflow_counted(emulate
 
 TEST(GpuEmulation, DownloadBeforeAnyStepKeepsTheParticles) {
   const GpuScene scene;
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   const State st = gpu_scene_state(model, scene);
   State back;
   make_emulated_gpu_stepper(model, st)->sync_to_host(back);
@@ -63,7 +63,7 @@ TEST(GpuEmulation, DownloadBeforeAnyStepKeepsTheParticles) {
 // the run goes on as the CPU's with the same edits, within the parity tolerance.
 TEST(GpuEmulation, EditsBetweenStepsMatchTheCpu) {
   const GpuScene scene{5, 0.2, 1, false, 7};
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
   const std::unique_ptr<Stepper> gpu = make_emulated_gpu_stepper(model, g);
   const Pose start = ref.tool_pose;
@@ -99,7 +99,7 @@ TEST(GpuEmulation, EditsBetweenStepsMatchTheCpu) {
 // The CPU's Stepper is the grid step itself: bit for bit, and its syncs change nothing.
 TEST(Backend, CpuStepperIsTheGridStepBitForBit) {
   const GpuScene scene{5, 0.2, 1, false, 3};
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   State ref = gpu_scene_state(model, scene), st = gpu_scene_state(model, scene);
   const std::unique_ptr<Stepper> cpu = make_stepper(Backend::cpu, model, st, 1);
   EXPECT_STREQ(cpu->name(), "cpu");
@@ -145,7 +145,7 @@ TEST(Backend, CudaUnavailableSaysWhy) {
   const std::string expected = cuda_built() ? "no CUDA device" : "this build has no CUDA backend";
   EXPECT_EQ(st.reason.rfind(expected, 0), 0u) << st.reason;
   const GpuScene scene;
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   try {
     make_cuda_stepper(model, gpu_scene_state(model, scene));
     FAIL() << "make_cuda_stepper should throw without CUDA";

@@ -28,7 +28,7 @@ struct Config {
   real skin = 0;       // neighbour-list skin, in h
 };
 
-State build(const Model& model, const Config& c) {
+State build(Model& model, const Config& c) {
   std::mt19937_64 rng(c.seed);
   std::uniform_real_distribution<real> u(-1, 1);
   const Material paste{0.4, 60, 1000, 300};
@@ -82,7 +82,7 @@ TEST_P(GridParity, MatchesAllPairsOver100Steps) {
   ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {ext, ext, ext}, 2e-4, {0, 0, -9.81});
   mp.grid_reach = c.reach;
   mp.neighbour_skin = c.skin * mp.h;
-  const Model model = make_model(mp);
+  Model model = make_model(mp);
   State g = build(model, c), r = build(model, c);
   for (int k = 0; k < 100; ++k) {
     // The tool presses down and sideways so that bonds form and break.
@@ -104,7 +104,7 @@ TEST_P(GridParity, MatchesAllPairsOver100Steps) {
 TEST(GridParity, SkinSkipsRebuildsAndStillMatchesAllPairs) {
   ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81});
   mp.neighbour_skin = 0.2 * mp.h;
-  const Model model = make_model(mp);
+  Model model = make_model(mp);
   const Config c{6, 0.2, false, false, true, 12};
   State g = build(model, c), r = build(model, c);
   int rebuilds = 0;
@@ -155,8 +155,8 @@ TEST(GridParity, PairsExactlyOnTheSupportWithASkin) {
   // A lattice of dyadic spacing (every coordinate and difference exact): pairs two spacings
   // apart are exactly h apart, r^2 == h^2, inside the list's skin but not within h. The density
   // pass must leave them out of the force pass's pairs, as the all-pairs kernels give them 0.
-  const DyadicBlock block = dyadic_block(0.1);
-  const Model& model = block.model;
+  DyadicBlock block = dyadic_block(0.1);
+  Model& model = block.model;
   const std::vector<ParticleInit>& ps = block.particles;
   State g, r;
   g.add_particles(model, ps);
@@ -188,8 +188,8 @@ TEST(GridParity, WithinListsAndBuildPositionsOnlyWithASkin) {
   // Without a skin every list is rebuilt each step and holds exactly the pairs within h: the
   // within-h copy and the build positions are not allocated, and the step still matches.
   auto run = [&](real skin) {
-    const DyadicBlock block = dyadic_block(skin);
-    const Model& model = block.model;
+    DyadicBlock block = dyadic_block(skin);
+    Model& model = block.model;
     const std::vector<ParticleInit>& ps = block.particles;
     State g, r;
     g.add_particles(model, ps);
@@ -215,7 +215,7 @@ TEST(GridParity, WithinListsAndBuildPositionsOnlyWithASkin) {
 TEST(GridParity, BondsBreakBeyondBInBothPaths) {
   // Two material particles pulled apart by their initial velocities: the bond formed at r < A
   // breaks past B in both paths; the grid reaches the partner beyond h through the bond list.
-  const Model model = make_model(testing::params_for_spacing(s, {0, 0, 0}, {0.2, 0.2, 0.2}, 1e-4));
+  Model model = make_model(testing::params_for_spacing(s, {0, 0, 0}, {0.2, 0.2, 0.2}, 1e-4));
   const Material paste{0, 60, 1000, 300};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::vector<ParticleInit> ps = {testing::particle(Role::material, {0.1, 0.1, 0.1}, m, paste, {-1.0, 0, 0}),
@@ -241,7 +241,7 @@ TEST(GridParity, OverfullNeighbourListsFallBackToTheGridSearch) {
   // which bonds form depend on the visiting order, which is all that differs between the paths.
   ModelParams mp = testing::params_for_spacing(s, {0, 0, 0}, {0.2, 0.2, 0.2}, 1e-5);
   mp.max_bonds_per_particle = 256;
-  const Model model = make_model(mp);
+  Model model = make_model(mp);
   const Material paste{0.1, 1, 1000, 100};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::vector<ParticleInit> ps;

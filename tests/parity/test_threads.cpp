@@ -15,7 +15,7 @@ namespace {
 
 constexpr real s = 0.01;
 
-State scene(const Model& model) {
+State scene(Model& model) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<real> u(-1, 1);
   const Material paste{0.4, 60, 1000, 300}, wall{0.4, 200, 1000, 0};
@@ -35,7 +35,7 @@ State scene(const Model& model) {
 }
 
 TEST(Threads, ParallelStepIsBitIdenticalToSerial) {
-  const Model model = make_model(testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81}));
+  Model model = make_model(testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81}));
   State serial = scene(model), parallel = scene(model);
   StageTimes times;
   for (int k = 0; k < 100; ++k) {
@@ -67,7 +67,7 @@ TEST(Threads, ParallelStepIsBitIdenticalToSerial) {
 // The thread count may change from step to step (ThreadGovernor): a run whose count alternates
 // 1, 2, 2, 1, ... ends bit for bit where the serial run does.
 TEST(Threads, ChangingTheThreadCountBetweenStepsChangesNothing) {
-  const Model model = make_model(testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81}));
+  Model model = make_model(testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-4, {0, 0, -9.81}));
   State serial = scene(model), mixed = scene(model);
   for (int k = 0; k < 60; ++k) {
     serial.tool_pose.position.z -= 0.0002;
@@ -88,7 +88,7 @@ TEST(Threads, ParallelIisphStepIsBitIdenticalToSerial) {
   ModelParams p = testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.15, 0.15, 0.15}, 2e-3, {0, 0, -9.81});
   p.solver = Solver::iisph;
   p.neighbour_skin = 0.1 * p.h;
-  const Model model = make_model(p);
+  Model model = make_model(p);
   State serial = scene(model), parallel = scene(model);
   int iterations = 0;
   for (int k = 0; k < 60; ++k) {

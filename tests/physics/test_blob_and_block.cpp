@@ -42,7 +42,7 @@ int count_pieces(const State& st, real link) {
 
 BlobResult drop_blob(real Ka) {
   const real dt = 4e-4;
-  const Model model = make_model(testing::params_for_spacing(s, {-0.2, -0.2, -0.05}, {0.2, 0.2, 0.2}, dt, {0, 0, -9.81}));
+  Model model = make_model(testing::params_for_spacing(s, {-0.2, -0.2, -0.05}, {0.2, 0.2, 0.2}, dt, {0, 0, -9.81}));
   const Material paste{0.3, 60, 1000, Ka};
   const Material wall{0.3, 200, 1000, 0};
   const real m = lattice_particle_mass(1000, s, model.kernel);
@@ -95,7 +95,7 @@ BlockResult run_block(real Ka, real dt, real seconds, int reach) {
   const int nx = 6, ny = 6, nz = 4;
   ModelParams mp = testing::params_for_spacing(s, {-0.03, -0.03, -0.03}, {0.1, 0.1, 0.1}, dt, {0, 0, -9.81});
   mp.grid_reach = reach;
-  const Model model = make_model(mp);
+  Model model = make_model(mp);
   const Material paste{0.5, 60, 1000, Ka};
   const Material wall{0.5, 200, 1000, 0};
   const real m = lattice_particle_mass(1000, s, model.kernel);

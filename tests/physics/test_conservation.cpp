@@ -13,7 +13,7 @@ namespace {
 
 TEST(Conservation, MomentumOfFreeMaterialOver1000Steps) {
   constexpr real s = 0.01;
-  const Model model = make_model(testing::params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, 2e-4));
+  Model model = make_model(testing::params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, 2e-4));
   const Material paste{0.5, 60, 1000, 400};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::mt19937_64 rng(7);

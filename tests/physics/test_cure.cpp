@@ -188,7 +188,7 @@ TEST(CurePhysics, ShrinkageKeepsTheMassAndTakesTheVolumeDownByTheSetFraction) {
 // The ball burnisher pressed 0.2 mm into paste: set paste pushes back at least ten times harder.
 real press_force(bool cured) {
   const real s = 0.3 * mm, dt = 5e-5;
-  const Model model = cure_model(s, {-2 * mm, -2 * mm, -2 * mm}, {5 * mm, 5 * mm, 6 * mm}, dt);
+  Model model = cure_model(s, {-2 * mm, -2 * mm, -2 * mm}, {5 * mm, 5 * mm, 6 * mm}, dt);
   State st;
   const real wall_mass = lattice_particle_mass(kWall.rho0, s, model.kernel);
   std::vector<ParticleInit> walls;
@@ -230,7 +230,7 @@ TEST(CurePhysics, ACuredIncrementResistsTheBall) {
 // set, the paste below it keeps flowing and stays bonded to it, nothing diverges.
 TEST(CurePhysics, PasteCuresWhileItIsStepped) {
   const real s = 0.3 * mm, dt = 5e-5;
-  const Model model = cure_model(s, {-2 * mm, -2 * mm, -2 * mm}, {5 * mm, 5 * mm, 6 * mm}, dt);
+  Model model = cure_model(s, {-2 * mm, -2 * mm, -2 * mm}, {5 * mm, 5 * mm, 6 * mm}, dt);
   State st;
   const real wall_mass = lattice_particle_mass(kWall.rho0, s, model.kernel);
   std::vector<ParticleInit> walls;

@@ -22,7 +22,7 @@ inline Model cure_model(real s, Vec3 lo, Vec3 hi, real dt = 5e-5) {
 
 // Paste particles on the lattice of spacing s filling x, y in [0, nx s) and z from z0 up, `layers`
 // layers (centres at half spacings), added as one increment (begin_increment).
-inline void add_paste_layers(const Model& model, State& st, real s, int nx, int ny, real z0, int layers,
+inline void add_paste_layers(Model& model, State& st, real s, int nx, int ny, real z0, int layers,
                              const Material& paste = kPaste) {
   const real m = lattice_particle_mass(paste.rho0, s, model.kernel);
   std::vector<ParticleInit> ps;
@@ -37,7 +37,7 @@ inline void add_paste_layers(const Model& model, State& st, real s, int nx, int 
 
 // Boundary particles (the tooth, or a mould) on the lattice: x, y in [0, nx s), `layers` layers
 // below z0 (centres at half spacings).
-inline void add_floor(const Model& model, State& st, real s, int nx, int ny, real z0, int layers) {
+inline void add_floor(Model& model, State& st, real s, int nx, int ny, real z0, int layers) {
   const real m = lattice_particle_mass(kWall.rho0, s, model.kernel);
   std::vector<ParticleInit> ps;
   for (int k = 0; k < layers; ++k)

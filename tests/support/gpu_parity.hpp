@@ -45,7 +45,7 @@ inline Model gpu_scene_model(const GpuScene& c, int bond_capacity = 64) {
   return make_model(mp);
 }
 
-inline State gpu_scene_state(const Model& model, const GpuScene& c) {
+inline State gpu_scene_state(Model& model, const GpuScene& c) {
   const real s = kGpuSpacing;
   std::mt19937_64 rng(c.seed);
   std::uniform_real_distribution<real> u(-1, 1);
@@ -106,7 +106,7 @@ inline void compare_states(const State& g, const State& r, int step, real tol) {
 // the comparison.
 inline void gpu_parity_run(const GpuFactory& make, const GpuScene& scene, bool all_pairs, real tol,
                            int check_every = 1, int steps = 100) {
-  const Model model = gpu_scene_model(scene);
+  Model model = gpu_scene_model(scene);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
   const Pose start = ref.tool_pose;
   std::unique_ptr<Stepper> gpu = make(model, g);
@@ -144,7 +144,7 @@ inline void gpu_parity_run(const GpuFactory& make, const GpuScene& scene, bool a
 // count must equal the CPU grid step's, and the bond must form once and break once.
 inline void gpu_fig2_loop(const GpuFactory& make) {
   const real s = kGpuSpacing;
-  const Model model = make_model(params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}, 1e-4));
+  Model model = make_model(params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}, 1e-4));
   const real m = 1e-3, rho0 = m * kernels::poly6(0, model.kernel);
   const Material mat{0, 50, rho0, 300};
   State ref;
@@ -190,7 +190,7 @@ inline void gpu_fig2_loop(const GpuFactory& make) {
 // overflows as the CPU grid step (both visit the cells in the same order).
 inline void gpu_overflow_counted(const GpuFactory& make) {
   const GpuScene scene{5, 0.1, 1, false, 21};
-  const Model model = gpu_scene_model(scene, 4);
+  Model model = gpu_scene_model(scene, 4);
   State ref = gpu_scene_state(model, scene), g = gpu_scene_state(model, scene);
   std::unique_ptr<Stepper> gpu = make(model, g);
   for (int k = 0; k < 20; ++k) step_both(model, ref, *gpu, g, gpu_scene_pose(ref.tool_pose, k));

@@ -24,6 +24,8 @@ inline Scene small_paste_scene(real dt, std::vector<ToolKeyframe> keyframes) {
   sc.tool.keyframes = std::move(keyframes);
   sc.output.snapshot_interval = 0.01;
   sc.material_spacing = s;
+  intern_scene_materials(sc);
+  sc.model.materials.paste = sc.model.materials.find(paste);
   return sc;
 }
 

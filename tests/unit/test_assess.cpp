@@ -47,6 +47,7 @@ struct Case {
         assessor(a ? *a : CavityAssessor(t)),
         model(make_model(domain(t))),
         local(frame_bounds(t)) {
+    model.materials.add("paste", paste);
     for (const Vec3& q : lattice_in(offset))
       if (tooth.in_cavity(tooth.frame().to_world(q))) add(q);
   }

@@ -58,7 +58,7 @@ namespace {
 
 TEST(StateBonds, WallBondsLiveOnTheMovingSideAndCountOnce) {
   constexpr real s = 0.01;
-  const Model model = make_model(testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.05, 0.05, 0.05}, 1e-5));
+  Model model = make_model(testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.05, 0.05, 0.05}, 1e-5));
   const Material paste{0, 60, 1000, 300}, wall{0, 200, 1000, 0};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   State st;
@@ -83,7 +83,7 @@ TEST(StateBonds, TheStepCountsOverflowAndKeepsListsWithinCapacity) {
   constexpr real s = 0.01;
   ModelParams mp = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.05, 0.05, 0.05}, 1e-5);
   mp.max_bonds_per_particle = 2;
-  const Model model = make_model(mp);
+  Model model = make_model(mp);
   const Material paste{0, 60, 1000, 300};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::vector<ParticleInit> ps;

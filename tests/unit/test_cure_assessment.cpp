@@ -16,7 +16,7 @@ constexpr real mm = 1e-3;
 
 TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
   const real s = 0.2 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 7 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 7 * mm});
   State st;
   add_paste_layers(model, st, s, 5, 5, 0, 10);        // increment 1: 2 mm
   add_paste_layers(model, st, s, 5, 5, 2 * mm, 18);   // increment 2: 3.6 mm on it
@@ -65,7 +65,7 @@ TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
 
 TEST(CureAssessment, PasteNoLightReachedIsSaidSo) {
   const real s = 0.2 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm});
   State st;
   add_paste_layers(model, st, s, 5, 5, 0, 5);
   const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);

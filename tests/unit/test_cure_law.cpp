@@ -70,7 +70,7 @@ TEST(CureLaw, ConversionStiffensThePasteAndShrinksIt) {
 
 TEST(CureModel, ViscosityLimitComesFromTheTimeStep) {
   const real s = 0.3 * mm;
-  const Model model = cure_model(s, {0, 0, 0}, {3 * mm, 3 * mm, 3 * mm}, 5e-5);
+  Model model = cure_model(s, {0, 0, 0}, {3 * mm, 3 * mm, 3 * mm}, 5e-5);
   const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);
   const real h = 2 * s;
   EXPECT_NEAR(cm.viscosity_limit, 0.8 * 0.125 * h * h * kPaste.rho0 / 5e-5, 1e-12);
@@ -91,7 +91,7 @@ TEST(CureModel, ViscosityLimitComesFromTheTimeStep) {
 // becomes rigid at half of it, t_w + tau ln 2 after it was mixed.
 TEST(CureSetting, AmalgamBecomesRigidAfterItsWorkingTime) {
   const real s = 0.3 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm});
   State st;
   add_paste_layers(model, st, s, 4, 4, 0, 3);
   const CureMaterial am = cure_material_preset("amalgam");

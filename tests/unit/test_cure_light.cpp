@@ -22,7 +22,7 @@ CureMaterial constant_attenuation(real per_mm) {
 TEST(CureLight, SlabFollowsBeerLambert) {
   const real s = 0.1 * mm;
   const int nx = 40, layers = 60;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 7 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 7 * mm});
   State st;
   add_paste_layers(model, st, s, nx, nx, 0, layers);
   const CureModel cm = make_cure_model(model, constant_attenuation(1.15), s, kPaste);
@@ -64,7 +64,7 @@ real mean_irradiance(const State& st, Keep&& keep) {
 TEST(CureLight, TiltedBeamCrossesTheSlantPath) {
   const real s = 0.1 * mm;
   const int nx = 80, layers = 20;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 4 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 4 * mm});
   State st;
   add_paste_layers(model, st, s, nx, nx, 0, layers);
   const CureModel cm = make_cure_model(model, constant_attenuation(1.15), s, kPaste);
@@ -92,7 +92,7 @@ TEST(CureLight, TiltedBeamCrossesTheSlantPath) {
 
 TEST(CureLight, NothingOutsideTheBeamOrBehindTheWindow) {
   const real s = 0.2 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 3 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 3 * mm});
   State st;
   add_paste_layers(model, st, s, 40, 40, 0, 5);  // 8 x 8 mm, 1 mm thick
   const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);
@@ -122,7 +122,7 @@ TEST(CureLight, NothingOutsideTheBeamOrBehindTheWindow) {
 // an instrument (tool particles) blocks it.
 TEST(CureLight, TissueShadesAndTheInstrumentBlocks) {
   const real s = 0.1 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 4 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 4 * mm});
   State st;
   add_paste_layers(model, st, s, 40, 40, 0, 10);  // 4 x 4 mm, 1 mm thick
   // A ledge of tissue 0.6 mm thick over the half x < 2 mm, 0.5 mm above the paste.
@@ -154,7 +154,7 @@ TEST(CureLight, TissueShadesAndTheInstrumentBlocks) {
 // Dose integrates the irradiance over time; the result does not depend on the update's dt.
 TEST(CureLight, DoseIsIrradianceTimesTimeWhateverTheUpdates) {
   const real s = 0.2 * mm;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 5 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {5 * mm, 5 * mm, 5 * mm});
   auto cured = [&](real dt) {
     State st;
     add_paste_layers(model, st, s, 10, 10, 0, 15);  // 3 mm thick
@@ -180,7 +180,7 @@ TEST(CureLight, DoseIsIrradianceTimesTimeWhateverTheUpdates) {
 // transition_interval), and every call adds the dose of its dt.
 TEST(CureLight, APassTakesTheLightOnOffAtOnceAndAMoveWithinAnInterval) {
   const real s = 0.2 * mm, dt = 5e-5;
-  const Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 3 * mm}, dt);
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {9 * mm, 9 * mm, 3 * mm}, dt);
   State st;
   add_paste_layers(model, st, s, 40, 10, 0, 2);  // 8 x 2 mm
   const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);

@@ -35,7 +35,7 @@ fs::path temp_dir(const std::string& name) {
 }
 
 TEST(Vtu, HeaderAndPositionsRoundTrip) {
-  const Model model = make_model(testing::params_for_spacing(0.01, {0, 0, 0}, {0.1, 0.1, 0.1}));
+  Model model = make_model(testing::params_for_spacing(0.01, {0, 0, 0}, {0.1, 0.1, 0.1}));
   State st;
   const Material m{0.1, 10, 1000, 5};
   st.add_particles(model, {testing::particle(Role::material, {0.01, 0.02, 0.03}, 1e-3, m),
@@ -63,7 +63,7 @@ TEST(Vtu, HeaderAndPositionsRoundTrip) {
 }
 
 TEST(Preview, ShowsMaterialAndWallsInTheirColours) {
-  const Model model = make_model(testing::params_for_spacing(0.01, {0, 0, 0}, {0.1, 0.1, 0.1}));
+  Model model = make_model(testing::params_for_spacing(0.01, {0, 0, 0}, {0.1, 0.1, 0.1}));
   const Material m{0.1, 10, 1000, 5};
   std::vector<ParticleInit> ps;
   for (Vec3 p : testing::lattice({0, 0, 0.01}, 0.01, 5, 5, 3)) ps.push_back(testing::particle(Role::material, p, 1e-3, m));

@@ -147,7 +147,11 @@ TEST(SwitchTool, ReplacesTheToolParticlesAtThePose) {
   Small sm;
   const std::uint32_t material = sm.st.count(Role::material), boundary = sm.st.count(Role::boundary);
   const ToolShape plugger = flat_plugger(0.03, 0.02, 0.01);
-  switch_tool(sm.st, sm.model, plugger, 1e-3, Material{0, 200, 1000, 0});
+  const Material steel{0, 200, 1000, 0};
+  EXPECT_THROW(switch_tool(sm.st, sm.model, plugger, 1e-3, steel), std::invalid_argument);  // not in the table
+  EXPECT_EQ(sm.st.count(Role::tool), 4u);  // refused: the old tool stays
+  const MaterialIndex index = sm.model.materials.add("plugger", steel);
+  switch_tool(sm.st, sm.model, plugger, 1e-3, steel, index);
   EXPECT_EQ(sm.st.count(Role::tool), plugger.points.size());
   EXPECT_EQ(sm.st.count(Role::material), material);
   EXPECT_EQ(sm.st.count(Role::boundary), boundary);

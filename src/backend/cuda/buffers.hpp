@@ -193,6 +193,7 @@ class Buffers {
     fn(a.vel, s.vel);
     fn(a.anchor, s.anchor);
     fn(a.mass, s.mass);
+    fn(a.material, s.material);
     fn(a.mu, s.mu);
     fn(a.Kp, s.Kp);
     fn(a.rho0, s.rho0);

@@ -1,5 +1,6 @@
 // Stage 2b on the GPU, per sorted index: gather the particle from the previous order into cell
-// order, and record where its stable id now lives. rho, pressure, volume and force are recomputed
+// order, and record where its stable id now lives. The GPU holds no material table: it gathers
+// the parameters mu, Kp, rho0, Ka with the material index (which the host State's cache follows). rho, pressure, volume and force are recomputed
 // before they are read, so they are not gathered.
 #pragma once
 
@@ -17,6 +18,7 @@ DENTSPH_HD inline void reorder_body(const StepView& v, std::uint32_t k) {
   d.vel[k] = s.vel[o];
   d.anchor[k] = s.anchor[o];
   d.mass[k] = s.mass[o];
+  d.material[k] = s.material[o];
   d.mu[k] = s.mu[o];
   d.Kp[k] = s.Kp[o];
   d.rho0[k] = s.rho0[o];

@@ -24,6 +24,7 @@ struct ParticleArrays {
   Vec3* vel = nullptr;          // m/s
   Vec3* anchor = nullptr;       // m, tool particles: position in the tool frame
   real* mass = nullptr;         // kg
+  MaterialIndex* material = nullptr;  // State::material (carried for the host's cache; unread here)
   real* mu = nullptr;           // Pa s
   real* Kp = nullptr;           // m^2/s^2
   real* rho0 = nullptr;         // kg/m^3

@@ -1,0 +1,88 @@
+// Materials (docs/architecture.md, "Materials"): the parameters of a particle's matter, and the
+// Model's table of them. Each particle carries a one-byte index into the table (State::material);
+// the step reads the per-particle values State::mu, Kp, rho0 and Ka, a cache the State derives from
+// the table (and, for paste the cure has changed, from the cure's parameters by id) after every
+// reorder and edit instead of permuting them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dentsph/vec3.hpp"
+
+namespace dentsph {
+
+// Per-particle material parameters.
+struct Material {
+  real mu = 0;    // viscosity, Pa s
+  real Kp = 0;    // pressure stiffness, m^2/s^2 (P = Kp (rho - rho0))
+  real rho0 = 0;  // rest density, kg/m^3
+  real Ka = 0;    // adhesion strength, Pa
+};
+inline bool operator==(const Material& a, const Material& b) {
+  return a.mu == b.mu && a.Kp == b.Kp && a.rho0 == b.rho0 && a.Ka == b.Ka;
+}
+
+// A particle's material: an index into Model::materials in the low seven bits; the high bit marks
+// paste whose parameters the cure has changed (its values are CureState::cured[id], not the table's).
+using MaterialIndex = std::uint8_t;
+inline constexpr MaterialIndex kMaterialMask = 0x7f;
+inline constexpr MaterialIndex kCuredMaterial = 0x80;
+inline constexpr MaterialIndex kNoMaterial = 0xff;  // ParticleInit: find the material by its values
+
+// The names a dental scene gives its materials.
+inline constexpr const char* kPasteMaterial = "paste";
+inline constexpr const char* kInstrumentMaterial = "instrument";
+inline constexpr const char* kToothMaterial = "tooth";
+
+// The paste and the instruments' material of a scene that has no particle of them (an increment
+// dispensed, an instrument switched to).
+inline constexpr Material kDefaultPaste{1.0, 10, 2000, 50};
+inline constexpr Material kDefaultInstrument{1.0, 15, 2000, 0};
+
+struct NamedMaterial {
+  std::string name;
+  Material material;
+  // Room for what curing adds per material (a cure preset of its own): today every paste cures by
+  // the one CureModel the run loops are given.
+};
+
+// The Model's materials, at most 128, each with a name unique in the table.
+class MaterialTable {
+ public:
+  static constexpr std::size_t kCapacity = kMaterialMask + 1;
+
+  // Adds `material` as `name`. Throws std::invalid_argument for a name already there, an empty
+  // name or a full table.
+  MaterialIndex add(const std::string& name, const Material& material);
+  // The index of `name`, or of the first entry with these values.
+  std::optional<MaterialIndex> find(std::string_view name) const;
+  std::optional<MaterialIndex> find(const Material& material) const;
+  // The index of `name`; std::invalid_argument naming `where` and the known names when it is not there.
+  MaterialIndex at(std::string_view name, std::string_view where) const;
+  // The index of an entry with these values, added as "material N" when there is none.
+  MaterialIndex intern(const Material& material);
+
+  const Material& operator[](MaterialIndex i) const { return entries_[i & kMaterialMask].material; }
+  Material& operator[](MaterialIndex i) { return entries_[i & kMaterialMask].material; }
+  const std::string& name(MaterialIndex i) const { return entries_[i & kMaterialMask].name; }
+  std::size_t size() const { return entries_.size(); }
+  bool empty() const { return entries_.empty(); }
+  const std::vector<NamedMaterial>& entries() const { return entries_; }
+  // The known names, comma-separated (for messages).
+  std::string names() const;
+
+  // The scene's paste (what increments dispense, what the viewer's paste editor changes) and the
+  // instruments' material (what a switch of instrument gives the new tool), where the scene names
+  // them: a dental scene its "paste" and "instrument", a scene file the materials of roles.material
+  // and of the tool.
+  std::optional<MaterialIndex> paste, instrument;
+
+ private:
+  std::vector<NamedMaterial> entries_;
+};
+
+}  // namespace dentsph
