@@ -109,6 +109,8 @@ void markers_from_procedure(SessionFolder& s, const std::vector<double>* step_ti
                     : e.value("t_s", 0.0);
     if (m.kind == "dispense")
       m.label = fmt::format("increment {}{}", ++increments, e.value("source", "") == "button" ? " (button)" : "");
+    else if (m.kind == "cure")
+      m.label = "curing light on";
     else
       m.label = fmt::format("instrument: {}", e.value("tool", "?"));
     s.markers.push_back(m);
