@@ -172,11 +172,15 @@ class Simulation {
   // makes the run cure.
   void set_light(const std::optional<CuringLight>& light);
   const std::optional<CuringLight>& hand_light() const { return hand_light_; }
+  // The hand-held light over the cavity (light_over_cavity) turned on when off, off when on: the
+  // device's second button, recorded (kLightToggle) and replayed.
+  void toggle_light() { set_light(hand_light_ ? std::nullopt : std::optional<CuringLight>(light_over_cavity())); }
   // The light on over the next step: the hand-held one, else the scene's event's at the step's
   // midpoint.
   std::optional<CuringLight> light() const;
-  // The light over the cavity: its window 1 mm above the occlusal reference, pointing down the
-  // tooth's axis (dental scenes; above the paste's top, down -z, otherwise).
+  // The light over the cavity: its window 1 mm above the occlusal reference (or a spacing above the
+  // highest paste in its beam, a heap above the cavity), pointing down the tooth's axis (dental scenes; otherwise a kernel radius above the paste's top, over its middle,
+  // down -z, its window at least as wide as the paste).
   CuringLight light_over_cavity() const;
   // Advances the cure by one large update when the run can (CureSchedule): the scene's light is on
   // and stays so, no event is due and the tool stands still in its keyframes for the update, the

@@ -119,6 +119,9 @@ std::optional<LoggedEvent> logged(const Scene& scene, const EventSample& r) {
   if (r.index == kButtonIncrement) {
     e.kind = "dispense";
     e.source = "button";
+  } else if (r.index == kLightToggle) {
+    e.kind = "light";
+    e.source = "button";
   } else if (r.index >= kToolSwitch) {
     e.kind = "switch_tool";
     e.source = "button";

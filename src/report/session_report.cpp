@@ -64,7 +64,7 @@ constexpr const char* kForcePlotScript = R"js(
   const top = fmax * 1.05;
   datasets.push({label: 'device limit: ' + data.limit_label, data: [{x: 0, y: data.limit}, {x: tmax, y: data.limit}],
                  borderColor: '#c0392b', backgroundColor: '#c0392b', borderDash: [6, 4], borderWidth: 1.5, pointRadius: 0});
-  const kinds = {dispense: ['increments', '#27ae60'], switch_tool: ['instrument switches', '#e67e22'], cure: ['curing light on', '#d4ac0d'], event: ['events', '#7f8c8d']};
+  const kinds = {dispense: ['increments', '#27ae60'], switch_tool: ['instrument switches', '#e67e22'], cure: ['curing light on', '#d4ac0d'], light: ['curing light switched', '#d4ac0d'], event: ['events', '#7f8c8d']};
   for (const kind of Object.keys(kinds)) {
     const ms = data.markers.filter(m => m.kind === kind);
     if (!ms.length) continue;

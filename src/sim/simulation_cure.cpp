@@ -38,17 +38,31 @@ std::optional<CuringLight> Simulation::light() const {
 CuringLight Simulation::light_over_cavity() const {
   CuringLight l;
   if (scene_.tooth) {
+    // 1 mm above the occlusal reference, or a spacing above the highest paste in the beam.
     const ToothFrame& f = scene_.tooth->frame();
-    l.tip = f.origin + f.z * 1e-3;
+    real height = 1e-3;
+    for (std::uint32_t i = 0; i < state_.size(); ++i) {
+      if (!state_.is_paste(i) || !is_finite(state_.pos[i])) continue;
+      const Vec3 p = f.to_local(state_.pos[i]);
+      if (std::hypot(p.x, p.y) < 0.5 * l.diameter) height = std::max(height, p.z + increment_spacing(scene_));
+    }
+    l.tip = f.origin + f.z * height;
     l.direction = -f.z;
     return l;
   }
-  // No tooth: over the paste's top, in the middle of the domain.
-  const Vec3 mid = 0.5 * (model_.domain_min + model_.domain_max);
-  real top = model_.domain_min.z;
+  // No tooth: a kernel radius over the paste's top, above its middle (the domain's without paste).
+  Vec3 mid = 0.5 * (model_.domain_min + model_.domain_max);
+  real top = model_.domain_min.z, n = 0;
+  Vec3 sum;
   for (std::uint32_t i = 0; i < state_.size(); ++i)
-    if (state_.role[i] == Role::material) top = std::max(top, state_.pos[i].z);
+    if (state_.is_paste(i)) top = std::max(top, state_.pos[i].z), sum = sum + state_.pos[i], n += 1;
+  if (n > 0) mid = sum / n;
   l.tip = {mid.x, mid.y, top + model_.kernel.h};
+  // A window at least as wide as the paste.
+  real reach = 0;
+  for (std::uint32_t i = 0; i < state_.size(); ++i)
+    if (state_.is_paste(i)) reach = std::max(reach, std::hypot(state_.pos[i].x - mid.x, state_.pos[i].y - mid.y));
+  l.diameter = std::max(l.diameter, 2 * reach + increment_spacing(scene_));
   l.direction = {0, 0, -1};
   return l;
 }

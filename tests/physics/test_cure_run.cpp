@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dentsph/dental.hpp"
 #include "dentsph/simulation.hpp"
 #include "support/cure_scenes.hpp"
 
@@ -192,6 +193,49 @@ TEST(CureInARun, TheGpuEmulationCuresAsTheCpuDoes) {
   for (std::uint32_t id = 0; id < cpu.state.cure.particles(); ++id)
     if (cpu.state.cure.dose[id] > 100) worst = std::max(worst, std::abs(cpu.state.cure.dose[id] - gpu.state.cure.dose[id]) / cpu.state.cure.dose[id]);
   EXPECT_LT(worst, 0.02) << "dose, relative";
+}
+
+}  // namespace
+}  // namespace dentsph::testing
+
+namespace dentsph::testing {
+namespace {
+
+// A hand-held light over the cavity (the viewer's L key, the device's second button) cures the
+// built-in dental scene's paste: after 0.1 s its top has converted, its base less.
+TEST(CureInARun, AHandHeldLightOverTheCavityCuresTheDentalPaste) {
+  const Scene sc = default_dental_scene();
+  SimulationOptions o;
+  o.thread_policy = ThreadPolicy::fixed;
+  o.threads = 2;
+  Simulation sim(sc, o);
+  EXPECT_FALSE(sim.curing());
+  sim.set_light(sim.light_over_cavity());
+  EXPECT_TRUE(sim.curing());
+  const ToothFrame& f = sc.tooth->frame();
+  const real window = dot(sim.light()->tip - f.origin, f.z);
+  EXPECT_GE(window, 1e-3 - 1e-12) << "1 mm above the occlusal reference, or above the paste's heap";
+  for (int k = 0; k < 2000; ++k) ASSERT_TRUE(sim.step(sim.keyframe_pose()));
+  const State& st = sim.synced();
+  real top = -1, top_alpha = 0, low = 1, low_alpha = 0, max_alpha = 0;
+  std::uint32_t lit = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i) {
+    if (!st.is_paste(i)) continue;
+    const real z = dot(st.pos[i] - f.origin, f.z), a = st.cure.alpha[st.id[i]];
+    max_alpha = std::max(max_alpha, a);
+    lit += st.cure.irradiance[st.id[i]] > 0;
+    if (z > top) top = z, top_alpha = a;
+    if (z < low) low = z, low_alpha = a;
+  }
+  std::printf("lit %u, max conversion %.4f, top (%.2f mm) %.4f, base (%.2f mm) %.4f, last update lit %u\n", lit,
+              max_alpha, top / mm, top_alpha, low / mm, low_alpha, sim.last_cure().lit);
+  std::uint32_t paste = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i) paste += st.is_paste(i);
+  EXPECT_GT(lit, 9 * paste / 10) << "the window above the heap: nearly all the paste in the light";
+  EXPECT_GT(max_alpha, 0.03);
+  EXPECT_LT(low_alpha, max_alpha);
+  sim.set_light(std::nullopt);
+  EXPECT_FALSE(sim.light().has_value());
 }
 
 }  // namespace
