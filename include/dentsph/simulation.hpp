@@ -65,7 +65,7 @@ struct RunSummary {
   real sim_time_s = 0;
   double wall_time_s = 0;
   double steps_per_second = 0;
-  std::uint32_t material = 0, boundary = 0, tool = 0;
+  std::uint32_t material = 0, boundary = 0, tool = 0;  // material: the paste, set by the cure or not
   std::uint64_t bonds_current = 0;
   BondCounters bonds;
   real dt = 0;

@@ -144,8 +144,11 @@ RunSummary Simulation::summary() {
   }
   s.steps = st.steps;
   s.sim_time_s = st.time;
-  s.material = st.count(Role::material);  // at the end: increments add material
-  s.boundary = st.count(Role::boundary);
+  // At the end: increments add paste; paste set by the cure is still paste (a wall to the step).
+  std::uint32_t set = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i) set += st.role[i] == Role::boundary && st.is_paste(i);
+  s.material = st.count(Role::material) + set;
+  s.boundary = st.count(Role::boundary) - set;
   s.tool = st.count(Role::tool);
   s.bonds = st.bonds.counters;
   s.bonds_current = st.bonded_pairs();

@@ -84,6 +84,7 @@ TEST(CureInARun, TheSimulationCuresWithTheSceneLight) {
   EXPECT_NEAR(r.summary.light_on_s, 0.1, 1e-3);
   EXPECT_EQ(r.summary.cure_updates_at_rest, 0u);
   EXPECT_GT(count_rigid(r.state), 2u * 81u) << "the top layers set within 0.1 s, as when cure_between_steps is called by hand";
+  EXPECT_EQ(r.summary.material, 6u * 81u) << "set paste is still paste in the summary";
   // Without a cure event nothing cures and nothing is set.
   Scene dark = sc;
   dark.events.clear();
