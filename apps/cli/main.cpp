@@ -140,6 +140,9 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
   fmt::print("peak tool force: {:.4g} N simulated, {:.4g} N on a haptic device (force scale {:.4g})\n",
              s.peak_tool_force_N, s.peak_tool_force_N * s.force_scale, s.force_scale);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
+  if (s.curing)
+    fmt::print("\nlight curing: {:.4g} s of light, {:.4g} s of it in {} updates at rest\n{}", s.light_on_s,
+               s.cure_at_rest_s, s.cure_updates_at_rest, s.cure_report);
   if (!opt.out_dir.empty()) fmt::print("report for a tutor: {}\n", (opt.out_dir / "report.html").string());
   if (s.force_violation_steps > 0)
     fmt::print("warning: dt exceeded the force stability limit in {} steps (first at t = {:.4g} s; smallest limit "

@@ -18,6 +18,7 @@ const char* colour_by_name(ColourBy c) {
     case ColourBy::density: return "density";
     case ColourBy::speed: return "speed";
     case ColourBy::bonds: return "bonds";
+    case ColourBy::conversion: return "conversion";
   }
   return "?";
 }
@@ -29,6 +30,7 @@ const char* colour_by_unit(ColourBy c) {
     case ColourBy::density: return "kg/m^3";
     case ColourBy::speed: return "m/s";
     case ColourBy::bonds: return "bonds";
+    case ColourBy::conversion: return "DC";  // degree of conversion
   }
   return "";
 }
@@ -37,7 +39,7 @@ ColourBy colour_by_from_name(const std::string& name) {
   for (ColourBy c : kColourModes)
     if (name == colour_by_name(c)) return c;
   throw std::invalid_argument(
-      fmt::format("colour mode '{}' is unknown; use one of role, pressure, density, speed, bonds", name));
+      fmt::format("colour mode '{}' is unknown; use one of role, pressure, density, speed, bonds, conversion", name));
 }
 
 Rgb role_colour(Role r) { return io::role_colour(r); }

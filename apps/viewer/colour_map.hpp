@@ -1,4 +1,5 @@
-// Particle colours: by role, or a scalar field (pressure, density, speed, bond count) through a
+// Particle colours: by role, or a scalar field (pressure, density, speed, bond count, the paste's
+// degree of conversion under the curing light) through a
 // perceptually ordered colour map with a range. Pure functions: tested without a window.
 #pragma once
 
@@ -14,11 +15,11 @@ namespace dentsph::viewer {
 
 using Rgb = std::array<float, 3>;  // each in [0, 1]
 
-enum class ColourBy { role, pressure, density, speed, bonds };
-inline constexpr std::array<ColourBy, 5> kColourModes = {ColourBy::role, ColourBy::pressure, ColourBy::density,
-                                                        ColourBy::speed, ColourBy::bonds};
+enum class ColourBy { role, pressure, density, speed, bonds, conversion };
+inline constexpr std::array<ColourBy, 6> kColourModes = {ColourBy::role,  ColourBy::pressure, ColourBy::density,
+                                                        ColourBy::speed, ColourBy::bonds,    ColourBy::conversion};
 const char* colour_by_name(ColourBy c);   // "role", "pressure", ...
-const char* colour_by_unit(ColourBy c);   // "Pa", "kg/m^3", "m/s", "bonds", ""
+const char* colour_by_unit(ColourBy c);   // "Pa", "kg/m^3", "m/s", "bonds", "DC" (degree of conversion), ""
 // The mode of a name; throws std::invalid_argument naming the choices.
 ColourBy colour_by_from_name(const std::string& name);
 

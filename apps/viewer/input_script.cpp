@@ -23,7 +23,8 @@ constexpr KindName kKinds[] = {{ScriptAction::Kind::move, "move"},         {Scri
                                {ScriptAction::Kind::release, "release"},   {ScriptAction::Kind::dispense, "dispense"},
                                {ScriptAction::Kind::switch_tool, "switch_tool"}, {ScriptAction::Kind::pause, "pause"},
                                {ScriptAction::Kind::resume, "resume"},     {ScriptAction::Kind::reset, "reset"},
-                               {ScriptAction::Kind::colour_by, "colour_by"}, {ScriptAction::Kind::end, "end"}};
+                               {ScriptAction::Kind::colour_by, "colour_by"}, {ScriptAction::Kind::light_on, "light_on"},
+                               {ScriptAction::Kind::light_off, "light_off"}, {ScriptAction::Kind::end, "end"}};
 
 }  // namespace
 
@@ -44,7 +45,7 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
     ScriptAction act;
     act.step = std::uint64_t(a.integer("step", "the simulation step it happens at, e.g. 400", 0, std::int64_t(1) << 40));
     const std::string kind = a.string("action", "what happens: move, press, release, dispense, switch_tool, pause, "
-                                                "resume, reset, colour_by or end");
+                                                "resume, reset, colour_by, light_on, light_off or end");
     bool known = false;
     for (const KindName& k : kKinds)
       if (kind == k.name) {
@@ -54,7 +55,8 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
     if (!known) {
       const std::string_view near = scene::closest(kind, names);
       a.fail("action", fmt::format("'{}' is not an action", kind),
-             near.empty() ? "use one of move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, end"
+             near.empty() ? "use one of move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, light_on, "
+                                           "light_off, end"
                           : fmt::format("did you mean '{}'?", near));
     }
     if (!script.actions.empty() && act.step < script.actions.back().step)
@@ -73,11 +75,11 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
         }
         break;
       case ScriptAction::Kind::colour_by:
-        act.name = a.string("mode", "role, pressure, density, speed or bonds");
+        act.name = a.string("mode", "role, pressure, density, speed, bonds or conversion");
         try {
           (void)colour_by_from_name(act.name);
         } catch (const std::exception& e) {
-          a.fail("mode", e.what(), "use role, pressure, density, speed or bonds");
+          a.fail("mode", e.what(), "use role, pressure, density, speed, bonds or conversion");
         }
         break;
       default:

@@ -6,6 +6,7 @@
 //                {"step": 600, "action": "press"}, {"step": 1400, "action": "release"},
 //                {"step": 1500, "action": "switch_tool", "tool": "flat_plugger"},
 //                {"step": 1600, "action": "colour_by", "mode": "pressure"},
+//                {"step": 2000, "action": "light_on"}, {"step": 2800, "action": "light_off"},
 //                {"step": 3000, "action": "end"}]}
 // Positions are of the tool's tip, in mm, in the tooth frame (dental scenes: origin on the long
 // axis at the occlusal surface, z up the axis) or in the world (other scenes).
@@ -21,7 +22,8 @@
 namespace dentsph::viewer {
 
 struct ScriptAction {
-  enum class Kind { move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, end };
+  // light_on, light_off: the curing light over the cavity (the L key).
+  enum class Kind { move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, light_on, light_off, end };
   std::uint64_t step = 0;
   Kind kind = Kind::move;
   Vec3 position_mm;   // move

@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
                  "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: "
                  "the scene's simulation.solver")
       ->check(CLI::IsMember({"paper", "iisph"}));
-  app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed or bonds")->capture_default_str();
+  app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed, bonds or conversion (the paste's degree of conversion under the curing light)")->capture_default_str();
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
   app.add_flag("--paused", so.start_paused, "Start paused");
   app.add_option("--timeout", vo.timeout_s, "Give up after this many seconds (exit code 4); 0: never")

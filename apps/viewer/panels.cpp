@@ -47,8 +47,8 @@ void display_panel(const Snapshot& s, UiState& ui) {
   int mode = 0;
   for (std::size_t k = 0; k < kColourModes.size(); ++k)
     if (kColourModes[k] == ui.colour_by) mode = int(k);
-  const char* modes[] = {"role", "pressure", "density", "speed", "bonds"};
-  if (ImGui::Combo("colour by (C)", &mode, modes, 5)) ui.colour_by = kColourModes[std::size_t(mode)];
+  const char* modes[] = {"role", "pressure", "density", "speed", "bonds", "conversion"};
+  if (ImGui::Combo("colour by (C)", &mode, modes, int(kColourModes.size()))) ui.colour_by = kColourModes[std::size_t(mode)];
   ImGui::Checkbox("boundary particles (B)", &ui.show_boundary);
   ImGui::Checkbox("section (X)", &ui.cut);
   if (ui.colour_by != ColourBy::role) {

@@ -191,4 +191,20 @@ void ArrowRenderer::draw(const ViewUniforms& u) {
   colour_.clear();
 }
 
+void add_curing_light(ArrowRenderer& arrows, const CuringLight& light) {
+  const glm::vec3 tip(float(light.tip.x), float(light.tip.y), float(light.tip.z));
+  glm::vec3 d(float(light.direction.x), float(light.direction.y), float(light.direction.z));
+  if (!(glm::length(d) > 0)) return;
+  d = glm::normalize(d);
+  const float r = 0.5f * float(light.diameter);
+  arrows.add(tip - 6e-3f * d, 6e-3f * d, 0.3e-3f, glm::vec3(0.8f, 0.8f, 0.82f));
+  const glm::vec3 helper = std::abs(d.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+  const glm::vec3 e1 = glm::normalize(glm::cross(d, helper)), e2 = glm::cross(d, e1);
+  constexpr int kRods = 12;
+  for (int k = 0; k < kRods; ++k) {
+    const float a = 6.2831853f * float(k) / kRods;
+    arrows.add(tip + r * (std::cos(a) * e1 + std::sin(a) * e2), 5e-3f * d, 0.1e-3f, glm::vec3(0.7f, 0.7f, 1.0f));
+  }
+}
+
 }  // namespace dentsph::viewer

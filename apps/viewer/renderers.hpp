@@ -1,5 +1,5 @@
 // What the viewer draws: particles as lit sphere impostors, the tooth's surface (with the
-// cavity cut away: the boundary particles line it), and arrows (the tool force).
+// cavity cut away: the boundary particles line it), and arrows (the tool force, the curing light).
 #pragma once
 
 #include <memory>
@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "dentsph/curing_light.hpp"
 #include "dentsph/tooth.hpp"
 #include "gl_program.hpp"
 
@@ -57,5 +58,10 @@ class ArrowRenderer {
   GlArrays arrays_{3};
   std::vector<float> pos_, normal_, colour_;
 };
+
+// The curing light as it is drawn: its light guide's axis (a grey rod 6 mm long ending at the exit
+// window) and the beam it sends, collimated: twelve thin rods along the beam's edge from the
+// window 5 mm forward, pale violet.
+void add_curing_light(ArrowRenderer& arrows, const CuringLight& light);
 
 }  // namespace dentsph::viewer

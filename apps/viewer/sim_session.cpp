@@ -137,6 +137,15 @@ void SimSession::apply(const Command& c, Simulation& sim, std::vector<EventSampl
       return;
     case Command::Kind::tool_target: target_ = c.target; return;  // the device's pose wins in device mode
     case Command::Kind::press: pressed_ = c.pressed; return;
+    case Command::Kind::light:
+      // The curing light held over the cavity (the L key; the device's second button in the
+      // haptic runtime, which records it): the paste under it cures.
+      if (device_) {
+        message_ = "with a device, its second button turns the curing light on and off";
+        return;
+      }
+      sim.set_light(c.pressed ? std::optional<CuringLight>(sim.light_over_cavity()) : std::nullopt);
+      return;
     case Command::Kind::dispense:
       if (recorded) recorded->push_back({sim.state().steps, kButtonIncrement});
       sim.dispense(opt_.dispense_volume, scene_paste(scene_));  // the Model's paste, as edited
@@ -203,6 +212,15 @@ void SimSession::publish(Simulation& sim, bool with_assessment, double steps_per
   s.steps = st.steps;
   s.xyz.resize(3 * std::size_t(n));
   s.role.assign(st.role.begin(), st.role.end());
+  s.conversion.assign(n, 0.f);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (st.is_paste(i)) {
+      s.role[i] = Role::material;  // paste set by the light is still paste (a wall to the step)
+      s.conversion[i] = float(st.cure.alpha[st.id[i]]);
+    }
+  s.light = sim.light();
+  if (s.light && !s.light->on) s.light.reset();
+  if (const CureModel* cm = sim.cure_model()) s.conversion_max = cm->paste.alpha_max;
   s.pressure.resize(n);
   s.density.resize(n);
   s.speed.resize(n);

@@ -35,14 +35,14 @@ struct MaterialEdit {
 };
 
 struct Command {
-  enum class Kind { pause, resume, single_step, reset, dispense, switch_tool, set_material, tool_target, press };
+  enum class Kind { pause, resume, single_step, reset, dispense, switch_tool, set_material, tool_target, press, light };
   Command() = default;
   Command(Kind k) : kind(k) {}  // NOLINT(google-explicit-constructor): {Kind::dispense} reads well
   Kind kind = Kind::pause;
   std::string tool;          // switch_tool: instrument name
   MaterialEdit material;     // set_material
   Vec3 target;               // tool_target: tool tip position, m, world
-  bool pressed = false;      // press: held down or released
+  bool pressed = false;      // press: held down or released; light: on (over the cavity) or off
 };
 
 // What one frame shows. Arrays in particle order of the moment, [n] each.
@@ -53,6 +53,9 @@ struct Snapshot {
   std::vector<float> xyz;     // [3n] m
   std::vector<Role> role;     // [n]
   std::vector<float> pressure, density, speed, bonds;  // [n] Pa, kg/m^3, m/s, count
+  std::vector<float> conversion;  // [n] the paste's degree of conversion (0 elsewhere and before any light)
+  real conversion_max = 0.6;      // the cured paste's largest conversion (the colour map's top)
+  std::optional<CuringLight> light;  // the curing light while it is on (set paste is drawn as paste)
   Pose tool_pose;
   Vec3 device_force_N;        // device N: the simulated tool force times the force scale
   real force_scale = 1;       // device N per simulated N

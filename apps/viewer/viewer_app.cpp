@@ -154,6 +154,8 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
         case ScriptAction::Kind::pause: c = {Command::Kind::pause}; break;
         case ScriptAction::Kind::resume: c = {Command::Kind::resume}; break;
         case ScriptAction::Kind::reset: c = {Command::Kind::reset}; break;
+        case ScriptAction::Kind::light_on: c = {Command::Kind::light}; c.pressed = true; break;
+        case ScriptAction::Kind::light_off: c = {Command::Kind::light}; c.pressed = false; break;
         case ScriptAction::Kind::colour_by:
         case ScriptAction::Kind::end: view_actions.push_back(a); continue;
       }
@@ -240,6 +242,11 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       if (pressed_once(GLFW_KEY_N)) commands.push_back({Command::Kind::single_step});
       if (pressed_once(GLFW_KEY_R)) commands.push_back({Command::Kind::reset});
       if (pressed_once(GLFW_KEY_D)) commands.push_back({Command::Kind::dispense});
+      if (pressed_once(GLFW_KEY_L)) {  // the curing light over the cavity, on or off
+        Command c{Command::Kind::light};
+        c.pressed = !snap.light.has_value();
+        commands.push_back(c);
+      }
       if (pressed_once(GLFW_KEY_T)) {
         ui.tool_index = (ui.tool_index + 1) % int(tools.size());
         Command c{Command::Kind::switch_tool};
@@ -287,8 +294,11 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
         ui.colour_by == ColourBy::pressure ? std::span<const float>(snap.pressure)
         : ui.colour_by == ColourBy::density ? std::span<const float>(snap.density)
         : ui.colour_by == ColourBy::speed   ? std::span<const float>(snap.speed)
-                                            : std::span<const float>(snap.bonds);
-    if (ui.colour_by != ColourBy::role && ui.auto_range) ui.range = auto_range(field, snap.role);
+        : ui.colour_by == ColourBy::conversion ? std::span<const float>(snap.conversion)
+                                               : std::span<const float>(snap.bonds);
+    // Conversion on its own scale, from uncured to fully cured paste.
+    if (ui.colour_by == ColourBy::conversion && ui.auto_range) ui.range = {0.f, float(snap.conversion_max)};
+    else if (ui.colour_by != ColourBy::role && ui.auto_range) ui.range = auto_range(field, snap.role);
     particle_colours(ui.colour_by, field, snap.role, ui.range, rgb);
     vis_xyz.clear();
     vis_rgb.clear();
@@ -306,6 +316,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       arrows.add(g(snap.tool_pose.position), dir * (1.5e-3f + 4e-3f * f / force_peak), float(0.12 * spacing),
                  glm::vec3(0.9f, 0.15f, 0.2f));
     }
+    if (snap.light) add_curing_light(arrows, *snap.light);
     arrows.draw(u);
 
     ImGui_ImplOpenGL3_NewFrame();

@@ -23,6 +23,8 @@ class ActiveLights {
   bool empty() const { return spans_.empty(); }
   // When the last light goes off (s); 0 without cure events.
   real end() const;
+  // The first time after t when a light comes on or goes off (s); infinity when none does.
+  real next_change(real t) const;
 
  private:
   struct Span {

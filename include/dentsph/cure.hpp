@@ -62,6 +62,11 @@ struct CureUpdate {
 // rest under the light (each call then is a pass).
 CureUpdate cure_between_steps(const CureModel& cure, State& state, const std::optional<CuringLight>& light, real dt);
 
+// Whether the next cure_between_steps(cure, state, light, dt) makes a pass (reads and may change
+// the particles): a light turned on or off, or the pass's interval run out. Without a pass the call
+// only adds the dose, from the cure state alone (a GPU backend need not download the particles).
+bool cure_pass_due(const CureModel& cure, const State& state, const std::optional<CuringLight>& light);
+
 // The light transport alone: state.cure.irradiance of every paste particle (W/m^2; 0 outside the
 // beam or behind the window) and the list of the lit ones (cure.lit_ids). Returns how many are lit.
 // Part of cure_between_steps' pass.

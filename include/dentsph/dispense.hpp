@@ -46,7 +46,8 @@ real increment_volume_or_default(const Scene& scene, real requested);
 // The direction increments drop along: the tooth's axis (its frame's z), or +z without a tooth.
 Vec3 increment_axis(const Scene& scene);
 
-// The paste in `state`: the sum of its material particles' volumes at rest (m / rho0), m^3.
+// The paste in `state`: the sum of its particles' volumes at rest (m / rho0), moving or set by the
+// cure, m^3.
 real material_volume(const State& state);
 // The most paste increments may bring a scene to (m^3): limits::max_material_per_cavity times the
 // cavity's volume, or the grid domain's volume without a tooth.

@@ -173,6 +173,7 @@ struct SimReport {
   double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;
   std::uint64_t stalls_injected = 0;
   std::uint64_t button_dispenses = 0;  // increments dispensed by the device's button 1
+  std::uint64_t light_toggles = 0;     // the curing light turned on or off by the device's button 2
 };
 
 struct ConsumerReport {

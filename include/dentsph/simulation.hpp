@@ -14,8 +14,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "dentsph/force_stats.hpp"
+#include <optional>
+
+#include "dentsph/active_lights.hpp"
 #include "dentsph/backend.hpp"
+#include "dentsph/cure.hpp"
+#include "dentsph/force_stats.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
@@ -39,6 +43,18 @@ std::string time_step_excess(real dt, const StabilityLimits& l);
 // solver's velocity CFL limit against the tool's fastest speed between its keyframes.
 StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable);
 
+// How a run advances a long cure (Simulation::advance_cure_at_rest; docs/architecture.md,
+// "Curing"): while the light is on and nothing else happens (no event due, the tool still in its
+// keyframes, the paste at rest), the cure goes on in updates of `update` s of light each, and the
+// paste is stepped `steps_between` steps after each (more, at dt, while it moves faster than
+// `rest_speed`). The dose does not depend on the update's length (test_cure); the result agrees
+// with a cure stepped at dt throughout (test_cure_physics, "CureAtRest").
+struct CureSchedule {
+  real update = 0.02;       // s of light per large update
+  int steps_between = 10;   // steps of the paste after each large update
+  real rest_speed = 5e-4;   // m/s: the paste is at rest while its fastest particle is slower
+};
+
 // What a run did, as summary.json reports it (docs/outputs.md). The Simulation fills what it
 // knows (Simulation::summary); each loop adds its own (wall time, snapshots, assessment, ...).
 struct RunSummary {
@@ -49,7 +65,7 @@ struct RunSummary {
   real sim_time_s = 0;
   double wall_time_s = 0;
   double steps_per_second = 0;
-  std::uint32_t material = 0, boundary = 0, tool = 0;
+  std::uint32_t material = 0, boundary = 0, tool = 0;  // material: the paste, set by the cure or not
   std::uint64_t bonds_current = 0;
   BondCounters bonds;
   real dt = 0;
@@ -72,6 +88,13 @@ struct RunSummary {
   double iterations_mean = 0;
   int iterations_max = 0;
   double density_error_mean = 0, density_error_max = 0, pressure_residual_max = 0;
+  // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it
+  // was advanced in large updates (CureSchedule) and in how many; the cure's assessment (JSON
+  // object, cure_assessment_json; empty without curing) and its text.
+  bool curing = false;
+  real light_on_s = 0, cure_at_rest_s = 0;
+  std::uint64_t cure_updates_at_rest = 0;
+  std::string cure_json, cure_report;
   std::string realtime_json;         // realtime runs: a JSON object whose members ("haptic", "sim",
                                      // "consumer", "device") are added to summary.json
 };
@@ -83,6 +106,7 @@ struct SimulationOptions {
   // governed: the CPU step uses the fastest count up to `threads`, timed as it runs (fewer when
   // another program takes a core); fixed: always `threads`. The results are the same bit for bit.
   ThreadPolicy thread_policy = ThreadPolicy::governed;
+  CureSchedule cure_schedule = {};
 };
 
 class Simulation {
@@ -131,8 +155,47 @@ class Simulation {
   void set_paste(const Model& model, const Material& paste);
 
   // One step with the tool moved to `tool_pose`: the statistics and the force limit updated,
-  // divergence checked. False once the simulation has diverged (the step was taken; a loop stops).
+  // divergence checked, and, when the run cures, the cure updated for the step
+  // (cure_between_steps with the light on: a hand-held one, set_light, or the scene's cure event's).
+  // A GPU backend downloads the particles only for a cure pass (every
+  // CureModel::transition_interval while the light is on) and takes them back when it changed
+  // them; the CPU cures its State in place. False once the simulation has diverged (the step was
+  // taken; a loop stops).
   bool step(const Pose& tool_pose);
+
+  // ---- curing (docs/architecture.md, "Curing") --------------------------------------------------
+  // Whether the run cures: the scene has cure events, or a light was turned on (set_light).
+  bool curing() const { return cure_.has_value(); }
+  // The cure's model (nullptr while the run does not cure): the scene's paste, cured as the
+  // "composite" preset.
+  const CureModel* cure_model() const { return cure_ ? &*cure_ : nullptr; }
+  // A hand-held light (the viewer's key, the device's second button): on from now until turned off
+  // (nullopt); it takes the place of the scene's cure events while on. The first light turned on
+  // makes the run cure.
+  void set_light(const std::optional<CuringLight>& light);
+  const std::optional<CuringLight>& hand_light() const { return hand_light_; }
+  // The hand-held light over the cavity (light_over_cavity) turned on when off, off when on: the
+  // device's second button, recorded (kLightToggle) and replayed.
+  void toggle_light() { set_light(hand_light_ ? std::nullopt : std::optional<CuringLight>(light_over_cavity())); }
+  // The light on over the next step: the hand-held one, else the scene's event's at the step's
+  // midpoint.
+  std::optional<CuringLight> light() const;
+  // The light over the cavity: its window 1 mm above the occlusal reference (or a spacing above the
+  // highest paste in its beam, a heap above the cavity), pointing down the tooth's axis (dental scenes; otherwise a kernel radius above the paste's top, over its middle,
+  // down -z, its window at least as wide as the paste).
+  CuringLight light_over_cavity() const;
+  // Advances the cure by one large update when the run can (CureSchedule): the scene's light is on
+  // and stays so, no event is due and the tool stands still in its keyframes for the update, the
+  // paste is at rest (its fastest particle under rest_speed at the last step) and
+  // steps_between steps were taken since the last update; the update ends by `until` (s) at the
+  // latest. Returns the simulated time it advanced (0: nothing done, step instead).
+  real advance_cure_at_rest(real until);
+  // Whether the run is curing at rest: a large update was made within the last steps_between steps.
+  bool curing_at_rest() const {
+    return cure_updates_at_rest_ > 0 && steps_since_cure_update_ <= options_.cure_schedule.steps_between;
+  }
+  // What the last cure update did.
+  const CureUpdate& last_cure() const { return last_cure_; }
 
   bool diverged() const { return diverged_; }
   // Why it diverged (what, when, and the fix); empty while it has not.
@@ -146,11 +209,16 @@ class Simulation {
   std::uint64_t events_applied() const { return events_applied_; }
 
   // What the core knows of the run (scene, backend, threads, steps, time, particles, bonds,
-  // stability, forces, events, status; the cavity of a dental scene), from the synced State.
+  // stability, forces, events, status; the cavity of a dental scene; the cure's figures and, for a
+  // dental scene that cures, its assessment), from the synced State.
   RunSummary summary();
 
  private:
   void rebuild_stepper();
+  void start_curing();
+  void cure_after_step(real t_before);
+  // s: until when the tool stands still in the keyframes from `t` (t itself when it moves).
+  real tool_still_until(real t) const;
 
   const Scene& scene_;
   SimulationOptions options_;
@@ -171,6 +239,14 @@ class Simulation {
   int iterations_max_ = 0;
   bool diverged_ = false;
   std::string divergence_;
+  // Curing.
+  std::optional<CureModel> cure_;
+  ActiveLights lights_;
+  std::optional<CuringLight> hand_light_;
+  CureUpdate last_cure_;
+  int steps_since_cure_update_ = 0;
+  real light_on_s_ = 0, cure_at_rest_s_ = 0;
+  std::uint64_t cure_updates_at_rest_ = 0;
 };
 
 }  // namespace dentsph

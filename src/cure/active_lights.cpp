@@ -2,6 +2,7 @@
 #include "dentsph/active_lights.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace dentsph {
 
@@ -20,6 +21,15 @@ real ActiveLights::end() const {
   real e = 0;
   for (const Span& s : spans_) e = std::max(e, s.end);
   return e;
+}
+
+real ActiveLights::next_change(real t) const {
+  real next = std::numeric_limits<real>::infinity();
+  for (const Span& s : spans_) {
+    if (s.begin > t) next = std::min(next, s.begin);
+    if (s.end > t) next = std::min(next, s.end);
+  }
+  return next;
 }
 
 }  // namespace dentsph

@@ -34,7 +34,7 @@ std::string increment_message(const IncrementCure& c, real criterion) {
 
 }  // namespace
 
-CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_in, real criterion) {
+CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_in, real criterion, real ceiling) {
   CureAssessment a;
   a.criterion = criterion;
   const Vec3 up = up_in / norm(up_in);
@@ -46,9 +46,14 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     real lo = inf, hi = -inf;
   };
   std::map<int, Acc> acc;
+  // The paste assessed: curable, finite, not above the ceiling (drawn up on the instrument).
+  auto assessed = [&](std::uint32_t i) {
+    return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(dot(s.pos[i], up) > ceiling);
+  };
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];
-    if (!c.curable[id] || !is_finite(s.pos[i])) continue;
+    if (c.curable[id] && is_finite(s.pos[i]) && !assessed(i)) ++a.left_out;
+    if (!assessed(i)) continue;
     Acc& g = acc[c.increment[id]];
     const real h = dot(s.pos[i], up);
     ++g.n, g.lo = std::min(g.lo, h), g.hi = std::max(g.hi, h);
@@ -62,7 +67,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     std::uint32_t n_top = 0, n_base = 0;
     for (std::uint32_t i = 0; i < s.size(); ++i) {
       const std::uint32_t id = s.id[i];
-      if (!c.curable[id] || c.increment[id] != index || !is_finite(s.pos[i])) continue;
+      if (!assessed(i) || c.increment[id] != index) continue;
       const real h = dot(s.pos[i], up);
       if (h > g.hi - 0.5 * sp) r.top_dose += c.dose[id], r.top_alpha += c.alpha[id], ++n_top;
       if (h < g.lo + 0.5 * sp) r.base_dose += c.dose[id], r.base_alpha += c.alpha[id], ++n_base;
@@ -72,7 +77,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     real from = inf, to = -inf;
     for (std::uint32_t i = 0; i < s.size(); ++i) {
       const std::uint32_t id = s.id[i];
-      if (!c.curable[id] || c.increment[id] != index || !is_finite(s.pos[i])) continue;
+      if (!assessed(i) || c.increment[id] != index) continue;
       const bool ok = r.top_alpha > 0 && c.alpha[id] >= criterion * r.top_alpha;
       const real volume = s.mass[i] / s.rho0[i];
       a.paste_volume += volume;
@@ -109,6 +114,7 @@ std::string cure_assessment_json(const CureAssessment& a) {
   j["paste_volume_mm3"] = a.paste_volume / (mm * mm * mm);
   j["under_cured_volume_mm3"] = a.under_cured_volume / (mm * mm * mm);
   j["message"] = a.message;
+  j["left_out_particles"] = a.left_out;
   json incs = json::array();
   for (const IncrementCure& r : a.increments) {
     json x;

@@ -64,11 +64,23 @@ std::uint32_t update_conversion(const CureModel& cm, State& s) {
 
 }  // namespace
 
+namespace {
+
+bool light_reaches(const CureModel& cm, const std::optional<CuringLight>& light) {
+  return light && light->on && light->irradiance > 0 && cm.paste.light_cured;
+}
+
+}  // namespace
+
+bool cure_pass_due(const CureModel& cm, const State& s, const std::optional<CuringLight>& light) {
+  return light_reaches(cm, light) != s.cure.light_on || s.time >= s.cure.next_pass;
+}
+
 CureUpdate cure_between_steps(const CureModel& cm, State& s, const std::optional<CuringLight>& light, real dt) {
   CureState& c = s.cure;
   const CureMaterial& m = cm.paste;
   CureUpdate up;
-  const bool lit = light && light->on && light->irradiance > 0 && m.light_cured;
+  const bool lit = light_reaches(cm, light);
   // A light turned on or off: a pass now. A light that moved (a hand-held light follows the hand):
   // the next pass, within an interval, takes its new place.
   if (lit != c.light_on) {

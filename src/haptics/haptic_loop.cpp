@@ -88,6 +88,8 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     // Button 1's presses are counted here, at the device's rate, so that the simulation loop,
     // which sees only the newest command, misses none between two of its steps.
     if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) count_press(now);
+    // Button 2 turns the curing light on or off: each press counts (a toggle adds nothing).
+    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonLight) ++light_presses_;
     sample_ = fresh;
     const Vec3 x = sample_.pose.position;
     const double ddt = sample_.device_time_s - prev_device_time_;
@@ -157,6 +159,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
     c.dispense_presses = dispense_presses_;
+    c.light_presses = light_presses_;
     c.valid = true;
     shared_.command.publish();
   }

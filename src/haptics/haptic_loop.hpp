@@ -52,6 +52,7 @@ class HapticLoop {
   // device state
   DeviceSample sample_;
   std::uint64_t dispense_presses_ = 0;  // button 1 presses counted in fresh samples (ToolCommand)
+  std::uint64_t light_presses_ = 0;     // button 2 presses (the curing light), every one
   std::array<std::int64_t, limits::max_dispense_presses_per_s> press_ns_{};  // the last ones counted
   std::size_t next_press_ = 0;
   std::int64_t session_start_ns_ = 0;  // simulation outputs answering older commands are ignored

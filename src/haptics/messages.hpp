@@ -15,6 +15,7 @@ struct ToolCommand {
   std::int64_t stamp_ns = 0;  // runtime clock when the haptic loop published it
   std::uint32_t sequence = 0; // device pose sequence it came from
   std::uint64_t dispense_presses = 0;  // presses of button 1 since the start (kButtonDispense)
+  std::uint64_t light_presses = 0;     // presses of button 2 since the start (kButtonLight)
   bool valid = false;
 };
 

@@ -56,7 +56,8 @@ std::string realtime_json(const RealtimeResult& r) {
               {"step_p99_us", r.sim.step_p99_us},
               {"step_max_us", r.sim.step_max_us},
               {"stalls_injected", r.sim.stalls_injected},
-              {"button_dispenses", r.sim.button_dispenses}};
+              {"button_dispenses", r.sim.button_dispenses},
+              {"light_toggles", r.sim.light_toggles}};
   j["consumer"] = {{"frames", r.consumer.frames},
                    {"rate_hz", r.consumer.rate_hz},
                    {"snapshot_age_p99_us", r.consumer.snapshot_age_p99_us}};

@@ -46,6 +46,11 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
         if (on_event) on_event(sim.synced(), r.events[next_event]);
         continue;
       }
+      if (i == kLightToggle) {
+        sim.toggle_light();
+        if (on_event) on_event(sim.synced(), r.events[next_event]);
+        continue;
+      }
       if (i >= kToolSwitch) {
         const std::vector<std::string>& names = instrument_names();
         if (i - kToolSwitch >= names.size())

@@ -27,7 +27,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   coupling.max_speed_m_per_s = sim_.model().iisph.cfl * sim_.model().kernel.h / dt / opt_.workspace.scale;
   VirtualCoupling proxy(coupling);
   bool proxy_started = false;
-  std::uint64_t presses_handled = 0;
+  std::uint64_t presses_handled = 0, light_presses_handled = 0;
   const real dispense_volume = increment_volume_or_default(sim_.scene(), opt_.dispense_volume);
   const IncrementPaste paste = scene_paste(sim_.scene());
   while (!shared_.stop.load(std::memory_order_relaxed)) {
@@ -60,6 +60,12 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       events.push_back({state.steps, kButtonIncrement});
       sim_.dispense(dispense_volume, paste);
       ++rep_.button_dispenses;
+    }
+    // Button 2 turns the curing light over the cavity on or off, each press recorded.
+    for (; light_presses_handled < cmd.light_presses; ++light_presses_handled) {
+      events.push_back({state.steps, kLightToggle});
+      sim_.toggle_light();
+      ++rep_.light_toggles;
     }
     sim_.apply_due_events([&](std::size_t i) { events.push_back({state.steps, std::uint32_t(i)}); });
     Pose pose = state.tool_pose;  // without a device pose yet, the tool stays where it is

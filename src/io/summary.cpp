@@ -56,6 +56,13 @@ std::string summary_json(const RunSummary& s) {
   j["events_applied"] = s.events_applied;
   if (!s.cavity_json.empty()) j["cavity"] = nlohmann::json::parse(s.cavity_json);
   if (!s.assessment_json.empty()) j["assessment"] = nlohmann::json::parse(s.assessment_json);
+  if (s.curing) {
+    nlohmann::json c = s.cure_json.empty() ? nlohmann::json::object() : nlohmann::json::parse(s.cure_json);
+    c["light_on_s"] = s.light_on_s;
+    c["at_rest_s"] = s.cure_at_rest_s;
+    c["updates_at_rest"] = s.cure_updates_at_rest;
+    j["cure"] = c;
+  }
   if (!s.realtime_json.empty()) j.update(nlohmann::json::parse(s.realtime_json));
   return j.dump(2);
 }

@@ -56,15 +56,52 @@ std::optional<double> number_at(const nlohmann::json& j, const std::string& path
   while (true) {
     const std::size_t b = path.find('.', a);
     const std::string key = path.substr(a, b == std::string::npos ? std::string::npos : b - a);
-    if (!at->is_object()) return std::nullopt;
-    const auto it = at->find(key);
-    if (it == at->end()) return std::nullopt;
-    at = &*it;
+    if (at->is_array()) {  // an index: "cure.increments.0.thickness_mm"
+      if (key.empty() || key.size() > 9 || key.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+      const std::size_t k = std::stoul(key);
+      if (k >= at->size()) return std::nullopt;
+      at = &(*at)[k];
+    } else {
+      if (!at->is_object()) return std::nullopt;
+      const auto it = at->find(key);
+      if (it == at->end()) return std::nullopt;
+      at = &*it;
+    }
     if (b == std::string::npos) break;
     a = b + 1;
   }
   if (!at->is_number()) return std::nullopt;
   return at->get<double>();
+}
+
+std::vector<Criterion> cure_criteria(const nlohmann::json& s) {
+  std::vector<Criterion> out;
+  if (!s.contains("cure") || !s["cure"].is_object() || !s["cure"].contains("increments")) return out;
+  const nlohmann::json& cure = s["cure"];
+  const double criterion = cure.value("criterion_bottom_top", 0.8);
+  const nlohmann::json& incs = cure["increments"];
+  for (std::size_t k = 0; k < incs.size(); ++k) {
+    const nlohmann::json& x = incs[k];
+    const int index = x.value("increment", 0);
+    const std::optional<double> adequate = number_at(x, "adequately_cured_fraction");
+    Criterion c = make(fmt::format("cure_{}", index),
+                       index == 0 ? std::string("The initial paste cured") : fmt::format("Increment {} cured", index),
+                       fmt::format("cure.increments.{}.adequately_cured_fraction", k), adequate,
+                       adequate ? fmt::format("{:.0f} % adequately cured, {:.1f} mm thick", 100 * *adequate,
+                                              x.value("thickness_mm", 0.0))
+                                : "",
+                       fmt::format("bottom/top conversion at least {:.1f} throughout", criterion),
+                       "Place increments of 2 mm or less and cure each for the light's full time (20 s at "
+                       "1000 mW/cm2) with the light's tip close over the cavity.");
+    if (adequate) c.verdict = judge(x.value("under_cured_volume_mm3", 0.0) <= 0);
+    c.details.push_back(x.value("message", ""));
+    c.details.push_back(fmt::format("dose at its top {:.3g} J/cm2, at its base {:.3g} J/cm2; conversion {:.2f} at its "
+                                    "top, {:.2f} at its base",
+                                    x.value("top_dose_J_per_cm2", 0.0), x.value("base_dose_J_per_cm2", 0.0),
+                                    x.value("top_conversion", 0.0), x.value("base_conversion", 0.0)));
+    out.push_back(c);
+  }
+  return out;
 }
 
 double device_limit_N(const nlohmann::json& summary, const Thresholds& t) {

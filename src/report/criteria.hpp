@@ -45,6 +45,11 @@ struct Thresholds {
 // procedure.json's "increments" (null: not measured).
 std::vector<Criterion> filling_criteria(const nlohmann::json& summary, const nlohmann::json& procedure,
                                         const Thresholds& t = {});
+// The light curing's criteria from summary.json's "cure" (cure_assessment_json): one per increment,
+// good when it is adequately cured throughout (bottom/top conversion at least the criterion, 0.8),
+// its message (thickness, the dose at its base, the share under-cured) as its detail. Empty when the
+// run did not cure.
+std::vector<Criterion> cure_criteria(const nlohmann::json& summary);
 // The haptic loop's health from summary.json's "haptic" section (empty for an offline run).
 std::vector<Criterion> haptic_criteria(const nlohmann::json& summary, const Thresholds& t = {});
 
@@ -52,8 +57,8 @@ std::vector<Criterion> haptic_criteria(const nlohmann::json& summary, const Thre
 double device_limit_N(const nlohmann::json& summary, const Thresholds& t = {});
 std::string device_limit_name(const nlohmann::json& summary);
 
-// A number of a JSON object by a dotted path ("assessment.fill_fraction"); none when absent or
-// not a number.
+// A number of a JSON object by a dotted path ("assessment.fill_fraction"; an array's element by its
+// index: "cure.increments.0.thickness_mm"); none when absent or not a number.
 std::optional<double> number_at(const nlohmann::json& j, const std::string& path);
 
 }  // namespace dentsph::report

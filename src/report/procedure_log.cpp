@@ -17,7 +17,12 @@ namespace dentsph::report {
 
 namespace {
 
-std::uint32_t material_count(const State& s) { return s.count(Role::material); }
+// Paste particles: moving, or set by the cure (now wall, still paste).
+std::uint32_t material_count(const State& s) {
+  std::uint32_t n = 0;
+  for (std::uint32_t i = 0; i < s.size(); ++i) n += s.is_paste(i);
+  return n;
+}
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
@@ -39,6 +44,8 @@ void ProcedureLog::applied(const State& state, const ProcedureEvent& event) {
   if (event.kind == ProcedureEvent::Kind::dispense) {
     e.kind = "dispense";
     e.particles = std::int64_t(now) - std::int64_t(material_);
+  } else if (event.kind == ProcedureEvent::Kind::cure) {
+    e.kind = "cure";
   } else {
     e.kind = "switch_tool";
     e.tool = event.tool;
@@ -54,7 +61,7 @@ std::vector<IncrementThickness> ProcedureLog::thickness(const Scene& scene, cons
   // the order particles are added, and removing the tool's keeps their order).
   std::vector<std::uint32_t> material;
   for (std::uint32_t id = 0; id < state.size(); ++id)
-    if (state.role[state.index_of_id[id]] == Role::material) material.push_back(state.index_of_id[id]);
+    if (state.is_paste(state.index_of_id[id])) material.push_back(state.index_of_id[id]);
   // Each increment's particles: logged with its event, or, where the log does not know them (an
   // increment of the device's button in a realtime session), counted from the state's increment
   // numbers (every dispense numbers its increment, in the order they came: CureState).
@@ -112,6 +119,9 @@ std::optional<LoggedEvent> logged(const Scene& scene, const EventSample& r) {
   if (r.index == kButtonIncrement) {
     e.kind = "dispense";
     e.source = "button";
+  } else if (r.index == kLightToggle) {
+    e.kind = "light";
+    e.source = "button";
   } else if (r.index >= kToolSwitch) {
     e.kind = "switch_tool";
     e.source = "button";
@@ -119,7 +129,9 @@ std::optional<LoggedEvent> logged(const Scene& scene, const EventSample& r) {
   } else if (r.index < scene.events.size()) {
     const ProcedureEvent& ev = scene.events[r.index];
     e.source = "procedure";
-    e.kind = ev.kind == ProcedureEvent::Kind::dispense ? "dispense" : "switch_tool";
+    e.kind = ev.kind == ProcedureEvent::Kind::dispense ? "dispense"
+             : ev.kind == ProcedureEvent::Kind::cure   ? "cure"
+                                                         : "switch_tool";
     e.tool = ev.tool;
   } else {
     return std::nullopt;

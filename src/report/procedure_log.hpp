@@ -18,7 +18,8 @@ namespace dentsph::report {
 struct LoggedEvent {
   std::uint64_t step = 0;   // applied before this step
   double t_s = 0;           // s, simulated (step times dt)
-  std::string kind;         // "dispense" or "switch_tool"
+  std::string kind;         // "dispense", "switch_tool", "cure" (a procedure's curing light on) or
+                            // "light" (the device's button 2: the light on or off)
   std::string source;       // "procedure", "button" (the device's button or the viewer's D key)
   std::string tool;         // switch_tool: the instrument
   std::int64_t particles = -1;  // dispense: particles added; -1 when not known

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -68,7 +69,11 @@ void finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<
 
 void finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log) {
   stamp_summary(dir, scene);
-  pictures(dir, scene, state.pos, state.role, read_summary(dir / "summary.json"));
+  // Paste that has set (now wall) is drawn as paste.
+  std::vector<Role> roles(state.role.begin(), state.role.end());
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (state.is_paste(i)) roles[i] = Role::material;
+  pictures(dir, scene, state.pos, roles, read_summary(dir / "summary.json"));
   write_procedure_json(dir / "procedure.json", scene, log, log.thickness(scene, state));
   write_session_report(dir);
 }

@@ -109,6 +109,10 @@ void markers_from_procedure(SessionFolder& s, const std::vector<double>* step_ti
                     : e.value("t_s", 0.0);
     if (m.kind == "dispense")
       m.label = fmt::format("increment {}{}", ++increments, e.value("source", "") == "button" ? " (button)" : "");
+    else if (m.kind == "cure")
+      m.label = "curing light on";
+    else if (m.kind == "light")
+      m.label = "curing light on or off (button)";
     else
       m.label = fmt::format("instrument: {}", e.value("tool", "?"));
     s.markers.push_back(m);

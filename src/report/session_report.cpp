@@ -64,7 +64,7 @@ constexpr const char* kForcePlotScript = R"js(
   const top = fmax * 1.05;
   datasets.push({label: 'device limit: ' + data.limit_label, data: [{x: 0, y: data.limit}, {x: tmax, y: data.limit}],
                  borderColor: '#c0392b', backgroundColor: '#c0392b', borderDash: [6, 4], borderWidth: 1.5, pointRadius: 0});
-  const kinds = {dispense: ['increments', '#27ae60'], switch_tool: ['instrument switches', '#e67e22'], event: ['events', '#7f8c8d']};
+  const kinds = {dispense: ['increments', '#27ae60'], switch_tool: ['instrument switches', '#e67e22'], cure: ['curing light on', '#d4ac0d'], light: ['curing light switched', '#d4ac0d'], event: ['events', '#7f8c8d']};
   for (const kind of Object.keys(kinds)) {
     const ms = data.markers.filter(m => m.kind === kind);
     if (!ms.length) continue;
@@ -152,6 +152,17 @@ std::string session_report_html(const SessionFolder& s) {
     h += "<p>No assessment: this scene has no prepared tooth.</p>\n";
   h += criteria_table(filling_criteria(j, s.procedure), "criteria");
 
+  if (j.contains("cure") && j["cure"].is_object()) {
+    const nlohmann::json& c = j["cure"];
+    h += "<h2>Light curing</h2>\n";
+    h += fmt::format("<p id=\"cure-message\">{}</p>\n", escape_html(c.value("message", "the paste was not assessed")));
+    h += criteria_table(cure_criteria(j), "cure");
+    h += fmt::format("<p class=\"sub\">The light was on for {:.3g} s. An increment is adequately cured where its "
+                     "paste reached at least {:.1f} of the conversion at its top (the usual bottom/top criterion); "
+                     "under-cured paste at the base of a thick increment fails later.</p>\n",
+                     c.value("light_on_s", 0.0), c.value("criterion_bottom_top", 0.8));
+  }
+
   h += "<h2>Force on the instrument</h2>\n";
   if (s.forces.empty()) {
     h += "<p>No force record in this folder.</p>\n";
@@ -162,7 +173,7 @@ std::string session_report_html(const SessionFolder& s) {
          "</script>\n<script>" + kForcePlotScript + "</script>\n";
     h += "<p class=\"sub\">The force the instrument meets, as a haptic device renders it (simulated force times the "
          "force scale); the dashed red line is the device's limit, dashed green lines the increments, orange the "
-         "instrument switches.</p>\n";
+         "instrument switches, yellow the curing light turned on.</p>\n";
   }
 
   if (s.realtime) {

@@ -68,7 +68,7 @@ Vec3 increment_axis(const Scene& scene) { return scene.tooth ? scene.tooth->fram
 real material_volume(const State& state) {
   real v = 0;
   for (std::uint32_t i = 0; i < state.size(); ++i)
-    if (state.role[i] == Role::material) v += state.mass[i] / state.rho0[i];
+    if (state.is_paste(i)) v += state.mass[i] / state.rho0[i];  // set paste too
   return v;
 }
 
@@ -89,7 +89,7 @@ std::size_t dispense_increment(const Scene& scene, State& state, real volume, co
       scene.tooth ? scene.tooth->frame().origin : 0.5 * (scene.model.domain_min + scene.model.domain_max);
   real top = 0;
   for (std::uint32_t i = 0; i < state.size(); ++i)
-    if (state.role[i] == Role::material) top = std::max(top, dot(state.pos[i] - axis_origin, up));
+    if (state.is_paste(i)) top = std::max(top, dot(state.pos[i] - axis_origin, up));  // set paste too
   const Vec3 centre = axis_origin + up * (top + r + 2 * s);
   const std::vector<ParticleInit> ps = material_increment(centre, volume, s, paste.mass, paste.material, paste.material_index);
   const std::uint32_t first = state.size();

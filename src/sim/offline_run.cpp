@@ -28,7 +28,11 @@ class SnapshotWriter {
       : dir_(dir), interval_(interval), index_(dir / "particles.pvd") {
     std::filesystem::create_directories(dir_ / "particles");
   }
-  bool due(const State& s) const { return interval_ > 0 && s.time + 1e-12 >= next_; }
+  // `resting`: the paste is curing at rest (large cure updates): a snapshot every
+  // kRestingInterval at most, so that a 20 s cure writes 20, not 2000.
+  bool due(const State& s, bool resting = false) const {
+    return interval_ > 0 && s.time + 1e-12 >= next_ + (resting ? std::max<real>(0, kRestingInterval - interval_) : 0);
+  }
   void maybe_write(const State& s, bool force = false) {
     if (!force && !due(s)) return;
     const std::string name = fmt::format("particles/step_{:08d}.vtu", s.steps);
@@ -36,6 +40,7 @@ class SnapshotWriter {
     index_.add(s.time, name);
     next_ = s.time + interval_;
   }
+  static constexpr real kRestingInterval = 1.0;  // s
   std::size_t count() const { return index_.size(); }
 
  private:
@@ -76,17 +81,36 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   const State& state = sim.state();
   // The procedure's log: each event as applied (the increments' particles, for their thickness).
   report::ProcedureLog procedure(state);
-  for (std::uint64_t k = 0; k < total; ++k) {
+  // A run that cures goes by simulated time: while the paste cures at rest, the Simulation
+  // advances the cure in large updates between a few steps (CureSchedule); --steps N takes N steps.
+  const bool by_time = sim.curing() && opt.steps == 0;
+  const real dt = scene.model.dt;
+  auto finished = [&](std::uint64_t k) { return by_time ? state.time + 0.5 * dt >= duration : k >= total; };
+  std::uint64_t k = 0;        // steps taken
+  std::uint64_t reported = 0;  // progress: the last step-equivalent reported
+  auto progress = [&] {
+    if (!opt.on_progress) return;
+    const std::uint64_t done =
+        by_time ? std::min<std::uint64_t>(total, std::uint64_t(std::llround(state.time / dt))) : k;
+    if (done < reported + report_every && done != total) return;
+    reported = done;
+    const double w = elapsed();
+    opt.on_progress({done, total, state.time, w, done > 0 ? w / double(done) * double(total - done) : 0});
+  };
+  while (!finished(k)) {
     sim.apply_due_events([&](std::size_t i) { procedure.applied(sim.synced(), scene.events[i]); });
+    if (by_time && sim.advance_cure_at_rest(duration) > 0) {
+      if (snaps && snaps->due(state, true)) snaps->maybe_write(sim.synced());
+      progress();
+      continue;
+    }
     const real t_forces = state.time;
     const bool going = sim.step(sim.keyframe_pose());
+    ++k;
     if (csv) csv->add(t_forces, state.tool_wrench);
     if (!going) break;  // exploded material: the run says so instead of writing garbage
-    if (snaps && snaps->due(state)) snaps->maybe_write(sim.synced());
-    if (opt.on_progress && ((k + 1) % report_every == 0 || k + 1 == total)) {
-      const double w = elapsed();
-      opt.on_progress({k + 1, total, state.time, w, w / double(k + 1) * double(total - k - 1)});
-    }
+    if (snaps && snaps->due(state, sim.curing_at_rest())) snaps->maybe_write(sim.synced());
+    progress();
   }
   RunSummary sum = sim.summary();
   sum.wall_time_s = elapsed();

@@ -11,14 +11,14 @@ namespace dentsph {
 
 namespace {
 
-// The first event.count candidate sites that keep event.clearance from the material there (the
-// material in a DiskSet of that radius: each site looks at the points near it, linear in the
-// material and the sites instead of their product).
+// The first event.count candidate sites that keep event.clearance from the paste there, moving or
+// set by the cure (the paste in a DiskSet of that radius: each site looks at the points near it,
+// linear in the paste and the sites instead of their product).
 std::vector<ParticleInit> free_sites(const State& state, const ProcedureEvent& event) {
   std::vector<ParticleInit> ps;
   DiskSet material(event.clearance);  // no clearance: nothing is near
   for (std::uint32_t i = 0; i < state.size(); ++i)
-    if (state.role[i] == Role::material && is_finite(state.pos[i])) material.add(state.pos[i]);
+    if (state.is_paste(i) && is_finite(state.pos[i])) material.add(state.pos[i]);  // set paste too
   for (const ParticleInit& site : event.particles) {
     if (ps.size() == event.count) break;
     if (!material.near(site.pos)) ps.push_back(site);

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/cure_assessment.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/tools.hpp"
@@ -19,6 +20,8 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   acoustic_violated_ = model_.dt > limits_.acoustic;
   viscous_violated_ = model_.dt > limits_.viscous;
   stepper_ = make_stepper(options.backend, model_, state_, options.threads, options.thread_policy);
+  lights_ = ActiveLights(scene.events);
+  if (!lights_.empty()) start_curing();
 }
 
 const State& Simulation::synced() {
@@ -76,6 +79,14 @@ void Simulation::set_paste(const Model& model, const Material& paste) {
     m.mu = paste.mu;
   }
   st.refresh_materials(model_);
+  // What the cure's mapping starts from, so that the next rise in conversion keeps the edit.
+  for (std::uint32_t i = 0; i < st.size(); ++i)
+    if (st.role[i] == Role::material) {
+      const std::uint32_t id = st.id[i];
+      st.cure.Kp0[id] = paste.Kp;
+      st.cure.Ka0[id] = paste.Ka;
+      st.cure.mu0[id] = paste.mu;
+    }
   l.force = limits_.force;
   limits_ = l;
   rebuild_stepper();
@@ -97,6 +108,7 @@ bool Simulation::step(const Pose& tool_pose) {
   }
   const real t = state_.time;
   stepper_->step(state_, tool_pose);
+  ++steps_since_cure_update_;
   const StepDiagnostics& d = state_.diagnostics;
   forces_.add(state_.tool_wrench.force, model_.dt);
   const real force_limit = force_time_step_limit(model_, d);
@@ -122,6 +134,7 @@ bool Simulation::step(const Pose& tool_pose) {
         state_.time, state_.steps, model_.solver == Solver::iisph ? "velocity CFL" : "force", limits_.force,
         model_.dt);
   }
+  if (!diverged_) cure_after_step(t);
   return !diverged_;
 }
 
@@ -145,8 +158,11 @@ RunSummary Simulation::summary() {
   }
   s.steps = st.steps;
   s.sim_time_s = st.time;
-  s.material = st.count(Role::material);  // at the end: increments add material
-  s.boundary = st.count(Role::boundary);
+  // At the end: increments add paste; paste set by the cure is still paste (a wall to the step).
+  std::uint32_t set = 0;
+  for (std::uint32_t i = 0; i < st.size(); ++i) set += st.role[i] == Role::boundary && st.is_paste(i);
+  s.material = st.count(Role::material) + set;
+  s.boundary = st.count(Role::boundary) - set;
   s.tool = st.count(Role::tool);
   s.bonds = st.bonds.counters;
   s.bonds_current = st.bonded_pairs();
@@ -161,6 +177,20 @@ RunSummary Simulation::summary() {
   s.force_scale = scene_.force_scale;
   s.events_applied = events_applied_;
   if (scene_.tooth) s.cavity_json = cavity_json(*scene_.tooth);
+  if (cure_) {
+    s.curing = true;
+    s.light_on_s = light_on_s_;
+    s.cure_at_rest_s = cure_at_rest_s_;
+    s.cure_updates_at_rest = cure_updates_at_rest_;
+    if (scene_.tooth) {
+      // Paste more than 1 mm above the occlusal reference (drawn up on the instrument, above the
+      // light's window over the cavity) is no part of the filling.
+      const ToothFrame& f = scene_.tooth->frame();
+      const CureAssessment a = assess_cure(*cure_, st, f.z, 0.8, dot(f.origin, f.z) / norm(f.z) + 1e-3);
+      s.cure_json = cure_assessment_json(a);
+      s.cure_report = cure_assessment_report(a);
+    }
+  }
   return s;
 }
 

@@ -505,6 +505,67 @@ TEST(HapticRuntime, ButtonOneDispensesOneIncrementPerPress) {
   EXPECT_GT(differ, 0u);
 }
 
+// A device held still whose button 2 is down during [down, up) s: the curing light over the paste.
+class LightButtonDevice final : public Device {
+ public:
+  LightButtonDevice(double down, double up, double end_s) : down_(down), up_(up), end_s_(end_s) {}
+  std::string name() const override { return "light button"; }
+  void start(std::int64_t t0_ns) override { t0_ns_ = t0_ns; }
+  bool read(std::int64_t now_ns, DeviceSample& s) override {
+    const double t = double(now_ns - t0_ns_) * 1e-9;
+    s.pose.position = {0.03, 0, 0.02};
+    s.stamp_ns = now_ns;
+    s.device_time_s = t;
+    s.sequence = ++sequence_;
+    s.buttons = t >= down_ && t < up_ ? proto::kButtonLight : 0u;
+    s.valid = true;
+    return true;
+  }
+  void write(std::int64_t, const ForceCommand&) override {}
+  bool finished(std::int64_t now_ns) const override { return double(now_ns - t0_ns_) * 1e-9 >= end_s_; }
+
+ private:
+  double down_, up_, end_s_;
+  std::int64_t t0_ns_ = 0;
+  std::uint32_t sequence_ = 0;
+};
+
+// The device's button 2 turns the curing light over the paste on (one press, held 0.1 s: one
+// toggle); the paste under it cures; the toggle is in the recording and a replay cures the same,
+// bit for bit, while a replay without it cures nothing.
+TEST(HapticRuntime, ButtonTwoTurnsTheCuringLightOnAndIsReplayed) {
+  const Scene scene = press_scene();
+  RealtimeOptions o = options(ForceMode::direct);
+  LightButtonDevice light(0.1, 0.2, 0.6);
+  const RealtimeResult r = run_realtime(scene, light, o);
+  EXPECT_EQ(r.run.status, "completed") << r.run.message;
+  EXPECT_EQ(r.sim.light_toggles, 1u);
+  EXPECT_TRUE(r.run.curing);
+  EXPECT_GT(r.run.light_on_s, 0.2);
+  EXPECT_EQ(realtime_sections(r)["sim"]["light_toggles"], 1);
+  ASSERT_EQ(r.recording.events.size(), 1u);
+  EXPECT_EQ(r.recording.events[0].index, kLightToggle);
+
+  const auto dir = std::filesystem::temp_directory_path() / ("dentsph_light_replay_" + std::to_string(::getpid()));
+  save_recording(dir, r.recording);
+  Recording loaded = load_recording(dir);
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(loaded.events.size(), 1u);
+  EXPECT_EQ(loaded.events[0].index, kLightToggle);
+  State a, b;
+  const std::vector<Vec3> fa = replay_steps(scene, loaded, 1, Backend::cpu, &a);
+  const std::vector<Vec3> fb = replay_steps(scene, loaded, 1, Backend::cpu, &b);
+  ASSERT_EQ(fa.size(), r.recording.steps.size());
+  for (std::size_t k = 0; k < fa.size(); ++k) ASSERT_EQ(fa[k], r.recording.steps[k].tool_force) << k;
+  ASSERT_EQ(a.cure.alpha, b.cure.alpha);
+  const real cured = *std::max_element(a.cure.alpha.begin(), a.cure.alpha.end());
+  EXPECT_GT(cured, 0) << "the paste under the light converted";
+  loaded.events.clear();
+  State dark;
+  (void)replay_steps(scene, loaded, 1, Backend::cpu, &dark);
+  EXPECT_EQ(*std::max_element(dark.cure.alpha.begin(), dark.cure.alpha.end()), 0);
+}
+
 // Presses shorter than the simulation's step interval are not lost: with the simulation capped at
 // 5 steps per second, three taps of 20 ms within 0.2 s, all between two steps, give three increments.
 TEST(HapticRuntime, ButtonTapsBetweenTwoSimulationStepsAreEachDispensed) {

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -119,6 +121,42 @@ void fills_the_crown(Solver solver) {
 }
 
 TEST(Filling, TheBuiltInProcedureFillsTheBuiltInCrown) { fills_the_crown(Solver::paper); }
+
+// The built-in procedure with each increment light-cured for 20 s (scenes/cured_procedure.json):
+// it fills and cures the built-in crown, nothing leaked or lost, every increment adequately cured
+// (bottom/top conversion 0.8 or more in at least 95% of it). The increments set where their own
+// condensation left them, so a gap it leaves at a line angle is not closed by the next increment's
+// pressing as in the uncured procedure: measured, 97.6% filled with 2 voids at the walls (0.108
+// mm^3; the uncured procedure: 98.1%, none).
+TEST(Filling, TheCuredProcedureFillsAndCuresTheBuiltInCrown) {
+  std::ifstream in("scenes/cured_procedure.json");
+  ASSERT_TRUE(in) << "scenes/cured_procedure.json (tests run from the repository root)";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Scene sc = dental_procedure(default_tooth_scene(), text, "scenes/cured_procedure.json");
+  sc.output.snapshot_interval = 0;
+  RunOptions opt;
+  opt.threads = 1;
+  const RunSummary s = run_offline(sc, opt);
+  ASSERT_EQ(s.status, "completed") << s.message;
+  const auto a = nlohmann::json::parse(s.assessment_json);
+  const auto c = nlohmann::json::parse(s.cure_json);
+  std::printf("cured procedure: fill %.3f, %d voids (%.3f mm^3), leaked %d, lost %d; %llu steps, %.1f s of light (%.1f s "
+              "in %llu updates at rest); %s\n",
+              a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
+              a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(), (unsigned long long)s.steps, s.light_on_s,
+              s.cure_at_rest_s, (unsigned long long)s.cure_updates_at_rest, s.cure_report.c_str());
+  EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
+  EXPECT_LT(a["void_volume_mm3"].get<double>(), 0.2);
+  EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
+  EXPECT_EQ(a["lost_particles"].get<int>(), 0);
+  EXPECT_NEAR(s.light_on_s, 60, 1e-6);
+  EXPECT_GT(s.cure_at_rest_s, 40) << "most of the light's time advanced in large updates";
+  ASSERT_EQ(c["increments"].size(), 3u);
+  for (const auto& inc : c["increments"]) {
+    EXPECT_GE(inc["adequately_cured_fraction"].get<double>(), 0.95) << inc["message"];
+    EXPECT_GT(inc["top_dose_J_per_cm2"].get<double>(), 10) << inc["message"];
+  }
+}
 
 constexpr const char* kFdi36 = "molar_FDI36_lower_left_first.stl";
 constexpr const char* kFdi46 = "molar_FDI46_lower_right_first.stl";

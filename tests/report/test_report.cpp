@@ -99,6 +99,54 @@ TEST(Report, PageCarriesTheSummarysNumbersExactly) {
   EXPECT_NE(html.find("A. Student, class I"), std::string::npos);
 }
 
+// The light curing's section: the overall message, a criterion per increment (adequately cured
+// throughout: good; an under-cured base: needs work, with the increment's message), the numbers as
+// summary.json holds them, and the curing light's marker on the force plot.
+TEST(Report, LightCuringSectionJudgesEachIncrement) {
+  nlohmann::json s = summary(0.99, 0, 1.0, 2.0, 0.5);
+  const std::string thick =
+      "increment 2 is 3.6 mm thick: its base received 0.4 J/cm2 and 41% of it is under-cured (conversion below 80% "
+      "of its top's), from 2.1 mm below its top to its base";
+  s["cure"] = {{"criterion_bottom_top", 0.8},
+               {"paste_volume_mm3", 30.0},
+               {"under_cured_volume_mm3", 6.5},
+               {"light_on_s", 40.0},
+               {"message", "6.50 mm3 of paste under-cured (22% of 30.00 mm3) in 1 of 2 increments"},
+               {"increments",
+                {{{"increment", 1}, {"thickness_mm", 1.9}, {"top_dose_J_per_cm2", 19.5}, {"base_dose_J_per_cm2", 2.5},
+                  {"top_conversion", 0.6}, {"base_conversion", 0.55}, {"adequately_cured_fraction", 1.0},
+                  {"under_cured_volume_mm3", 0.0},
+                  {"message", "increment 1 is 1.9 mm thick: its base received 2.5 J/cm2, bottom/top conversion 0.92: "
+                              "adequately cured throughout"}},
+                 {{"increment", 2}, {"thickness_mm", 3.6}, {"top_dose_J_per_cm2", 19.5}, {"base_dose_J_per_cm2", 0.4},
+                  {"top_conversion", 0.6}, {"base_conversion", 0.2}, {"adequately_cured_fraction", 0.59},
+                  {"under_cured_volume_mm3", 6.5}, {"message", thick}}}}};
+  const std::vector<Criterion> cs = cure_criteria(s);
+  ASSERT_EQ(cs.size(), 2u);
+  EXPECT_EQ(by_id(cs, "cure_1").verdict, Verdict::good);
+  EXPECT_EQ(by_id(cs, "cure_2").verdict, Verdict::needs_work);
+  EXPECT_EQ(by_id(cs, "cure_2").details.at(0), thick);
+  EXPECT_EQ(number_at(s, "cure.increments.1.adequately_cured_fraction"), 0.59);
+  EXPECT_FALSE(number_at(s, "cure.increments.2.adequately_cured_fraction"));
+  EXPECT_FALSE(number_at(s, "cure.increments.x.adequately_cured_fraction"));
+  EXPECT_TRUE(cure_criteria(summary(1, 0, 0, 1, 1)).empty()) << "a run that did not cure has no such rows";
+
+  const fs::path d = write_folder("cure", s);
+  nlohmann::json procedure = nlohmann::json::parse(std::ifstream(d / "procedure.json"));
+  procedure["events"].push_back({{"step", 150}, {"t_s", 0.0075}, {"kind", "cure"}, {"source", "procedure"}});
+  std::ofstream(d / "procedure.json") << procedure.dump(2) << "\n";
+  const fs::path file = write_session_report(d);
+  std::ifstream in(file);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("<h2>Light curing</h2>"), std::string::npos);
+  EXPECT_NE(html.find("id=\"cure-message\">6.50 mm3 of paste under-cured"), std::string::npos);
+  EXPECT_NE(html.find(thick), std::string::npos);
+  EXPECT_NE(html.find("data-key=\"cure.increments.1.adequately_cured_fraction\" data-value=\"0.59\">59 % adequately "
+                      "cured, 3.6 mm thick<"),
+            std::string::npos);
+  EXPECT_NE(html.find("\"label\":\"curing light on\""), std::string::npos);
+}
+
 TEST(Report, BundledPlottingLibraryIsDebiansFileWhole) {
   std::ifstream in("/usr/share/javascript/chart.js/chart.min.js", std::ios::binary);
   if (!in) GTEST_SKIP() << "libjs-chart.js is not installed here (the build read it where it was)";

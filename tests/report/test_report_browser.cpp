@@ -153,6 +153,45 @@ TEST(ReportBrowser, OfflineRunsReportRendersWithItsPicturesPlotAndNumbers) {
   EXPECT_GT(paste, 3000);
 }
 
+// The built-in procedure with curing (scenes/cured_procedure.json) until 0.3 s into its first
+// increment's cure: the report's Light curing section gives the increment's verdict and message,
+// with the numbers summary.json holds, and the curing light's marker on the force plot.
+TEST(ReportBrowser, OfflineRunsReportShowsTheLightCuring) {
+  NEED_CHROMIUM();
+  const fs::path out = work() / "cured";
+  const Result run = dentsph("run --procedure scenes/cured_procedure.json --duration 1.2 --threads 2 --out " + out.string() + " -q");
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  ASSERT_TRUE(summary.contains("cure")) << summary.dump(2);
+  const nlohmann::json& cure = summary["cure"];
+  EXPECT_NEAR(cure["light_on_s"].get<double>(), 1.2 - 0.906, 1e-3);
+  ASSERT_EQ(cure["increments"].size(), 1u);
+  const nlohmann::json& one = cure["increments"][0];
+  // 0.29 s at 1000 mW/cm2 is 0.29 J/cm2 at the window: the top received nearly that.
+  EXPECT_GT(one["top_dose_J_per_cm2"].get<double>(), 0.2);
+  EXPECT_LT(one["top_dose_J_per_cm2"].get<double>(), 0.3);
+  const std::string dom = dump_dom(out / "report.html");
+  EXPECT_NE(dom.find("<h2>Light curing</h2>"), std::string::npos);
+  EXPECT_NE(dom.find(cure["message"].get<std::string>()), std::string::npos) << cure["message"];
+  EXPECT_NE(dom.find(one["message"].get<std::string>()), std::string::npos) << one["message"];
+  EXPECT_NE(dom.find("data-criterion=\"cure_1\""), std::string::npos);
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 7);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("id=\"force-plot\"[^>]*data-plotted=\"([0-9]+)\"")));
+  EXPECT_GE(std::stoi(m[1]), 4);  // the force, the device limit, the increments, the curing light
+  // As a person sees it: not blank, the section's verdict badge drawn in its colour.
+  const Png p = screenshot(out / "report.html", work() / "cured.png", 1100, 2600);
+  ASSERT_GT(p.w, 0);
+  int badges = 0;
+  for (int y = 0; y < p.h; ++y)
+    for (int x = 0; x < p.w; ++x) {
+      const auto c = p.at(x, y);
+      badges += (std::abs(c[0] - 0xd8) < 3 && std::abs(c[1] - 0xf0) < 3 && std::abs(c[2] - 0xda) < 3) ||
+                (std::abs(c[0] - 0xfd) < 3 && std::abs(c[1] - 0xe2) < 3 && std::abs(c[2] - 0xc8) < 3);
+    }
+  EXPECT_GT(badges, 500);
+}
+
 TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   NEED_CHROMIUM();
   const fs::path out = work() / "realtime";

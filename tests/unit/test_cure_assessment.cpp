@@ -61,6 +61,23 @@ TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
   EXPECT_NEAR(j["increments"][1]["base_dose_J_per_cm2"].get<double>(), 16 * std::exp(-3.5), 1e-9);
   EXPECT_NEAR(j["under_cured_volume_mm3"].get<double>(), a.under_cured_volume / 1e-9, 1e-9);
   EXPECT_NE(cure_assessment_report(a).find(two.message), std::string::npos);
+  EXPECT_EQ(a.left_out, 0u);
+
+  // Paste drawn up on the instrument, above the ceiling and out of the light, is left out: the
+  // increment's top and thickness are those of the paste below it.
+  State drawn = st;
+  const std::uint32_t top_id = st.size() - 1;  // increment 2's highest particle
+  drawn.pos[drawn.index_of_id[top_id]].z = 9 * mm;
+  drawn.cure.dose[top_id] = 0;
+  drawn.cure.alpha[top_id] = 0;
+  const CureAssessment with = assess_cure(cm, drawn, {0, 0, 1});
+  EXPECT_GT(with.increments[1].thickness, 7 * mm) << "unassessed, the drawn-up paste makes the increment thick";
+  const CureAssessment without = assess_cure(cm, drawn, {0, 0, 1}, 0.8, 6 * mm);
+  EXPECT_EQ(without.left_out, 1u);
+  EXPECT_EQ(without.increments[1].particles, two.particles - 1);
+  EXPECT_NEAR(without.increments[1].thickness, 3.6 * mm, 1e-12);
+  EXPECT_NEAR(without.increments[1].adequate_fraction, two.adequate_fraction, 0.01);
+  EXPECT_EQ(nlohmann::json::parse(cure_assessment_json(without))["left_out_particles"].get<int>(), 1);
 }
 
 TEST(CureAssessment, PasteNoLightReachedIsSaidSo) {

@@ -39,6 +39,34 @@ TEST(DentalProcedure, TheBuiltInProcedureIsTheShippedFile) {
   EXPECT_EQ(a.duration, b.duration);
 }
 
+// scenes/cured_procedure.json: the built-in procedure with each increment cured 20 s, the light's
+// window 1 mm above the occlusal reference pointing down the tooth's axis, after the instrument is
+// lifted and before the next increment; the instrument held still while the light is on.
+TEST(DentalProcedure, TheCuredProcedureCuresEachIncrementFor20Seconds) {
+  const Scene sc = load_dental_procedure(crown(), "scenes/cured_procedure.json");
+  const ToothFrame& f = crown().tooth.frame();
+  std::vector<const ProcedureEvent*> cures, dispenses;
+  for (const ProcedureEvent& e : sc.events) {
+    if (e.kind == ProcedureEvent::Kind::cure) cures.push_back(&e);
+    if (e.kind == ProcedureEvent::Kind::dispense) dispenses.push_back(&e);
+  }
+  ASSERT_EQ(cures.size(), 3u);
+  ASSERT_EQ(dispenses.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const ProcedureEvent& c = *cures[k];
+    EXPECT_EQ(c.duration, 20);
+    EXPECT_GT(c.t, dispenses[k]->t);
+    if (k + 1 < 3) {
+      EXPECT_LE(c.t + c.duration, dispenses[k + 1]->t + 1e-9);
+    }
+    EXPECT_NEAR(norm(c.light.tip - f.to_world({0, 0, 1e-3})), 0, 1e-12);
+    EXPECT_NEAR(dot(c.light.direction / norm(c.light.direction), f.z), -1, 1e-12);
+    EXPECT_EQ(norm(sc.tool.at(c.t).position - sc.tool.at(c.t + c.duration).position), 0) << "still under the light";
+    EXPECT_GT(dot(sc.tool.at(c.t).position - f.origin, f.z), 2e-3) << "the instrument held above the light";
+  }
+  EXPECT_GE(sc.duration, cures.back()->t + 20);
+}
+
 TEST(DentalProcedure, TheBuiltInProcedureFillsInIncrementsWithAToolSwitch) {
   const Scene sc = default_dental_procedure();
   int dispenses = 0, switches = 0;

@@ -142,6 +142,38 @@ TEST(ViewerGui, ScriptedInputChangesThePictureAndTheMetrics) {
   EXPECT_LT(ib.share(paste_pixel), ia.share(paste_pixel));
 }
 
+// The curing light as an instrument: turned on over the cavity (the script's light_on, as the L
+// key), its light guide and beam drawn, and the paste coloured by its degree of conversion
+// (--colour-by conversion): under 0.8 s of light the paste's top turns from the map's dark purple
+// (uncured) to green; without the light it stays purple and no beam is drawn.
+TEST(ViewerGui, TheCuringLightCuresThePasteColouredByConversion) {
+  REQUIRE_XVFB();
+  const fs::path lit = temp("light.json"), dark = temp("dark.json");
+  std::ofstream(lit) << R"({"actions": [{"step": 0, "action": "light_on"}, {"step": 16000, "action": "end"}]})";
+  std::ofstream(dark) << R"({"actions": [{"step": 200, "action": "end"}]})";
+  const fs::path png_lit = temp("light.png"), png_dark = temp("dark.png");
+  auto args = [](const fs::path& script, const fs::path& png) {
+    return fmt::format("--colour-by conversion --frames 5 --script '{}' --screenshot '{}'", script.string(), png.string());
+  };
+  const Result a = run_viewer(args(lit, png_lit));
+  const Result b = run_viewer(args(dark, png_dark));
+  ASSERT_EQ(a.status, 0) << a.out << a.err;
+  ASSERT_EQ(b.status, 0) << b.out << b.err;
+  const Image ia(png_lit), ib(png_dark);
+  // Cured paste: the colour map's green to yellow (green well above red and blue's share).
+  auto cured = [](int r, int g, int) { return g > 60 && g > r + 20; };
+  // Uncured paste: the map's bottom, dark purple.
+  auto uncured = [](int r, int g, int b_) { return g < 40 && r > 35 && b_ > 45 && b_ > g + 30; };
+  // The beam's rods: pale violet.
+  auto beam = [](int r, int g, int b_) { return r > 90 && std::abs(r - g) < 20 && b_ > r + 35; };
+  std::printf("cured paste %.4f / %.4f, uncured %.4f / %.4f, beam %.4f / %.4f of the picture (lit / dark)\n",
+              ia.share(cured), ib.share(cured), ia.share(uncured), ib.share(uncured), ia.share(beam), ib.share(beam));
+  // (The display panel's colour bar is in both pictures.)
+  EXPECT_GT(ia.share(cured) - ib.share(cured), 0.003) << "the lit paste's top is green";
+  EXPECT_GT(ib.share(uncured), 0.005) << "the uncured paste is the map's purple";
+  EXPECT_GT(ia.share(beam) - ib.share(beam), 0.0001) << "the beam is drawn";
+}
+
 TEST(ViewerGui, BrokenSceneMeshOrScriptEndsWithAMessage) {
   REQUIRE_XVFB();
   const fs::path scene = temp("broken_scene.json"), mesh = temp("open.stl"), script = temp("bad_script.json");

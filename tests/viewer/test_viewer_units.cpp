@@ -66,6 +66,7 @@ TEST(ColourMap, AutoRangeUsesMaterialPercentiles) {
   EXPECT_EQ((Rgb{rgb[3 * 101], rgb[3 * 101 + 1], rgb[3 * 101 + 2]}), role_colour(Role::boundary));
   EXPECT_THROW(colour_by_from_name("temperature"), std::invalid_argument);
   EXPECT_EQ(colour_by_from_name("bonds"), ColourBy::bonds);
+  EXPECT_EQ(colour_by_from_name("conversion"), ColourBy::conversion);
 }
 
 TEST(Camera, MouseDragFollowsTheCursorInTheViewPlane) {
@@ -162,6 +163,45 @@ TEST(SimSession, ScheduledCommandsApplyAtTheirStepsSoRunsRepeat) {
   EXPECT_GT(count(a, Role::material), 48u);  // the increment arrived
   EXPECT_EQ(a.xyz, b.xyz);                   // the same simulation, whatever the timing
   EXPECT_NEAR(a.tool_pose.position.z, 0.06 - 55 * 1e-4 * 0.02, 1e-9);  // followed at 0.02 m/s for 55 steps
+}
+
+// The curing light (the L key, a script's light_on): on over the paste, the paste under it cures,
+// the snapshot carries the light and each particle's conversion, highest at the top; off again,
+// the light is gone and the conversion stays.
+TEST(SimSession, TheCuringLightCuresThePasteUnderIt) {
+  const InputScript script = parse_input_script(
+      R"({"actions": [{"step": 0, "action": "light_on"}, {"step": 300, "action": "light_off"}]})", "light.json");
+  ASSERT_EQ(script.actions.size(), 2u);
+  EXPECT_EQ(script.actions[0].kind, ScriptAction::Kind::light_on);
+  EXPECT_EQ(script.actions[1].kind, ScriptAction::Kind::light_off);
+  SimSession session(small_scene(), SessionOptions{});
+  Command on{Command::Kind::light}, off{Command::Kind::light};
+  on.pressed = true;
+  session.post_at(0, on);
+  session.post_at(200, Command{Command::Kind::pause});
+  session.start();
+  const Snapshot lit = wait_for(session, [](const Snapshot& x) { return x.paused && x.steps == 200; });
+  ASSERT_TRUE(lit.light.has_value());
+  EXPECT_LT(lit.light->direction.z, 0) << "pointing down onto the paste";
+  ASSERT_EQ(lit.conversion.size(), lit.role.size());
+  float top_z = -1e9f, bottom_z = 1e9f, top_alpha = 0, bottom_alpha = 0;
+  for (std::size_t i = 0; i < lit.role.size(); ++i) {
+    if (lit.role[i] != Role::material) {
+      EXPECT_EQ(lit.conversion[i], 0.f);
+      continue;
+    }
+    const float z = lit.xyz[3 * i + 2];
+    if (z > top_z) top_z = z, top_alpha = lit.conversion[i];
+    if (z < bottom_z) bottom_z = z, bottom_alpha = lit.conversion[i];
+  }
+  EXPECT_GT(top_alpha, 0.f) << "0.02 s at 1000 mW/cm2 on the top";
+  EXPECT_LT(bottom_alpha, top_alpha) << "less light reaches the bottom";
+  EXPECT_DOUBLE_EQ(lit.conversion_max, 0.6);
+  session.post(off);
+  session.post(Command{Command::Kind::single_step});
+  const Snapshot dark = wait_for(session, [](const Snapshot& x) { return x.steps > 200; });
+  EXPECT_FALSE(dark.light.has_value());
+  session.stop();
 }
 
 TEST(SimSession, EditsAreCheckedAndUnstableOnesRefused) {

@@ -33,6 +33,7 @@ enum ForceStatus : std::uint32_t {
 
 // Bits of PosePacket::buttons (the device's buttons, pressed = 1).
 inline constexpr std::uint32_t kButtonDispense = 1u << 0;  // button 1: dispense an increment (on press)
+inline constexpr std::uint32_t kButtonLight = 1u << 1;     // button 2: the curing light on or off (on press)
 
 struct Header {
   Type type = Type::heartbeat;

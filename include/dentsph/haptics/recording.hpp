@@ -49,6 +49,9 @@ struct EventSample {
 // D key (dispense_increment of Recording::dispense_volume with the scene's paste, on the tooth's
 // axis).
 inline constexpr std::uint32_t kButtonIncrement = 0xffffffffu;
+// EventSample::index of the curing light turned on or off (the device's button 2; the light over
+// the cavity, Simulation::light_over_cavity): each one toggles it.
+inline constexpr std::uint32_t kLightToggle = 0xfffffffeu;
 // EventSample::index of a switch to instrument k of instrument_names() (the viewer's tool menu;
 // switch_instrument): kToolSwitch + k.
 inline constexpr std::uint32_t kToolSwitch = 0xffffff00u;
