@@ -58,7 +58,7 @@ TEST(Conservation, MomentumOfFreeMaterialOnTheIisphSolver) {
   constexpr real s = 0.01;
   ModelParams p = testing::params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, 2e-3);
   p.solver = Solver::iisph;
-  const Model model = make_model(p);
+  Model model = make_model(p);
   const Material paste{0.5, 60, 1000, 400};
   const real m = lattice_particle_mass(1000, s, model.kernel);
   std::mt19937_64 rng(7);

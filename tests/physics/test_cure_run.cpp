@@ -43,6 +43,7 @@ Scene cure_box_scene(real light_s) {
   cure.light = light_above({1.35 * mm, 1.35 * mm, 3 * mm});
   sc.events.push_back(cure);
   sc.duration = kSettle + light_s;
+  intern_scene_materials(sc);
   return sc;
 }
 
