@@ -11,20 +11,36 @@
 namespace dentsph {
 namespace {
 
-TEST(Conservation, MomentumOfFreeMaterialOver1000Steps) {
-  constexpr real s = 0.01;
-  Model model = make_model(testing::params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, 2e-4));
+constexpr real kSpacing = 0.01;
+
+// A blob of 7^3 paste particles jittered off their lattice, with random velocities, free in space
+// (no gravity, boundary or tool), stepped at `dt` on `solver`.
+struct Blob {
+  Model model;
+  State state;
+};
+
+Blob free_blob(real dt, Solver solver) {
+  ModelParams p = testing::params_for_spacing(kSpacing, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, dt);
+  p.solver = solver;
+  Blob b{make_model(p), {}};
   const Material paste{0.5, 60, 1000, 400};
-  const real m = lattice_particle_mass(1000, s, model.kernel);
+  const real s = kSpacing, m = lattice_particle_mass(1000, s, b.model.kernel);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<real> u(-1, 1);
   std::vector<ParticleInit> ps;
-  for (Vec3 p : testing::lattice({0, 0, 0}, s, 7, 7, 7)) {
-    p += Vec3{0.3 * s * u(rng), 0.3 * s * u(rng), 0.3 * s * u(rng)};
-    ps.push_back(testing::particle(Role::material, p, m, paste, {0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)}));
+  for (Vec3 x : testing::lattice({0, 0, 0}, s, 7, 7, 7)) {
+    x += Vec3{0.3 * s * u(rng), 0.3 * s * u(rng), 0.3 * s * u(rng)};
+    ps.push_back(testing::particle(Role::material, x, m, paste, {0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)}));
   }
-  State st;
-  st.add_particles(model, ps);
+  b.state.add_particles(b.model, ps);
+  return b;
+}
+
+TEST(Conservation, MomentumOfFreeMaterialOver1000Steps) {
+  Blob b = free_blob(2e-4, Solver::paper);
+  const Model& model = b.model;
+  State& st = b.state;
   const Vec3 p0 = testing::total_momentum(st);
   real scale = 0;  // sum m |v|: the size of the quantities whose rounding we allow
   for (std::uint32_t i = 0; i < st.size(); ++i) scale += st.mass[i] * norm(st.vel[i]);
@@ -43,33 +59,15 @@ TEST(Conservation, MomentumOfFreeMaterialOver1000Steps) {
   EXPECT_GT(st.bonds.counters.formed, 0u);
 }
 
-}  // namespace
-}  // namespace dentsph
-
-namespace dentsph {
-namespace {
-
 // The iisph solver on the same free blob at its own larger step: the pressure force is pairwise
 // antisymmetric (m_i m_j (p_i / rho_i^2 + p_j / rho_j^2) gradW_ij) and so are the bonds' adhesion
 // and the viscosity's system is symmetric; the viscosity's solve stopped after its fixed iterations
 // and the single-precision pair rows could leave a drift, measured at 4.6e-10 of sum m |v| over
 // 200 steps of 2 ms (docs/model.md, "Solvers").
 TEST(Conservation, MomentumOfFreeMaterialOnTheIisphSolver) {
-  constexpr real s = 0.01;
-  ModelParams p = testing::params_for_spacing(s, {-0.1, -0.1, -0.1}, {0.2, 0.2, 0.2}, 2e-3);
-  p.solver = Solver::iisph;
-  Model model = make_model(p);
-  const Material paste{0.5, 60, 1000, 400};
-  const real m = lattice_particle_mass(1000, s, model.kernel);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<real> u(-1, 1);
-  std::vector<ParticleInit> ps;
-  for (Vec3 x : testing::lattice({0, 0, 0}, s, 7, 7, 7)) {
-    x += Vec3{0.3 * s * u(rng), 0.3 * s * u(rng), 0.3 * s * u(rng)};
-    ps.push_back(testing::particle(Role::material, x, m, paste, {0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)}));
-  }
-  State st;
-  st.add_particles(model, ps);
+  Blob b = free_blob(2e-3, Solver::iisph);
+  const Model& model = b.model;
+  State& st = b.state;
   const Vec3 p0 = testing::total_momentum(st);
   real scale = 0;
   for (std::uint32_t i = 0; i < st.size(); ++i) scale += st.mass[i] * norm(st.vel[i]);
