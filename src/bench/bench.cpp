@@ -297,8 +297,8 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
       }
       for (int r = 0; r < std::max(1, opt.repeats); ++r)
         for (Solver s : both) {
-          const auto& [sc, start] = scenes.at(s);
-          State st = start;
+          const Scene& sc = scenes.at(s).first;  // (not a structured binding: a lambda captures it)
+          State st = scenes.at(s).second;
           rates[s].push_back(
               measure(sc.model, st, t, one, [&](State& x) { x.tool_pose = sc.tool.at(x.time + sc.model.dt); })
                   .steps_per_second);
