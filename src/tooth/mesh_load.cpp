@@ -46,7 +46,16 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
   std::ifstream in(file, std::ios::binary);
   std::string first;
   std::getline(in, first);
-  if (!first.starts_with("ply")) return;  // not a PLY file: assimp decides
+  // Assimp takes a .ply file as PLY whatever its first line, and a "ply" of any case as PLY: a file
+  // named .ply must begin with the magic line, and any that begins with it is checked.
+  std::string magic = first.substr(0, 3);
+  for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool ply_name = file.extension() == ".ply";
+  if (magic != "ply") {
+    if (ply_name)
+      throw MeshError(fmt::format("{}: is not a PLY file (its first line is not \"ply\"); export it again as PLY", name));
+    return;  // not a PLY file: assimp decides
+  }
   constexpr std::size_t kMaxHeaderLines = 10000;
   double declared = 0;  // bytes the elements need at the least: one per property of each
   double properties = 0, count = 0;
