@@ -16,6 +16,16 @@ namespace {
 
 using namespace dentsph;
 
+// One step of `sc` with the tool moved along its keyframes to the step's end.
+void step_along(const Scene& sc, State& st, const StepOptions& opt = {}) {
+  st.tool_pose = sc.tool.at(st.time + sc.model.dt);
+  step(sc.model, st, opt);
+}
+// `n` of them.
+void step_along(const Scene& sc, State& st, int n, const StepOptions& opt = {}) {
+  for (int k = 0; k < n; ++k) step_along(sc, st, opt);
+}
+
 void run(benchmark::State& bs, bool all_pairs) {
   const Scene sc = sweep_cups_scene(int(bs.range(0)), int(bs.range(1)));
   State st = make_state(sc);
@@ -35,11 +45,8 @@ void BM_DentalStep(benchmark::State& bs) {
   const Scene sc = default_dental_scene();
   State st = make_state(sc);
   const StepOptions opt{int(bs.range(0)), nullptr};
-  auto one = [&] {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st, opt);
-  };
-  for (int k = 0; k < 10; ++k) one();
+  auto one = [&] { step_along(sc, st, opt); };
+  step_along(sc, st, 10, opt);
   for (auto _ : bs) one();
   bs.counters["particles"] = st.size();
   bs.counters["steps_per_second"] = benchmark::Counter(double(bs.iterations()), benchmark::Counter::kIsRate);
@@ -57,11 +64,8 @@ void dental_solver(benchmark::State& bs, Solver solver) {
   State st = make_state(sc);
   StageTimes times;
   const StepOptions opt{int(bs.range(0)), &times};
-  auto one = [&] {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st, opt);
-  };
-  for (int k = 0; k < 10; ++k) one();
+  auto one = [&] { step_along(sc, st, opt); };
+  step_along(sc, st, 10, opt);
   times = {};
   std::uint64_t rebuilds = 0, steps = 0, iterations = 0;
   for (auto _ : bs) {
@@ -114,10 +118,7 @@ CuringLight dental_light(const Scene& sc) {
 void BM_DentalCureUpdate(benchmark::State& bs) {
   const Scene sc = default_dental_scene();
   State st = make_state(sc);
-  for (int k = 0; k < 10; ++k) {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st);
-  }
+  step_along(sc, st, 10);
   CureMaterial never_sets = cure_material_preset("composite");
   never_sets.alpha_gel = never_sets.alpha_max;
   const CureModel cure = make_cure_model(sc.model, never_sets, sc.material_spacing, scene_paste(sc).material);
@@ -147,10 +148,7 @@ BENCHMARK(BM_DentalLightTransport)->Unit(benchmark::kMicrosecond)->UseRealTime()
 void BM_DentalCurePass(benchmark::State& bs) {
   const Scene sc = default_dental_scene();
   State st = make_state(sc);
-  for (int k = 0; k < 10; ++k) {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st);
-  }
+  step_along(sc, st, 10);
   CureMaterial never_sets = cure_material_preset("composite");
   never_sets.alpha_gel = never_sets.alpha_max;
   const CureModel cure = make_cure_model(sc.model, never_sets, sc.material_spacing, scene_paste(sc).material);
@@ -169,10 +167,7 @@ void BM_DentalStepCuring(benchmark::State& bs) {
   const Scene sc = default_dental_scene();
   State start = make_state(sc);
   const StepOptions opt{int(bs.range(0)), nullptr};
-  for (int k = 0; k < 10; ++k) {
-    start.tool_pose = sc.tool.at(start.time + sc.model.dt);
-    step(sc.model, start, opt);
-  }
+  step_along(sc, start, 10, opt);
   const CureModel cure =
       make_cure_model(sc.model, cure_material_preset("composite"), sc.material_spacing, scene_paste(sc).material);
   const std::optional<CuringLight> light = dental_light(sc);
@@ -186,8 +181,7 @@ void BM_DentalStepCuring(benchmark::State& bs) {
       k = 1;
       bs.ResumeTiming();
     }
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st, opt);
+    step_along(sc, st, opt);
     set += cure_between_steps(cure, st, light, sc.model.dt).set;
   }
   bs.counters["set_per_step"] = benchmark::Counter(double(set) / double(bs.iterations()));
@@ -202,10 +196,7 @@ void dental_stage(benchmark::State& bs, Stage&& stage) {
   const Scene sc = default_dental_scene();
   State st = make_state(sc);
   const StepOptions opt{int(bs.range(0)), nullptr};
-  for (int k = 0; k < 200; ++k) {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st, opt);
-  }
+  step_along(sc, st, 200, opt);
   for (auto _ : bs) stage(sc.model, st, opt.threads);
 }
 void BM_DentalDensity(benchmark::State& bs) {
@@ -224,10 +215,7 @@ void BM_DentalReorder(benchmark::State& bs) {
   const Scene sc = default_dental_scene();
   State st = make_state(sc);
   const StepOptions opt{int(bs.range(0)), nullptr};
-  for (int k = 0; k < 200; ++k) {
-    st.tool_pose = sc.tool.at(st.time + sc.model.dt);
-    step(sc.model, st, opt);
-  }
+  step_along(sc, st, 200, opt);
   stages::compute_cell_keys(sc.model, st, opt.threads);
   stages::sort_by_cell(sc.model, st);
   for (auto _ : bs) stages::reorder(sc.model, st, opt.threads);

@@ -103,21 +103,11 @@ Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const 
   return sc;
 }
 
-// The GPU backends step the paper's model only: a scene of another solver is refused before it runs.
-void check_backend_solver(const Scene& sc, Backend backend) {
-  if (backend != Backend::cpu && sc.model.solver != Solver::paper)
-    throw std::invalid_argument(fmt::format(
-        "--backend {}: the GPU backend has the paper's step only, and the scene's solver is {}; pass --solver paper "
-        "to step the paper's model on the GPU, or leave out --backend to run the {} solver on the CPU",
-        backend_name(backend), solver_name(sc.model.solver), solver_name(sc.model.solver)));
-}
-
 int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver, RunOptions opt,
             bool quiet, cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
   Scene sc = scene_of(file, dental, solver);
-  check_backend_solver(sc, opt.backend);
   session.apply(sc);
   // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
   if (rt.enabled())
@@ -260,11 +250,9 @@ int main(int argc, char** argv) {
     if (material_test.chosen()) return material_test.run();
     bench_opt.backend = parse_backend(bench_backend);
     if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
-    if (*replay) {
-      const Scene sc = scene_of(replay_scene, replay_dental, replay_solver);
-      check_backend_solver(sc, parse_backend(replay_backend));
-      return cli::replay_recording(sc, replay_dir, replay_threads, parse_backend(replay_backend), replay_out);
-    }
+    if (*replay)
+      return cli::replay_recording(scene_of(replay_scene, replay_dental, replay_solver), replay_dir, replay_threads,
+                                   parse_backend(replay_backend), replay_out);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     return cli::failed(e);

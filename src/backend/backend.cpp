@@ -27,9 +27,12 @@ std::unique_ptr<Stepper> make_stepper(Backend backend, const Model& model, const
                                       ThreadPolicy policy) {
   // The GPU backends run the paper's step only.
   if (backend != Backend::cpu && model.solver != Solver::paper)
-    throw std::invalid_argument(fmt::format("the {} solver has no {} backend: step it on the CPU (--backend cpu), or "
-                                            "choose the paper's step for the GPU",
-                                            solver_name(model.solver), backend_name(backend)));
+    throw std::invalid_argument(fmt::format(
+        "--backend {}: the {} solver has no {} backend (the GPU backend has the paper's step only, and the scene's "
+        "solver is {}); pass --solver paper to step the paper's model on the GPU, or leave out --backend to run the {} "
+        "solver on the CPU",
+        backend_name(backend), solver_name(model.solver), backend_name(backend), solver_name(model.solver),
+        solver_name(model.solver)));
   switch (backend) {
     case Backend::cpu: return make_cpu_stepper(model, threads, policy);
     case Backend::cuda: return make_cuda_stepper(model, state);

@@ -285,16 +285,16 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     BenchOptions one = opt;
     one.repeats = 1;
     const Solver both[] = {Solver::paper, Solver::iisph};
+    std::map<Solver, std::pair<Scene, State>> scenes;  // each solver's scene and start, made once
+    for (Solver s : both) {
+      DentalSceneParams dp;
+      dp.solver = s;
+      Scene sc = default_dental_scene(dp);
+      State st = make_state(sc);
+      scenes.emplace(s, std::make_pair(std::move(sc), std::move(st)));
+    }
     for (int t : opt.threads) {
       std::map<Solver, std::vector<double>> rates;
-      std::map<Solver, std::pair<Scene, State>> scenes;
-      for (Solver s : both) {
-        DentalSceneParams dp;
-        dp.solver = s;
-        Scene sc = default_dental_scene(dp);
-        State st = make_state(sc);
-        scenes.emplace(s, std::make_pair(std::move(sc), std::move(st)));
-      }
       for (int r = 0; r < std::max(1, opt.repeats); ++r)
         for (Solver s : both) {
           const Scene& sc = scenes.at(s).first;  // (not a structured binding: a lambda captures it)

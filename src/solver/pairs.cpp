@@ -41,7 +41,7 @@ class RowBuilder {
   RowBuilder(const Model& model, State& s, std::uint32_t i)
       : k_(model.kernel), s_(s), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
         A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
-        grad6_(6 * k_.cubic / k_.h), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+        grad6_(6 * k_.cubic / k_.h), grad6_over_h_(grad6_ * inv_h_), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
   // Candidate j at d = r_i - r_j, r2 = |d|^2: kept when within h and not i itself.
   void offer(std::uint32_t j, const Vec3& d, real r2) {
@@ -99,7 +99,7 @@ class RowBuilder {
       const real r = std::sqrt(r2), q = r * inv_h_;
       real g_over_r, g;
       if (q <= 0.5) {
-        g_over_r = grad6_ * inv_h_ * (3 * q - 2);
+        g_over_r = grad6_over_h_ * (3 * q - 2);
         g = g_over_r * r;
       } else {
         const real c = 1 - q;
@@ -132,7 +132,7 @@ class RowBuilder {
   State& s_;
   std::uint32_t i_;
   Role role_;
-  real mi_, mu_i_, A2_, inv_h_, grad6_;
+  real mi_, mu_i_, A2_, inv_h_, grad6_, grad6_over_h_;
   SolverPair* pairs_;
   std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
   real rho_sum_ = 0, g2_ = 0;
