@@ -166,20 +166,42 @@ void search(const Model& model, const State& s, std::uint32_t i, bool sorted, Fn
 
 // Rebuild: the search writes i's list of neighbours within h + skin (as the paper's density pass
 // does: every candidate written at the count, the count advancing for those within reach; past the
-// capacity it marks the overflow) and hands them to the row.
-void build_list_and_row(const Model& model, State& s, std::uint32_t i, RowBuilder& row) {
+// capacity it marks the overflow). The search is the rebuild's cost (about five candidates of the
+// 27 cells for each one within reach), so it does nothing else; the row is then made from the list
+// as between rebuilds (the same neighbours in the same order, the same positions: the sorted
+// coordinates are the positions' copies). Returns whether the list holds them all.
+bool build_list(const Model& model, State& s, std::uint32_t i) {
   GridIndex& g = s.grid;
   const real reach = model.kernel.h + model.neighbour_skin, reach2 = reach * reach;
   constexpr std::uint32_t cap = GridIndex::kNeighbourCapacity;
   std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
   std::uint32_t count = 0;
-  search(model, s, i, true, [&](std::uint32_t j, const Vec3& d, real r2) {
-    const std::uint32_t within = (r2 < reach2) & (j != i);
-    list[count < cap ? count : cap] = j;
-    count += within;
-    row.offer(j, d, r2);
+  const real xi = s.pos[i].x, yi = s.pos[i].y, zi = s.pos[i].z;
+  const real* x = g.x.data();
+  const real* y = g.y.data();
+  const real* z = g.z.data();
+  grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t j = b; j < e; ++j) {
+      const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
+      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != i);
+      list[count < cap ? count : cap] = j;
+      count += within;
+    }
   });
   g.neighbour_count[i] = std::uint16_t(count > cap ? cap + 1 : count);
+  return count <= cap;
+}
+
+// Offers the row of particle i its listed neighbours (a list that did not overflow).
+void offer_list(const State& s, std::uint32_t i, RowBuilder& row) {
+  const GridIndex& g = s.grid;
+  const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+  const Vec3 pi = s.pos[i];
+  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
+    const std::uint32_t j = list[q];
+    const Vec3 d = pi - s.pos[j];
+    row.offer(j, d, norm2(d));
+  }
 }
 
 }  // namespace
@@ -193,18 +215,11 @@ void compute_pairs(const Model& model, State& s, int threads, bool build_lists) 
     const std::uint32_t i = std::uint32_t(k);
     RowBuilder row(model, s, i);
     const GridIndex& g = s.grid;
-    if (build_lists) {
-      build_list_and_row(model, s, i, row);
-    } else if (g.neighbour_count[i] > GridIndex::kNeighbourCapacity) {
-      search(model, s, i, false, [&](std::uint32_t j, const Vec3& d, real r2) { row.offer(j, d, r2); });
-    } else {
-      const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
-      const Vec3 pi = s.pos[i];
-      for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
-        const std::uint32_t j = list[q];
-        const Vec3 d = pi - s.pos[j];
-        row.offer(j, d, norm2(d));
-      }
+    const bool listed_all = build_lists ? build_list(model, s, i) : g.neighbour_count[i] <= GridIndex::kNeighbourCapacity;
+    if (listed_all) {
+      offer_list(s, i, row);
+    } else {  // an overflowed list: the grid searched again, every candidate offered
+      search(model, s, i, build_lists, [&](std::uint32_t j, const Vec3& d, real r2) { row.offer(j, d, r2); });
     }
     bonds::Events ev;
     std::uint64_t over = 0;
