@@ -150,6 +150,16 @@ struct IisphScratch {
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
   std::vector<Vec3> partial;         // [n / kSumBlock + 1] sums of fixed blocks of rows (solver/block_sum.hpp)
   static constexpr int kSumBlock = 64;
+  // The tool's neighbours, found every step (solver/tool_pairs.cpp): the tool moves farther in a
+  // step than the neighbour lists' skin allows, so its particles are left out of the lists and of
+  // their rebuild's criterion.
+  static constexpr int kToolStride = 128;    // neighbours within h kept per tool particle
+  std::vector<std::uint32_t> tools;          // [tool] the tool particles, cell order (at a rebuild)
+  std::vector<std::uint32_t> tool_list;      // [tool * kToolStride] each one's neighbours within h
+  std::vector<std::uint16_t> tool_count;     // [tool] entries of tool_list (kToolStride + 1: overflowed)
+  std::vector<std::uint32_t> link_start;     // [n + 1] the other particles' tool neighbours: those of i
+  std::vector<std::uint32_t> link_fill;      // [n]     are link_tool[link_start[i], link_start[i + 1])
+  std::vector<std::uint32_t> link_tool;      // [tool * kToolStride]
 
   std::size_t bytes() const;
 };

@@ -4,6 +4,7 @@
 // Its stages, one file each, in the order iisph_step.cpp calls them:
 //
 //   rows.cpp        the material particles in cell order, the tool's velocity over the step
+//   tool_pairs.cpp  the tool's neighbours, found every step (the lists leave the tool out)
 //   pairs.cpp       every particle's density, and its row: the neighbours within h with their kernel
 //                   gradient and viscosity weight; bonds form below A
 //   advection.cpp   adhesion of the bonded pairs (bonds break past B), gravity: the velocity v*
@@ -25,7 +26,7 @@ namespace dentsph::iisph {
 // One step of the iisph solver (step() runs it for a model whose solver is iisph).
 void step(const Model& model, State& state, const StepOptions& options);
 
-// rows.cpp: lists the material particles (after a rebuild).
+// rows.cpp: lists the material and the tool particles (after a rebuild).
 void list_material(State& state);
 // rows.cpp: each tool particle's velocity over this step (to state.tool_pose), the boundary at rest,
 // and their entries in the solver's per-particle arrays.
@@ -33,6 +34,9 @@ void prepare_particles(const Model& model, State& state, int threads);
 // pairs.cpp: the density of every particle and its pair row; material and tool particles form bonds
 // with the material closer than A.
 void compute_pairs(const Model& model, State& state, int threads, bool build_lists);
+// tool_pairs.cpp: each tool particle's neighbours within h, and each other particle's tool
+// neighbours; returns the neighbours beyond a tool particle's capacity (none expected).
+std::uint64_t find_tool_pairs(const Model& model, State& state, int threads);
 // rows.cpp: the rows of this step's pressure solve: material, and the boundary and tool particles
 // with material neighbours (the others get pressure 0).
 void list_active_rows(State& state);

@@ -9,7 +9,7 @@ namespace dentsph::iisph {
 void step(const Model& model, State& state, const StepOptions& opt) {
   const int t = opt.threads < 1 ? 1 : opt.threads;
   stages::StageClock clock(opt.times);
-  const bool rebuild = stages::lists_need_rebuild(model, state, t);
+  const bool rebuild = stages::lists_need_rebuild(model, state, t, /*tool_listed=*/false);  // tool_pairs.cpp
   if (rebuild) {
     stages::compute_cell_keys(model, state, t);
     clock.lap(&StageTimes::hash_us);

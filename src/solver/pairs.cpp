@@ -10,9 +10,11 @@
 //  - material and tool particles bond to the material closer than A (bonds::form_bonds, the paper's
 //    step's rule).
 // The neighbours come from the neighbour lists of the paper's step (radius h + skin, built here at a
-// rebuild, kept until some particle has moved half the skin; a boundary particle's holds its moving
-// neighbours) or, for an overflowed list, a search of the grid.
+// rebuild, kept until some material particle has moved half the skin; a boundary particle's holds
+// its material neighbours) or, for an overflowed list, a search of the grid; the tool's, which the
+// lists leave out, from tool_pairs.cpp, found every step.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "bonds/hysteresis.hpp"
@@ -183,7 +185,7 @@ bool build_list(const Model& model, State& s, std::uint32_t i) {
   grid::for_each_neighbour_range(model.grid, g, s.pos[i], listed(s, i), [&](std::uint32_t b, std::uint32_t e) {
     for (std::uint32_t j = b; j < e; ++j) {
       const real dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
-      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != i);
+      const std::uint32_t within = (dx * dx + dy * dy + dz * dz < reach2) & (j != i) & (s.role[j] != Role::tool);
       list[count < cap ? count : cap] = j;
       count += within;
     }
@@ -192,41 +194,68 @@ bool build_list(const Model& model, State& s, std::uint32_t i) {
   return count <= cap;
 }
 
-// Offers the row of particle i its listed neighbours (a list that did not overflow).
-void offer_list(const State& s, std::uint32_t i, RowBuilder& row) {
-  const GridIndex& g = s.grid;
-  const std::uint32_t* list = g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride;
+// Offers the row of particle i the neighbours list[0, count).
+void offer(const State& s, std::uint32_t i, const std::uint32_t* list, std::uint32_t count, RowBuilder& row) {
   const Vec3 pi = s.pos[i];
-  for (std::uint32_t q = 0; q < g.neighbour_count[i]; ++q) {
+  for (std::uint32_t q = 0; q < count; ++q) {
     const std::uint32_t j = list[q];
     const Vec3 d = pi - s.pos[j];
     row.offer(j, d, norm2(d));
   }
 }
 
+// The row of material or boundary particle i: its listed neighbours (or, for an overflowed list,
+// those of a search of the grid), then its tool neighbours (tool_pairs.cpp).
+void offer_lists(const Model& model, const State& s, std::uint32_t i, bool listed_all, bool sorted, RowBuilder& row) {
+  const GridIndex& g = s.grid;
+  if (listed_all) {
+    offer(s, i, g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride, g.neighbour_count[i], row);
+  } else {  // every candidate of the grid offered, the tool's left to its own pairs
+    search(model, s, i, sorted, [&](std::uint32_t j, const Vec3& d, real r2) {
+      if (s.role[j] != Role::tool) row.offer(j, d, r2);
+    });
+  }
+  const IisphScratch& x = s.iisph;
+  offer(s, i, x.link_tool.data() + x.link_start[i], x.link_start[i + 1] - x.link_start[i], row);
+}
+
 }  // namespace
 
 void compute_pairs(const Model& model, State& s, int threads, bool build_lists) {
   if (!s.rho_static_valid) stages::compute_static_density(model, s);  // after particles were added
-  const std::int64_t n = s.size();
-  std::uint64_t formed = 0, overflowed = 0, pair_overflow = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : formed, overflowed, pair_overflow)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const std::uint32_t i = std::uint32_t(k);
-    RowBuilder row(model, s, i);
-    const GridIndex& g = s.grid;
-    const bool listed_all = build_lists ? build_list(model, s, i) : g.neighbour_count[i] <= GridIndex::kNeighbourCapacity;
-    if (listed_all) {
-      offer_list(s, i, row);
-    } else {  // an overflowed list: the grid searched again, every candidate offered
-      search(model, s, i, build_lists, [&](std::uint32_t j, const Vec3& d, real r2) { row.offer(j, d, r2); });
-    }
+  std::uint64_t formed = 0, overflowed = 0, pair_overflow = find_tool_pairs(model, s, threads);
+  auto finish_row = [&](RowBuilder& row) {
     bonds::Events ev;
     std::uint64_t over = 0;
     row.finish(ev, over);
-    formed += ev.formed;
-    overflowed += ev.overflowed;
-    pair_overflow += over;
+    return std::array<std::uint64_t, 3>{ev.formed, ev.overflowed, over};
+  };
+  // The material and boundary rows.
+  const std::int64_t n = s.size();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : formed, overflowed, pair_overflow)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::uint32_t i = std::uint32_t(k);
+    if (s.role[i] == Role::tool) continue;
+    RowBuilder row(model, s, i);
+    const bool listed_all = build_lists ? build_list(model, s, i) : s.grid.neighbour_count[i] <= GridIndex::kNeighbourCapacity;
+    offer_lists(model, s, i, listed_all, build_lists, row);
+    const auto [f, o, p] = finish_row(row);
+    formed += f;
+    overflowed += o;
+    pair_overflow += p;
+  }
+  // The tool rows, from the tool's pairs.
+  IisphScratch& x = s.iisph;
+  const std::int64_t tools = std::int64_t(x.tools.size());
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : formed, overflowed, pair_overflow)
+  for (std::int64_t k = 0; k < tools; ++k) {
+    const std::uint32_t i = x.tools[k];
+    RowBuilder row(model, s, i);
+    offer(s, i, x.tool_list.data() + std::size_t(k) * IisphScratch::kToolStride, x.tool_count[k], row);
+    const auto [f, o, p] = finish_row(row);
+    formed += f;
+    overflowed += o;
+    pair_overflow += p;
   }
   bonds::Events total;
   total.formed = formed;

@@ -9,9 +9,11 @@ namespace dentsph::iisph {
 
 void list_material(State& s) {
   IisphScratch& x = s.iisph;
-  std::uint32_t k = 0;
-  for (std::uint32_t i = 0; i < s.size(); ++i)
+  std::uint32_t k = 0, t = 0;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
     if (s.role[i] == Role::material) x.material[k++] = i;
+    if (s.role[i] == Role::tool) x.tools[t++] = i;
+  }
 }
 
 void prepare_particles(const Model& model, State& s, int threads) {

@@ -8,7 +8,7 @@
 
 namespace dentsph::stages {
 
-bool lists_need_rebuild(const Model& model, const State& s, int threads) {
+bool lists_need_rebuild(const Model& model, const State& s, int threads, bool tool_listed) {
   // GridIndex::keep_lists is set where the state was made with a skin (neighbour_skin > 0).
   const real skin = model.neighbour_skin;
   if (!s.grid.keep_lists || !s.grid.lists_valid) return true;
@@ -16,9 +16,13 @@ bool lists_need_rebuild(const Model& model, const State& s, int threads) {
   const std::int64_t n = s.size();
   const Vec3* pos = s.pos.data();
   const Vec3* built = s.grid.pos_at_build.data();
+  const Role* role = s.role.data();
   real moved2 = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : moved2)
-  for (std::int64_t i = 0; i < n; ++i) moved2 = std::max(moved2, norm2(pos[i] - built[i]));
+  for (std::int64_t i = 0; i < n; ++i) {
+    const bool counted = tool_listed || role[i] != Role::tool;
+    moved2 = std::max(moved2, counted ? norm2(pos[i] - built[i]) : real(0));
+  }
   return !(moved2 <= limit2);  // a non-finite position rebuilds too
 }
 

@@ -20,7 +20,9 @@ void reorder(const Model& model, State& state, int threads);
 void compute_density(const Model& model, State& state, int threads, bool build_lists);
 // Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild, and
 // the positions remembered at a rebuild (with a skin only).
-bool lists_need_rebuild(const Model& model, const State& state, int threads);
+// With tool_listed false the tool particles are left out (a solver that finds the tool's
+// neighbours itself every step: the iisph solver, solver/tool_pairs.cpp).
+bool lists_need_rebuild(const Model& model, const State& state, int threads, bool tool_listed = true);
 void remember_build_positions(State& state, int threads);
 // The boundary-boundary part of boundary particles' density, once (density.cpp).
 void compute_static_density(const Model& model, State& state);

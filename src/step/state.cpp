@@ -142,13 +142,21 @@ void State::size_iisph_scratch(const Model& model, std::uint32_t n) {
   size(x.cg_r, per);
   size(x.cg_ap, per);
   size(x.partial, x.sized ? n / IisphScratch::kSumBlock + 1 : 0);
+  const std::size_t tools = x.sized ? count(Role::tool) : 0;
+  size(x.tools, tools);
+  size(x.tool_list, tools * IisphScratch::kToolStride);
+  size(x.tool_count, tools);
+  size(x.link_start, x.sized ? n + 1 : 0);
+  size(x.link_fill, per);
+  size(x.link_tool, tools * IisphScratch::kToolStride);
 }
 
 std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
          b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial);
+         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial) + b(tools) + b(tool_list) + b(tool_count) +
+         b(link_start) + b(link_fill) + b(link_tool);
 }
 
 std::size_t State::bytes_per_particle() const {
