@@ -34,6 +34,8 @@ struct Within {
   static constexpr std::uint32_t capacity = 64;
   std::uint32_t j[capacity + 1];
   real dx[capacity + 1], dy[capacity + 1], dz[capacity + 1], r2[capacity + 1];
+  // Filled by the row from those: density term, m_j g / r, m_j g^2, viscosity weight.
+  real rho[capacity], f[capacity], g2[capacity], visc[capacity];
   std::uint32_t n = 0;
 };
 
@@ -82,45 +84,56 @@ class RowBuilder {
   // every one (material from the front, boundary and tool from the back), a boundary or tool row
   // its material ones.
   void take() {
-    const Within& w = within_;
-    const bool row_material = role_ == Role::material;
-    for (std::uint32_t e = 0; e < w.n; ++e) {
-      const std::uint32_t j = w.j[e];
-      const real r2 = w.r2[e];
-      const real mj = s_.mass[j];
+    Within& w = within_;
+    const std::uint32_t n = w.n;
+    // Each neighbour's numbers first, in a loop without branches the compiler can vectorise: its
+    // density term, the cubic spline's radial derivative g (kernels::cubic_grad_radial; r < h
+    // here) and g / r: for q = r / h <= 1/2, g = grad6 q (3 q - 2) and g / r = grad6 (3 q - 2) / h,
+    // so the division is needed beyond h / 2 alone (computed for both, the other selected; r = 0
+    // selects the first).
+    const real* mass = s_.mass.data();
+    const real* mu = s_.mu.data();
+    for (std::uint32_t e = 0; e < n; ++e) {
+      const real r2 = w.r2[e], mj = mass[w.j[e]];
       const real wk = k_.h2 - r2;
-      rho_sum_ += mj * wk * wk * wk;
+      w.rho[e] = mj * wk * wk * wk;
+      const real r = std::sqrt(r2), q = r * inv_h_;
+      const real inner_over_r = grad6_over_h_ * (3 * q - 2);
+      const real c = 1 - q;
+      const real outer = -grad6_ * c * c;
+      const real outer_over_r = outer / r;  // r = 0 (coincident particles): not selected
+      const bool inner = q <= 0.5;
+      const real g = inner ? inner_over_r * r : outer;
+      const real g_over_r = inner ? inner_over_r : outer_over_r;
+      w.f[e] = mj * g_over_r;
+      w.g2[e] = mj * g * g;  // |m_j gradW|^2 / m_j
+      w.visc[e] = 0.5 * (mu_i_ + mu[w.j[e]]) * mj * k_.visc_lap * (k_.h - r);
+    }
+    // Then the row, in the order given: the density's sum over all of them; a material row lists
+    // every one (material from the front, boundary and tool from the back), a boundary or tool row
+    // its material ones.
+    const bool row_material = role_ == Role::material;
+    for (std::uint32_t e = 0; e < n; ++e) {
+      const std::uint32_t j = w.j[e];
+      rho_sum_ += w.rho[e];
       const bool material = s_.role[j] == Role::material;
       if (!material && !row_material) continue;  // boundary and tool rows list material alone
       if (front_ == back_) {  // the row is full: counted, never expected near rest density
         ++overflow_;
         continue;
       }
-      // The cubic spline's gradient (kernels::cubic_grad_radial; r < h here) over r, one division
-      // at most: for q = r / h <= 1/2 the radial derivative is grad6 q (3 q - 2), over r grad6 (3 q - 2) / h.
-      const real r = std::sqrt(r2), q = r * inv_h_;
-      real g_over_r, g;
-      if (q <= 0.5) {
-        g_over_r = grad6_over_h_ * (3 * q - 2);
-        g = g_over_r * r;
-      } else {
-        const real c = 1 - q;
-        g = -grad6_ * c * c;
-        g_over_r = g / r;
-      }
-      const real f = mj * g_over_r;
+      const real f = w.f[e];
       const Vec3 grad{w.dx[e] * f, w.dy[e] * f, w.dz[e] * f};
-      const real visc = 0.5 * (mu_i_ + s_.mu[j]) * mj * k_.visc_lap * (k_.h - r);
       const std::uint32_t slot = material ? front_ : back_ - 1;
       front_ += std::uint32_t(material);
       back_ -= std::uint32_t(!material);
-      pairs_[slot] = {float(grad.x), float(grad.y), float(grad.z), float(visc), j};
+      pairs_[slot] = {float(grad.x), float(grad.y), float(grad.z), float(w.visc[e]), j};
       S_ += grad;
-      g2_ += material ? mj * g * g : 0;  // |m_j gradW|^2 / m_j
+      g2_ += material ? w.g2[e] : 0;
       close_[n_close_] = j;
-      n_close_ += std::uint32_t(r2 < A2_);
+      n_close_ += std::uint32_t(w.r2[e] < A2_);
     }
-    within_.n = 0;
+    w.n = 0;
     if (n_close_ > kClose - Within::capacity) flush_bonds();
   }
 

@@ -5,6 +5,8 @@
 // what the target does not document fails here.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -45,20 +47,29 @@ std::vector<std::uint8_t> bytes_of(const fs::path& f) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-TEST(FuzzInputs, EverySeedAndEveryFoundDefectRunsClean) {
-  std::size_t regressions = 0;
-  for (const Target& t : kTargets) {
-    const std::vector<fs::path> seeds = inputs(fs::path("fuzz/corpus") / t.name);
-    EXPECT_FALSE(seeds.empty()) << "fuzz/corpus/" << t.name << " (tests run from the repository root)";
-    std::vector<fs::path> all = seeds;
-    for (const fs::path& f : inputs(fs::path("fuzz/regressions") / t.name)) all.push_back(f), ++regressions;
-    for (const fs::path& f : all) {
-      const std::vector<std::uint8_t> data = bytes_of(f);
-      EXPECT_NO_THROW(EXPECT_EQ(t.run(data.data(), data.size()), 0)) << f;
-    }
+// One test per target, so that a slow build (the sanitizers') has each target's own time limit;
+// an input taking over a second is named in the output.
+class FuzzInputs : public ::testing::TestWithParam<Target> {};
+
+TEST_P(FuzzInputs, EverySeedAndEveryFoundDefectRunsClean) {
+  const Target& t = GetParam();
+  const std::vector<fs::path> seeds = inputs(fs::path("fuzz/corpus") / t.name);
+  EXPECT_FALSE(seeds.empty()) << "fuzz/corpus/" << t.name << " (tests run from the repository root)";
+  std::vector<fs::path> all = seeds;
+  const std::vector<fs::path> regressions = inputs(fs::path("fuzz/regressions") / t.name);
+  all.insert(all.end(), regressions.begin(), regressions.end());
+  for (const fs::path& f : all) {
+    const std::vector<std::uint8_t> data = bytes_of(f);
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_NO_THROW(EXPECT_EQ(t.run(data.data(), data.size()), 0)) << f;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (s > 1) std::printf("%s: %.1f s\n", f.string().c_str(), s);
   }
-  std::printf("%zu regression inputs\n", regressions);
+  std::printf("%s: %zu seeds, %zu regression inputs\n", t.name, seeds.size(), regressions.size());
 }
+
+INSTANTIATE_TEST_SUITE_P(Targets, FuzzInputs, ::testing::ValuesIn(kTargets),
+                         [](const ::testing::TestParamInfo<Target>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace dentsph
