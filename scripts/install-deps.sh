@@ -6,6 +6,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libstb-dev
+  # the spectrum of the force a realtime run renders (src/haptics/force_spectrum.cpp)
+  libfftw3-dev
   # the tutor's report: the plotting library bundled into report.html, the session store (SQLite,
   # and PostgreSQL's client library), the browser its tests render the report in, and the
   # PostgreSQL server its store tests start

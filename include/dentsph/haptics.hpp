@@ -10,6 +10,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -147,6 +148,36 @@ struct FreeAirForce {
 // step, or with no step in their window, count as neither.
 FreeAirForce free_air_force(const Recording& recording, double window_s = 0.02);
 
+// The spectrum of the force rendered to the device (HapticSample::force, the three axes), above a
+// cutoff: how much of what the hand feels is vibration rather than the material's slow push.
+// The ticks' force is held from one tick to the next (as the device holds it) and read at the
+// middle of each period of the nominal haptic rate (Recording::haptic_rate_hz; when 0, the median
+// tick period), so a late or skipped tick counts as the force held the longer, and jitter under
+// half a period changes nothing. The power spectrum is Welch's: Hann-windowed segments of
+// `segment_s` (or the whole recording when shorter), overlapping by half, each segment's mean
+// removed, power per axis summed (FFTW). Recordings shorter than 64 ticks, or whose rate puts the
+// cutoff at or above the Nyquist frequency, are not analysed: ticks = 0 and every figure 0.
+struct ForceBand {
+  double lo_hz = 0, hi_hz = 0;  // [lo, hi); the last band ends at the Nyquist frequency, included
+  double rms_N = 0;             // RMS of the force (three axes together) in the band
+};
+struct ForceSpectrum {
+  double cutoff_hz = 100;
+  double rate_hz = 0;            // the rate the force was read at (the nominal haptic rate)
+  std::uint64_t ticks = 0;       // samples analysed (0: not analysed)
+  double segment_s = 0;          // the Welch segment's length (the frequency resolution is 1 / segment_s)
+  std::uint64_t segments = 0;
+  double fluctuation_rms_N = 0;  // RMS of the force minus its mean over the whole recording, three axes together
+  double above_rms_N = 0;        // RMS of the force at and above cutoff_hz, three axes together
+  double above_share = 0;        // above_rms_N / fluctuation_rms_N (a ratio of RMS; 0 without fluctuation)
+  double peak_hz = 0;            // the strongest frequency at or above the cutoff (0: no power there)
+  double peak_amplitude_N = 0;   // the amplitude of a sine carrying the power around the peak (+-2 bins)
+  std::vector<ForceBand> bands;  // band_hz wide from cutoff_hz up to the Nyquist frequency
+  std::size_t top_band = 0;      // index of the band with the most power (bands empty: 0)
+};
+ForceSpectrum force_spectrum(const Recording& recording, double cutoff_hz = 100, double band_hz = 100,
+                             double segment_s = 0.5);
+
 struct HapticReport {
   double target_rate_hz = 0;
   DeviceProfile profile;                  // the force limits the loop kept to
@@ -164,6 +195,7 @@ struct HapticReport {
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
   FreeAirForce free_air;                  // from the recording, after the run
+  ForceSpectrum force_spectrum;           // from the recording, after the run
 };
 
 struct SimReport {

@@ -7,6 +7,45 @@
 
 namespace dentsph {
 
+namespace {
+
+nlohmann::json spectrum_json(const ForceSpectrum& s) {
+  nlohmann::json bands = nlohmann::json::array();
+  for (const ForceBand& b : s.bands) bands.push_back({{"lo_hz", b.lo_hz}, {"hi_hz", b.hi_hz}, {"rms_N", b.rms_N}});
+  nlohmann::json top = nullptr;
+  if (s.above_rms_N > 0 && !s.bands.empty()) {
+    const ForceBand& b = s.bands[s.top_band];
+    top = {{"lo_hz", b.lo_hz}, {"hi_hz", b.hi_hz}, {"rms_N", b.rms_N}};
+  }
+  return {{"cutoff_hz", s.cutoff_hz},
+          {"rate_hz", s.rate_hz},
+          {"ticks", s.ticks},
+          {"segment_s", s.segment_s},
+          {"segments", s.segments},
+          {"fluctuation_rms_N", s.fluctuation_rms_N},
+          {"above_rms_N", s.above_rms_N},
+          {"above_share", s.above_share},
+          {"peak_hz", s.peak_hz},
+          {"peak_amplitude_N", s.peak_amplitude_N},
+          {"top_band", top},
+          {"bands", bands}};
+}
+
+// The printed line of the force's spectrum.
+std::string spectrum_line(const ForceSpectrum& s) {
+  if (s.ticks == 0) return fmt::format("force above {:.0f} Hz: not measured (recording too short)\n", s.cutoff_hz);
+  std::string line = fmt::format("force above {:.0f} Hz: rms {:.3g} N, {:.1f}% of the force's fluctuation (rms {:.3g} N)",
+                                 s.cutoff_hz, s.above_rms_N, 100 * s.above_share, s.fluctuation_rms_N);
+  if (s.peak_hz > 0) {
+    const ForceBand& b = s.bands[s.top_band];
+    line += fmt::format("; most in {:.0f}-{:.0f} Hz (rms {:.3g} N), peak {:.0f} Hz ({:.3g} N amplitude)", b.lo_hz,
+                        b.hi_hz, b.rms_N, s.peak_hz, s.peak_amplitude_N);
+  }
+  return line + fmt::format("; {} ticks held at {:.0f} Hz, {:.2g} s Hann segments\n", s.ticks, s.rate_hz, s.segment_s);
+}
+
+}  // namespace
+
 std::string realtime_json(const RealtimeResult& r) {
   const HapticReport& h = r.haptic;
   nlohmann::json j;
@@ -46,6 +85,7 @@ std::string realtime_json(const RealtimeResult& r) {
                                {"contact_ticks", h.free_air.contact_ticks},
                                {"contact_mean_N", h.free_air.contact_mean_N},
                                {"contact_p95_N", h.free_air.contact_p95_N}}},
+                 {"spectrum", spectrum_json(h.force_spectrum)},
                  {"recorded_ticks", r.recording.haptic.size()},
                  {"recording_dropped_ticks", r.recording.haptic_dropped}};
   j["sim"] = {{"backend", r.run.backend},
@@ -76,6 +116,7 @@ std::string realtime_report(const RealtimeResult& r) {
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
       "force in air (no tool force for {:.0f} ms): mean {:.3f} N, p95 {:.3f} N over {} ticks; in contact: mean {:.3f} N, "
       "p95 {:.3f} N over {} ticks\n"
+      "{}"
       "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
       "dispensed by the button ({} presses over {} a second refused)\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
@@ -83,7 +124,8 @@ std::string realtime_report(const RealtimeResult& r) {
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
       h.watchdog_trips, h.zero_gain_ticks, h.free_air.window_s * 1e3, h.free_air.free_mean_N, h.free_air.free_p95_N,
-      h.free_air.free_ticks, h.free_air.contact_mean_N, h.free_air.contact_p95_N, h.free_air.contact_ticks, r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
+      h.free_air.free_ticks, h.free_air.contact_mean_N, h.free_air.contact_p95_N, h.free_air.contact_ticks,
+      spectrum_line(h.force_spectrum), r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
       r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, h.dispense_presses_refused,
       limits::max_dispense_presses_per_s, r.consumer.frames, r.consumer.rate_hz);
 }

@@ -135,6 +135,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.steps = std::move(sim.steps);
   res.recording.events = std::move(sim.events);
   res.haptic.free_air = free_air_force(res.recording);
+  res.haptic.force_spectrum = force_spectrum(res.recording);
 
   RunSummary& sum = res.run;
   sum = core.summary();

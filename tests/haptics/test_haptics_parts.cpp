@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <thread>
 
@@ -527,6 +529,119 @@ TEST(FreeAir, TicksAreSplitByTheToolForceOfTheLastWindow) {
   // A longer window makes more ticks contact.
   EXPECT_GT(free_air_force(r, 0.05).contact_ticks, f.contact_ticks);
   EXPECT_EQ(free_air_force(Recording{}).free_ticks, 0u) << "an empty recording";
+}
+
+// A recording of `seconds` at `rate` whose tick k renders force(k / rate), at time t(k).
+Recording force_recording(double rate, double seconds, const std::function<Vec3(double)>& force,
+                          const std::function<double(int)>& t = {}) {
+  Recording r;
+  r.haptic_rate_hz = rate;
+  const int n = int(std::lround(seconds * rate));
+  for (int k = 0; k < n; ++k) {
+    HapticSample h;
+    h.t = t ? t(k) : k / rate;
+    h.force = force(k / rate);
+    r.haptic.push_back(h);
+  }
+  return r;
+}
+
+// The rendered force's spectrum: a 20 Hz sine of 1 N and a 250 Hz sine of 0.1 N (on a constant
+// 2 N) at 1 kHz ticks: above 100 Hz is the 250 Hz sine's RMS, 0.1 / sqrt(2) N, in the 200-300 Hz
+// band, peaking at 250 Hz with 0.1 N.
+TEST(ForceSpectrum, TwoSinesAreSplitAtTheCutoff) {
+  const double two_pi = 2 * std::numbers::pi;
+  const Recording r = force_recording(1000, 4, [&](double t) {
+    return Vec3{std::sin(two_pi * 20 * t) + 0.1 * std::sin(two_pi * 250 * t + 0.3), 0, 2};
+  });
+  const ForceSpectrum s = force_spectrum(r);
+  EXPECT_EQ(s.ticks, 4000u);
+  EXPECT_DOUBLE_EQ(s.rate_hz, 1000);
+  EXPECT_DOUBLE_EQ(s.cutoff_hz, 100);
+  EXPECT_NEAR(s.above_rms_N, 0.1 / std::sqrt(2.0), 0.02 * 0.1 / std::sqrt(2.0));
+  EXPECT_NEAR(s.fluctuation_rms_N, std::sqrt(0.5 + 0.005), 1e-3) << "the 2 N mean removed";
+  EXPECT_NEAR(s.above_share, 0.1 / std::sqrt(1.01), 0.003);
+  EXPECT_NEAR(s.peak_hz, 250, 1e-9);
+  EXPECT_NEAR(s.peak_amplitude_N, 0.1, 0.003);
+  ASSERT_EQ(s.bands.size(), 4u) << "100 Hz wide from 100 Hz to the Nyquist frequency, 500 Hz";
+  EXPECT_DOUBLE_EQ(s.bands.front().lo_hz, 100);
+  EXPECT_DOUBLE_EQ(s.bands.back().hi_hz, 500);
+  EXPECT_EQ(s.top_band, 1u);
+  EXPECT_DOUBLE_EQ(s.bands[1].lo_hz, 200);
+  EXPECT_NEAR(s.bands[1].rms_N, s.above_rms_N, 1e-3 * s.above_rms_N);
+  for (std::size_t b : {0u, 2u, 3u}) EXPECT_LT(s.bands[b].rms_N, 1e-3 * s.above_rms_N) << b;
+
+  // Off the bins, on the y axis, with 3 s: the same within the frequency resolution (2 Hz).
+  const ForceSpectrum off = force_spectrum(force_recording(1000, 3, [&](double t) {
+    return Vec3{0, std::sin(two_pi * 23.3 * t) + 0.1 * std::sin(two_pi * 247.1 * t), 0};
+  }));
+  EXPECT_NEAR(off.above_rms_N, 0.1 / std::sqrt(2.0), 0.03 * 0.1 / std::sqrt(2.0));
+  EXPECT_NEAR(off.peak_hz, 247.1, 1.0);
+  EXPECT_NEAR(off.peak_amplitude_N, 0.1, 0.005);
+  EXPECT_EQ(off.top_band, 1u);
+}
+
+// The force is held between ticks and read at the middle of each nominal period: ticks late by
+// less than half a period change nothing; a skipped tick is the previous force held; a recording
+// without its rate is read at its median period's.
+TEST(ForceSpectrum, TickTimingIsReadAtTheNominalRate) {
+  const double two_pi = 2 * std::numbers::pi;
+  auto force = [&](double t) { return Vec3{0.5 * std::sin(two_pi * 7 * t), 0.05 * std::sin(two_pi * 330 * t), 0}; };
+  const ForceSpectrum even = force_spectrum(force_recording(1000, 2, force));
+  const ForceSpectrum late = force_spectrum(force_recording(1000, 2, force, [](int k) {
+    return 1e-3 * k + 0.45e-3 * double((k * 7919) % 101) / 100;  // 0 to 0.45 ms late
+  }));
+  EXPECT_EQ(late.ticks, even.ticks);
+  EXPECT_DOUBLE_EQ(late.above_rms_N, even.above_rms_N);
+  EXPECT_DOUBLE_EQ(late.peak_hz, even.peak_hz);
+  EXPECT_NEAR(even.peak_hz, 330, 1e-9);
+
+  Recording skipped = force_recording(1000, 2, force);
+  skipped.haptic.erase(skipped.haptic.begin() + 1000);
+  const ForceSpectrum held = force_spectrum(skipped);
+  EXPECT_EQ(held.ticks, even.ticks) << "the skipped tick's period read as the force held";
+  EXPECT_NEAR(held.above_rms_N, even.above_rms_N, 0.02 * even.above_rms_N);
+
+  Recording unknown_rate = force_recording(1000, 2, force);
+  unknown_rate.haptic_rate_hz = 0;
+  const ForceSpectrum median = force_spectrum(unknown_rate);
+  EXPECT_NEAR(median.rate_hz, 1000, 1e-6);
+  EXPECT_NEAR(median.above_rms_N, even.above_rms_N, 1e-9);
+}
+
+// A constant force has nothing above the cutoff and no fluctuation; recordings too short (or too
+// slow for the cutoff) are not analysed: zeros, never NaN.
+TEST(ForceSpectrum, ConstantShortAndEmptyRecordingsGiveZeros) {
+  const ForceSpectrum constant = force_spectrum(force_recording(1000, 1, [](double) { return Vec3{0.3, -1.7, 2.9}; }));
+  EXPECT_EQ(constant.ticks, 1000u);
+  EXPECT_EQ(constant.above_rms_N, 0);
+  EXPECT_EQ(constant.fluctuation_rms_N, 0);
+  EXPECT_EQ(constant.above_share, 0);
+  EXPECT_EQ(constant.peak_hz, 0);
+  EXPECT_EQ(constant.peak_amplitude_N, 0);
+  for (const ForceBand& b : constant.bands) EXPECT_EQ(b.rms_N, 0);
+
+  auto not_analysed = [](const ForceSpectrum& s, const char* what) {
+    EXPECT_EQ(s.ticks, 0u) << what;
+    EXPECT_EQ(s.segments, 0u) << what;
+    EXPECT_TRUE(s.bands.empty()) << what;
+    for (double x : {s.rate_hz, s.segment_s, s.fluctuation_rms_N, s.above_rms_N, s.above_share, s.peak_hz,
+                     s.peak_amplitude_N})
+      EXPECT_EQ(x, 0) << what;
+  };
+  not_analysed(force_spectrum(Recording{}), "an empty recording");
+  Recording one;
+  one.haptic_rate_hz = 1000;
+  one.haptic.push_back({});
+  not_analysed(force_spectrum(one), "one tick");
+  auto wobble = [](double t) { return Vec3{std::sin(1000 * t), 0, 0}; };
+  not_analysed(force_spectrum(force_recording(1000, 0.05, wobble)), "50 ticks");
+  not_analysed(force_spectrum(force_recording(150, 2, wobble)), "150 Hz ticks: the cutoff above the Nyquist frequency");
+  // The shortest analysed: one segment of the whole recording.
+  const ForceSpectrum shortest = force_spectrum(force_recording(1000, 0.064, wobble));
+  EXPECT_EQ(shortest.ticks, 64u);
+  EXPECT_EQ(shortest.segments, 1u);
+  EXPECT_TRUE(std::isfinite(shortest.above_rms_N));
 }
 
 }  // namespace

@@ -137,7 +137,16 @@ TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {
   const std::string cavity = " --cavity-width 3.5 --cavity-depth 2.2";
   const Result r = dentsph_cli("run --realtime --duration 0.3 --threads 1 -q --out " + out.string() + cavity);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_DOUBLE_EQ(read_json(out / "summary.json").at("cavity").at("depth_mm").get<double>(), 2.2);
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_DOUBLE_EQ(summary.at("cavity").at("depth_mm").get<double>(), 2.2);
+  // The rendered force's spectrum above 100 Hz, from the session's ticks.
+  const nlohmann::json& spectrum = summary.at("haptic").at("spectrum");
+  EXPECT_GT(spectrum.at("ticks").get<int>(), 64) << spectrum;
+  for (const char* key : {"above_rms_N", "above_share", "fluctuation_rms_N", "peak_hz", "peak_amplitude_N"})
+    EXPECT_TRUE(spectrum.at(key).is_number() && std::isfinite(spectrum.at(key).get<double>())) << key << ": " << spectrum;
+  EXPECT_LE(spectrum.at("above_share").get<double>(), 1.0);
+  EXPECT_FALSE(spectrum.at("bands").empty());
+  EXPECT_NE(r.output.find("force above 100 Hz: rms "), std::string::npos) << r.output;
   const Result same = dentsph_cli("replay " + (out / "recording").string() + cavity);
   EXPECT_EQ(same.code, 0) << same.output;
   EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
