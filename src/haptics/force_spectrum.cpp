@@ -69,6 +69,9 @@ std::array<std::vector<double>, 3> held_force(const std::vector<HapticSample>& t
   std::array<std::vector<double>, 3> f;
   const double t0 = ticks.front().t, span = ticks.back().t - t0, period = 1 / rate;
   if (!std::isfinite(span) || span < 0) return f;
+  // Periods without a tick are held, but a recording whose times span far more periods than it has
+  // ticks (hand-made, or a clock jump) is not a session's: not analysed rather than allocated for.
+  if (span / period > 4.0 * double(ticks.size()) + 64) return f;
   const auto n = std::size_t(std::floor(span / period + 0.5)) + 1;
   for (auto& axis : f) axis.reserve(n);
   std::size_t k = 0;

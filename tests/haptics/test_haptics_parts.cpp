@@ -637,6 +637,9 @@ TEST(ForceSpectrum, ConstantShortAndEmptyRecordingsGiveZeros) {
   auto wobble = [](double t) { return Vec3{std::sin(1000 * t), 0, 0}; };
   not_analysed(force_spectrum(force_recording(1000, 0.05, wobble)), "50 ticks");
   not_analysed(force_spectrum(force_recording(150, 2, wobble)), "150 Hz ticks: the cutoff above the Nyquist frequency");
+  Recording jump = force_recording(1000, 1, wobble);  // a clock jump of a day: not held tick by tick
+  jump.haptic.back().t += 86400;
+  not_analysed(force_spectrum(jump), "a recording spanning far more periods than it has ticks");
   // The shortest analysed: one segment of the whole recording.
   const ForceSpectrum shortest = force_spectrum(force_recording(1000, 0.064, wobble));
   EXPECT_EQ(shortest.ticks, 64u);
