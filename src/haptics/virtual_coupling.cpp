@@ -3,6 +3,7 @@
 #include "haptics/exchange.hpp"
 #include "haptics/messages.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -22,9 +23,20 @@ void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_forc
     reset(p_.sessions->front().device_position);
   }
   const double k = p_.stiffness_N_per_m, b = p_.damping_N_s_per_m, c = p_.proxy_drag_N_s_per_m, m = p_.proxy_mass_kg;
-  // m (v' - v) / dt = k (xd - x - dt v') + b (vd - v') - c v' + F   (x' = x + dt v')
+  // The tool force was computed with the proxy where it is now. Its stiffness along the proxy's
+  // move since the last sample: -dF . dx / |dx|^2 where it resists the move; the largest of that
+  // and the decayed estimate.
+  k_tool_ = tool_force == Vec3{} ? 0 : k_tool_ * std::exp2(-1 / kStiffnessHalfLife);
+  if (!sampled_) {
+    sampled_x_ = x_, sampled_force_ = tool_force, sampled_ = true;
+  } else if (const Vec3 dx = x_ - sampled_x_; norm2(dx) >= kMinMove * kMinMove) {
+    const double resisting = -dot(tool_force - sampled_force_, dx) / norm2(dx);
+    if (std::isfinite(resisting)) k_tool_ = std::max(k_tool_, resisting);
+    sampled_x_ = x_, sampled_force_ = tool_force;
+  }
+  // m (v' - v) / dt = k (xd - x - dt v') + b (vd - v') - c v' + F - K dt v'   (x' = x + dt v')
   const Vec3 rhs = v_ + (k * (xd - x_) + b * vd + tool_force) * (dt / m);
-  const double lhs = 1 + dt * (b + c) / m + dt * dt * k / m;
+  const double lhs = 1 + dt * (b + c) / m + dt * dt * (k + k_tool_) / m;
   Vec3 v = rhs / lhs;
   if (!is_finite(v)) return;  // keep the proxy where it is
   const double speed = norm(v);

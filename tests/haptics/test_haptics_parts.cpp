@@ -255,6 +255,45 @@ TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
   EXPECT_THROW(haptics::VirtualCoupling(CouplingParams{-1, 1, 1, 1}), std::invalid_argument);
 }
 
+// The tool force comes from the last simulation step: a stiff contact at the iisph solver's 1 ms
+// step (the flat plugger on paste, about 4e6 N/m at the device) against an explicit proxy of 50 g
+// returned a force of alternating sign every step. The coupling takes the contact's stiffness,
+// estimated from the steps, implicitly: the proxy settles on the wall without ringing, and in air
+// the estimate decays to nothing.
+TEST(VirtualCoupling, AStiffContactAtAMillisecondStepSettlesWithoutRinging) {
+  const CouplingParams p;  // 400 N/m, 50 g
+  const double dt = 1e-3, wall_k = 4e6, device_z = -0.002;  // the device 2 mm into a wall at z = 0
+  haptics::VirtualCoupling c(p);
+  c.reset({0, 0, 0.001});
+  auto wall = [&](const Vec3& x) { return Vec3{0, 0, x.z < 0 ? -wall_k * x.z : 0}; };
+  Vec3 force = wall(c.position());
+  std::vector<double> forces;
+  double largest_estimate = 0;
+  for (int i = 0; i < 400; ++i) {
+    c.step({0, 0, device_z}, {}, force, dt);  // the tool force of the step before
+    force = wall(c.position());               // this step's, where the proxy put the tool
+    ASSERT_TRUE(is_finite(force));
+    forces.push_back(force.z);
+    largest_estimate = std::max(largest_estimate, c.tool_stiffness());
+  }
+  // Equilibrium: the coupling's spring pulls the proxy down as hard as the wall pushes it up.
+  const double settled = p.stiffness_N_per_m * wall_k / (p.stiffness_N_per_m + wall_k) * -device_z;
+  EXPECT_NEAR(forces.back(), settled, 1e-3 * settled);
+  double largest_change = 0;
+  int sign_flips = 0;
+  for (std::size_t i = 300; i < forces.size(); ++i) {
+    largest_change = std::max(largest_change, std::abs(forces[i] - forces[i - 1]));
+    sign_flips += (forces[i] - forces[i - 1]) * (forces[i - 1] - forces[i - 2]) < 0;
+  }
+  EXPECT_LT(largest_change, 1e-3 * settled) << "the contact rings";
+  EXPECT_LE(sign_flips, 2);
+  EXPECT_NEAR(largest_estimate, wall_k, 0.1 * wall_k);  // found the wall's stiffness
+  // Lifted off into air: no tool force, the estimate decays and the proxy follows the device freely.
+  for (int i = 0; i < 400; ++i) c.step({0, 0, 0.01}, {}, {}, dt);
+  EXPECT_EQ(c.tool_stiffness(), 0);
+  EXPECT_NEAR(c.position().z, 0.01, 1e-4);
+}
+
 TEST(DurationHistogram, Quantiles) {
   haptics::DurationHistogram h;
   for (int i = 1; i <= 1000; ++i) h.add(i);
