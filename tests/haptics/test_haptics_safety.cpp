@@ -64,9 +64,9 @@ TEST(HapticSafety, AnAbsurdPoseIsRefusedAndTheForceHolds) {
     // The force's changes over 10 ticks, before the pose and after it (a loaded host delays poses
     // past the watchdog's timeout at times: ticks where the watchdog was acting are not the pose's
     // doing, and are left out).
-    auto largest_change = [&](double a, double b) {
+    const std::vector<HapticSample>& h = r.recording.haptic;  // (clang 14 captures no structured binding)
+    auto largest_change = [&h](double a, double b) {
       double m = 0;
-      const auto& h = r.recording.haptic;
       for (std::size_t k = 10; k < h.size(); ++k)
         if (h[k].t >= a && h[k].t < b && h[k].gain == 1 && h[k - 10].gain == 1)
           m = std::max(m, double(norm(h[k].force - h[k - 10].force)));
