@@ -88,6 +88,57 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
                               name));
 }
 
+// An OBJ file is text whose face lines name vertices it has: assimp 5.2's OBJ importer freed memory
+// twice on a face line of garbage indices (" f444444444", found by fuzz_mesh: heap corruption
+// inside assimp, before anything is handed back to be checked), so the file is read here first:
+// text, every statement one this knows by its full name (assimp goes by the first letter), and
+// every face's vertices `i`, `i/t`, `i//n` or `i/t/n` with i a vertex defined before it (1-based,
+// or negative: counted back from the last).
+void check_obj_text(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  long long vertices = 0, number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    for (const unsigned char c : line)
+      if (c < 0x20 && c != '\t')
+        throw MeshError(fmt::format("{}: line {} is not text (byte {:#04x}); an OBJ file is text: export it again",
+                                    name, number, int(c)));
+    std::istringstream words(line);
+    std::string word;
+    if (!(words >> word) || word[0] == '#') continue;
+    // Assimp takes a line by its first letter ("f444" is a face): every statement is named in full.
+    static const char* const known[] = {"v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s", "usemtl", "mtllib"};
+    if (std::find(std::begin(known), std::end(known), word) == std::end(known))
+      throw MeshError(fmt::format("{}: line {} begins with \"{}\", not an OBJ statement this reads (v, vt, vn, "
+                                  "f, l, p, o, g, s, usemtl, mtllib, #); export the mesh again",
+                                  name, number, word.size() > 40 ? word.substr(0, 40) + "..." : word));
+    if (word == "v") {
+      ++vertices;
+    } else if (word == "f" || word == "l" || word == "p") {
+      std::string corner;
+      while (words >> corner) {
+        std::size_t used = 0;
+        long long index = 0;
+        try {
+          index = std::stoll(corner, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const bool rest_ok = used > 0 && (used == corner.size() || corner[used] == '/') &&
+                             corner.find_first_not_of("0123456789/-", used) == std::string::npos;
+        const long long at = index < 0 ? vertices + index + 1 : index;
+        if (!rest_ok || index == 0 || at < 1 || at > vertices)
+          throw MeshError(fmt::format("{}: line {}: \"{}\" names no vertex of the {} defined before it; the file "
+                                      "is damaged: export it again",
+                                      name, number, corner.size() > 40 ? corner.substr(0, 40) + "..." : corner,
+                                      vertices));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
@@ -111,6 +162,7 @@ LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
     throw MeshError(fmt::format("{}: is not an STL, OBJ or PLY file (by its name); save it as one, with its extension",
                                 name));
   check_ply_header(file, name, size);
+  if (ext == ".obj") check_obj_text(file, name);
 
   Assimp::Importer importer;
   // Read first with no processing but assimp's own validation, which refuses a face that names a
