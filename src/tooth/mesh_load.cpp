@@ -82,6 +82,14 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
       properties = 0;
     } else if (word == "property") {
       properties += 1;
+    } else if (!word.empty() && (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '-' || word[0] == '.')) {
+      break;  // data before end_header
+    } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
+      // Assimp 5.2 looped for ever on a header line it did not know ("ehement%vertex 4": found by
+      // fuzz_mesh): every line is one of PLY's.
+      throw MeshError(fmt::format("{}: line {} of its PLY header begins with \"{}\", not format, comment, obj_info, "
+                                  "element, property or end_header; the file is damaged: export it again",
+                                  name, n + 2, word.size() > 40 ? word.substr(0, 40) + "..." : word));
     }
   }
   throw MeshError(fmt::format("{}: is not a complete PLY file (its header has no end_header line); export it again",

@@ -147,6 +147,10 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
                                            "0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n0\n3 0 3 2\n3 1 2 3\n";
   const std::string empty_face = load_refusal(dir / "empty_face.ply");
   EXPECT_NE(empty_face.find("empty_face.ply: face 1 has no vertices"), std::string::npos) << empty_face;
+  std::ofstream(dir / "odd_line.ply") << "ply\nformat ascii 1.0\nehement%vertex 4\n" << header.substr(header.find("property"))
+                                       << "end_header\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n";
+  const std::string odd = load_refusal(dir / "odd_line.ply");
+  EXPECT_NE(odd.find("odd_line.ply: line 3 of its PLY header begins with \"ehement%vertex\""), std::string::npos) << odd;
   std::ofstream(dir / "cube.off") << "OFF\n8 12 0\n";
   const std::string off = load_refusal(dir / "cube.off");
   EXPECT_NE(off.find("cube.off: is not an STL, OBJ or PLY file"), std::string::npos) << off;
