@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include "dentsph/tooth.hpp"
 
@@ -61,11 +62,36 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
   double properties = 0, count = 0;
   auto close_element = [&] { declared += count * std::max(1.0, properties); };
   std::string line;
+  // Assimp 5.2 looped for ever on headers it half understood ("ehement%vertex 4", "end_header"
+  // followed by a vertical tab, found by fuzz_mesh): every header line is printable and one of
+  // PLY's, its names plain words, and end_header stands alone on its line.
+  auto refuse_line = [&](std::size_t n, const std::string& why) {
+    throw MeshError(fmt::format("{}: line {} of its PLY header {}; the file is damaged: export it again", name, n + 2, why));
+  };
+  auto plain = [](const std::string& w) {
+    return !w.empty() && std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+  };
+  static const char* const types[] = {"char",  "uchar",  "short", "ushort",  "int",     "uint",    "float",  "double",
+                                      "int8",  "uint8",  "int16", "uint16",  "int32",   "uint32",  "float32", "float64"};
+  auto type = [&](const std::string& w) { return std::find(std::begin(types), std::end(types), w) != std::end(types); };
   for (std::size_t n = 0; n < kMaxHeaderLines && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
+    const bool text = std::all_of(line.begin(), line.end(), [](unsigned char c) { return c >= 0x20 || c == '\t'; });
+    if (!text && !word.empty() && !std::isdigit(static_cast<unsigned char>(word[0])))
+      refuse_line(n, "holds a byte that is not text");
+    if (word == "end_header" && line != "end_header") refuse_line(n, "has more than end_header on it");
+    if (word == "property") {
+      std::vector<std::string> w;
+      for (std::string t; words >> t;) w.push_back(t);
+      const bool scalar = w.size() == 2 && type(w[0]) && plain(w[1]);
+      const bool list = w.size() == 4 && w[0] == "list" && type(w[1]) && type(w[2]) && plain(w[3]);
+      if (!scalar && !list) refuse_line(n, "is not \"property TYPE NAME\" nor \"property list TYPE TYPE NAME\"");
+      words = std::istringstream(line);
+      words >> word;
+    }
     if (word == "end_header") {
       close_element();
       if (declared > double(size))
@@ -78,6 +104,7 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
       close_element();
       std::string element;
       words >> element >> count;
+      if (!plain(element)) refuse_line(n, "names an element that is not a plain word");
       if (!words || !(count >= 0)) count = 0;
       properties = 0;
     } else if (word == "property") {
@@ -85,11 +112,8 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
     } else if (!word.empty() && (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '-' || word[0] == '.')) {
       break;  // data before end_header
     } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
-      // Assimp 5.2 looped for ever on a header line it did not know ("ehement%vertex 4": found by
-      // fuzz_mesh): every line is one of PLY's.
-      throw MeshError(fmt::format("{}: line {} of its PLY header begins with \"{}\", not format, comment, obj_info, "
-                                  "element, property or end_header; the file is damaged: export it again",
-                                  name, n + 2, word.size() > 40 ? word.substr(0, 40) + "..." : word));
+      refuse_line(n, fmt::format("begins with \"{}\", not format, comment, obj_info, element, property or end_header",
+                                 word.size() > 40 ? word.substr(0, 40) + "..." : word));
     }
   }
   throw MeshError(fmt::format("{}: is not a complete PLY file (its header has no end_header line); export it again",

@@ -151,6 +151,13 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
                                        << "end_header\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n";
   const std::string odd = load_refusal(dir / "odd_line.ply");
   EXPECT_NE(odd.find("odd_line.ply: line 3 of its PLY header begins with \"ehement%vertex\""), std::string::npos) << odd;
+  std::ofstream(dir / "tab_end.ply") << header << "end_header\v1 0 0\n";
+  const std::string tab_end = load_refusal(dir / "tab_end.ply");
+  EXPECT_NE(tab_end.find("tab_end.ply: line 9 of its PLY header"), std::string::npos) << tab_end;
+  std::ofstream(dir / "odd_name.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float!z\nend_header\n";
+  const std::string odd_name = load_refusal(dir / "odd_name.ply");
+  EXPECT_NE(odd_name.find("odd_name.ply: line 4 of its PLY header is not \"property TYPE NAME\""), std::string::npos)
+      << odd_name;
   std::ofstream(dir / "cube.off") << "OFF\n8 12 0\n";
   const std::string off = load_refusal(dir / "cube.off");
   EXPECT_NE(off.find("cube.off: is not an STL, OBJ or PLY file"), std::string::npos) << off;
