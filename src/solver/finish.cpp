@@ -29,8 +29,7 @@ Vec3 tool_particle_force(const State& s, std::uint32_t i) {
 void tool_wrench(State& s) {
   ToolWrench w;
   const Vec3 c = s.tool_pose_applied.position;
-  for (std::uint32_t i = 0; i < s.size(); ++i) {
-    if (s.role[i] != Role::tool) continue;
+  for (const std::uint32_t i : s.iisph.tools) {  // the tool particles in index order (rows.cpp)
     const Vec3 f = tool_particle_force(s, i);
     s.force[i] = f * (s.rho[i] / s.mass[i]);  // force density, as the paper's step keeps it
     w.force += f;

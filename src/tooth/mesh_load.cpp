@@ -89,8 +89,6 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
       const bool scalar = w.size() == 2 && type(w[0]) && plain(w[1]);
       const bool list = w.size() == 4 && w[0] == "list" && type(w[1]) && type(w[2]) && plain(w[3]);
       if (!scalar && !list) refuse_line(n, "is not \"property TYPE NAME\" nor \"property list TYPE TYPE NAME\"");
-      words = std::istringstream(line);
-      words >> word;
     }
     if (word == "end_header") {
       close_element();
