@@ -6,9 +6,10 @@
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s, every target)
 #
-# The mutations start from a fixed seed (DENTSPH_FUZZ_SEED, default 1), so that the CI's minute
-# repeats the same search on the same code; DENTSPH_FUZZ_SEED=0 lets libFuzzer pick one (a
-# longer campaign, docs/fuzzing.md).
+# The mutations start from a fixed seed (DENTSPH_FUZZ_SEED, default 1) and run a fixed count of
+# inputs (the seconds' worth on the project's machine), so that the CI's minute repeats the same
+# search on the same code as a run here; DENTSPH_FUZZ_SEED=0 lets libFuzzer pick one and fuzzes for
+# the time (a longer campaign, docs/fuzzing.md).
 #
 # Builds the fuzz preset first (clang-14: scripts/install-deps.sh --sanitizers installs it).
 set -euo pipefail
@@ -28,7 +29,10 @@ export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1"
 # assimp's own leaks (fuzz/lsan.supp says which): not dentsph's memory.
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Runs a second of each target on the project's 2-core machine (idle, 150 s runs from the seeds).
+declare -A runs_per_s=([scene]=190 [procedure]=1300 [recording]=1350 [mesh]=1300 [protocol]=1400 [input_script]=25000)
 status=0
+failed=()
 for t in "${targets[@]}"; do
   work="build/fuzz/corpus/$t"
   findings="build/fuzz/findings/$t"
@@ -39,14 +43,39 @@ for t in "${targets[@]}"; do
   if ! "build/fuzz/fuzz/fuzz_$t" -runs=0 -timeout=20 -rss_limit_mb=3072 "fuzz/corpus/$t" "${regressions[@]}"; then
     echo "fuzz_$t: a seed or a regression input fails"
     status=1
+    failed+=("$t (a seed or a regression)")
     continue
   fi
-  echo "== fuzz_$t: ${seconds} s"
-  if ! "build/fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -seed="${DENTSPH_FUZZ_SEED:-1}" -timeout=20 \
+  # With the fixed seed, a count of runs (the target's rate on the project's machine times the
+  # seconds) rather than a time: the same mutations, so the same search, on any machine that
+  # reaches the count in time; a machine three times slower stops at the time (3 x SECONDS).
+  seed="${DENTSPH_FUZZ_SEED:-1}"
+  limit=(-max_total_time="$seconds")
+  if [ "$seed" != 0 ]; then
+    limit=(-runs=$((runs_per_s[$t] * seconds)) -max_total_time=$((3 * seconds)))
+  fi
+  echo "== fuzz_$t: ${seconds} s (${limit[*]})"
+  if ! "build/fuzz/fuzz/fuzz_$t" "${limit[@]}" -seed="$seed" -timeout=20 \
       -rss_limit_mb=3072 -max_len=8192 \
       -print_final_stats=1 -artifact_prefix="$findings/" "$work" "fuzz/corpus/$t"; then
     echo "fuzz_$t: found a defect; its input is in $findings/ (keep it in fuzz/regressions/$t/ once fixed)"
     status=1
+    failed+=("$t")
   fi
 done
+# What failed, last, where a log's tail shows it: each finding's name and its bytes (base64, up to
+# 4 KiB), so that a run elsewhere can be reproduced from the log alone.
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "== fuzz: failed: ${failed[*]}"
+  for t in "${targets[@]}"; do
+    for f in "build/fuzz/findings/$t"/*; do
+      [ -f "$f" ] || continue
+      echo "== $f ($(stat -c %s "$f") bytes), base64:"
+      head -c 4096 "$f" | base64 -w 0
+      echo
+    done
+  done
+else
+  echo "== fuzz: every target clean"
+fi
 exit $status
