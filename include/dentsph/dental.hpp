@@ -14,8 +14,8 @@
 namespace dentsph {
 
 // The dental scenes' time step for each solver, s: the paper's explicit step 5e-5 (under its
-// acoustic limit, 62 us for the paste and walls below), the iisph solver 1e-3 (one step per tick of
-// a 1 kHz haptic loop; docs/model.md).
+// acoustic limit, 62 us for the paste and walls below), the iisph solver 2e-3 (one step per two
+// ticks of a 1 kHz haptic loop, with the prepared tooth's wall field; docs/model.md).
 real dental_time_step(Solver solver);
 
 struct DentalSceneParams {

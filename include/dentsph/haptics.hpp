@@ -48,7 +48,7 @@ struct CouplingParams {
   double stiffness_N_per_m = 400;
   double damping_N_s_per_m = 2;      // relative velocity of proxy and device
   double proxy_mass_kg = 0.05;
-  double proxy_drag_N_s_per_m = 2;   // proxy against the world (dissipates energy)
+  double proxy_drag_N_s_per_m = 2;   // proxy against the world while the tool touches (dissipates energy)
   // Set by the runtime, not a user's setting: the proxy's largest speed (device m/s; 0: none), the
   // velocity CFL limit of the step (cfl h / dt, in the device's frame). The proxy is the simulated
   // tool: a tool that moves more than cfl h in one step outruns the solver (at the iisph solver's

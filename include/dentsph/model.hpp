@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "dentsph/material.hpp"
 #include "dentsph/vec3.hpp"
+#include "dentsph/wall_field.hpp"
 
 namespace dentsph {
 
@@ -101,6 +103,9 @@ struct Model {
   // empty: the scene builders fill it, and State::add_particles with a Model it may grow adds the
   // values of particles that name none.
   MaterialTable materials;
+  // The iisph solver keeps material this far out of the scene's fixed walls (wall_field.hpp; the
+  // dental scenes': the prepared tooth). None by default; the paper's step never reads it.
+  std::shared_ptr<const WallField> walls;
 };
 
 // Checks `p` and derives the kernel constants, C_d and the grid. Throws std::invalid_argument

@@ -93,6 +93,11 @@ struct Scene {
 // Chooses the step that runs the scene (the command line's --solver over the scene's
 // simulation.solver) and rebuilds its Model; a dental scene takes the solver's dental time step.
 void select_solver(Scene& scene, Solver solver);
+// A dental scene run by the iisph solver: its Model gets the prepared tooth's wall field
+// (wall_field.hpp: sampled at half the paste's spacing over its boundary particles' box grown by h,
+// in cells large enough for at most about a million corners; clearance a quarter spacing). Other
+// scenes and solvers: none. select_solver calls it.
+void attach_walls(Scene& scene);
 // m/s, the fastest any tool particle moves between the scene's keyframes (the first instrument's
 // and those a switch_tool event takes up): what the velocity CFL limit of the iisph solver is
 // checked against before a run.

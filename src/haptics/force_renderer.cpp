@@ -1,5 +1,7 @@
 #include "haptics/force_renderer.hpp"
 
+#include <algorithm>
+
 #include "haptics/virtual_coupling.hpp"
 
 namespace dentsph::haptics {
@@ -9,19 +11,38 @@ void ForceRenderer::add(const SimOutput& o, std::int64_t now_ns) {
     force_.add(o.force_N, now_ns);
     return;
   }
+  const double stamp_s = double(o.command_stamp_ns - (started_ ? base_ns_ : now_ns)) * 1e-9;
   if (!started_) {  // the proxy's first position: no ramp from the origin
+    base_ns_ = now_ns;
     proxy_x_.add(o.proxy_position, now_ns);
     proxy_v_.add(o.proxy_velocity, now_ns);
+    stamp_.add({stamp_s, 0, 0}, now_ns);
+    last_x_ = o.proxy_position;
+    last_stamp_s_ = stamp_s;
     started_ = true;
+  }
+  // The proxy's motion per second of the device's clock: what carries it forward (its own velocity
+  // is per simulated second, which a simulation slower than real time makes larger).
+  if (stamp_s - last_stamp_s_ >= kMinStampStep) {
+    motion_ = (o.proxy_position - last_x_) / (stamp_s - last_stamp_s_);
+    last_x_ = o.proxy_position;
+    last_stamp_s_ = stamp_s;
   }
   proxy_x_.add(o.proxy_position, now_ns);
   proxy_v_.add(o.proxy_velocity, now_ns);
+  proxy_w_.add(motion_, now_ns);
+  stamp_.add({stamp_s, 0, 0}, now_ns);
+}
+
+Vec3 ForceRenderer::proxy_now(std::int64_t now_ns) const {
+  const double lead = std::clamp(double(now_ns - base_ns_) * 1e-9 - stamp_.at(now_ns).x, 0.0, kMaxLead);
+  return proxy_x_.at(now_ns) + proxy_w_.at(now_ns) * lead;
 }
 
 Vec3 ForceRenderer::render(const Vec3& x, const Vec3& v, std::int64_t now_ns) const {
   if (mode_ == ForceMode::direct) return force_.at(now_ns);
   if (!started_) return {};
-  return coupling_force(coupling_, proxy_x_.at(now_ns), proxy_v_.at(now_ns), x, v);
+  return coupling_force(coupling_, proxy_now(now_ns), proxy_v_.at(now_ns), x, v);
 }
 
 }  // namespace dentsph::haptics

@@ -1,7 +1,9 @@
-// A scripted device: the hand follows the scene's tool keyframes in real time.
+// A scripted device: a hand follows the scene's tool keyframes in real time, as a hand moves
+// (hand_path.hpp: without a hand's instant changes of velocity at the keyframes).
 #include <memory>
 
 #include "dentsph/scene.hpp"
+#include "haptics/hand_path.hpp"
 #include "haptics/playback_device.hpp"
 
 namespace dentsph {
@@ -11,18 +13,18 @@ namespace {
 class ScriptedDevice final : public haptics::PlaybackDevice {
  public:
   ScriptedDevice(const ToolTrajectory& trajectory, const WorkspaceMap& map, double end_s)
-      : trajectory_(trajectory), map_(map), end_s_(end_s) {}
+      : path_(trajectory), map_(map), end_s_(end_s) {}
   std::string name() const override { return "scripted"; }
 
  protected:
   Pose pose_at(double t) override {
-    const Pose p = trajectory_.keyframes.empty() ? Pose{} : trajectory_.at(real(t));
+    const Pose p = path_.at(t);
     return {map_.to_device(p.position), p.orientation};
   }
   double end_s() const override { return end_s_; }
 
  private:
-  const ToolTrajectory& trajectory_;
+  haptics::HandPath path_;
   WorkspaceMap map_;
   double end_s_;
 };
@@ -32,7 +34,9 @@ class ScriptedDevice final : public haptics::PlaybackDevice {
 std::unique_ptr<Device> make_scripted_device(const Scene& scene, const WorkspaceMap& map, double duration_s,
                                              double tail_s) {
   double end = duration_s;
-  if (end <= 0) end = (scene.tool.keyframes.empty() ? 0.0 : double(scene.tool.keyframes.back().t)) + tail_s;
+  if (end <= 0)
+    end = (scene.tool.keyframes.empty() ? 0.0 : double(scene.tool.keyframes.back().t) + haptics::HandPath(scene.tool).lag_s()) +
+          tail_s;
   if (end <= 0) end = scene.duration > 0 ? double(scene.duration) : 1.0;
   return std::make_unique<ScriptedDevice>(scene.tool, map, end);
 }

@@ -22,11 +22,15 @@ void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_forc
     session_ = p_.sessions->front().session;
     reset(p_.sessions->front().device_position);
   }
-  const double k = p_.stiffness_N_per_m, b = p_.damping_N_s_per_m, c = p_.proxy_drag_N_s_per_m, m = p_.proxy_mass_kg;
+  // The drag takes energy out of a contact; in air (no tool force) it would only be felt, as a force
+  // against the hand of drag x speed (0.125 N at 62.5 mm/s), so it acts in contact alone.
+  const bool contact = tool_force != Vec3{};
+  const double k = p_.stiffness_N_per_m, b = p_.damping_N_s_per_m, c = contact ? p_.proxy_drag_N_s_per_m : 0.0,
+               m = p_.proxy_mass_kg;
   // The tool force was computed with the proxy where it is now. Its stiffness along the proxy's
   // move since the last sample: -dF . dx / |dx|^2 where it resists the move; the largest of that
   // and the decayed estimate.
-  k_tool_ = tool_force == Vec3{} ? 0 : k_tool_ * std::exp2(-1 / kStiffnessHalfLife);
+  k_tool_ = contact ? k_tool_ * std::exp2(-1 / kStiffnessHalfLife) : 0;
   if (!sampled_) {
     sampled_x_ = x_, sampled_force_ = tool_force, sampled_ = true;
   } else if (const Vec3 dx = x_ - sampled_x_; norm2(dx) >= kMinMove * kMinMove) {

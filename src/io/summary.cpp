@@ -37,7 +37,8 @@ std::string summary_json(const RunSummary& s) {
   if (s.solver == Solver::iisph)
     j["solver"].update({{"pressure_iterations", {{"mean", s.iterations_mean}, {"max", s.iterations_max}}},
                         {"density_error", {{"mean", s.density_error_mean}, {"max", s.density_error_max}}},
-                        {"pressure_residual_max", s.pressure_residual_max}});
+                        {"pressure_residual_max", s.pressure_residual_max},
+                        {"wall_projections", {{"particles", s.wall_projections}, {"steps", s.wall_projection_steps}}}});
   j["stability"] = {{"dt_s", s.dt},
                     {"limits_s", {{"acoustic", seconds(s.limits.acoustic)},
                                   {"viscous", seconds(s.limits.viscous)},

@@ -121,6 +121,8 @@ bool Simulation::step(const Pose& tool_pose) {
     density_error_sum_ += d.density_error;
     density_error_max_ = std::max<double>(density_error_max_, d.density_error);
     pressure_residual_max_ = std::max<double>(pressure_residual_max_, d.pressure_residual);
+    wall_projections_ += d.wall_projections;
+    wall_projection_steps_ += d.wall_projections > 0;
   }
   // Exploded material: the run says so instead of stepping garbage.
   if (!diverged_ && exploded(d, limits_.sound_speed)) {
@@ -151,6 +153,8 @@ RunSummary Simulation::summary() {
     s.density_error_mean = density_error_sum_ / double(solver_steps_);
     s.density_error_max = density_error_max_;
     s.pressure_residual_max = pressure_residual_max_;
+    s.wall_projections = wall_projections_;
+    s.wall_projection_steps = wall_projection_steps_;
   }
   if (diverged_) {
     s.status = "diverged";

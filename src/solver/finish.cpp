@@ -1,6 +1,6 @@
 // The end of an iisph step: the force on the tool (the reaction of the pressure, viscous and
 // adhesion forces its particles exert on material), then each material particle's velocity
-// v = v** + dt a_p and position r += dt v, the tool moved to its pose, and the outputs: `pressure`
+// v = v** + dt a_p and position r += dt v (kept out of the walls, model.walls), the tool moved to its pose, and the outputs: `pressure`
 // is the solve's (mechanical) pressure, `force` the internal force density of material, the
 // diagnostics of the paper's step (largest acceleration and speed, non-finite material).
 #include <algorithm>
@@ -45,17 +45,20 @@ void finish(const Model& model, State& s, int threads) {
   const IisphScratch& x = s.iisph;
   const real dt = model.dt;
   real a2max = 0, v2max = 0;
-  std::uint64_t non_finite = 0;
+  std::uint64_t non_finite = 0, projected = 0;
+  const WallField* walls = model.walls.get();
   const std::int64_t n = s.size();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite, projected)
   for (std::int64_t i = 0; i < n; ++i) {
     switch (s.role[i]) {
       case Role::material: {
-        const Vec3 v = x.v_a[i];
+        Vec3 v = x.v_a[i];
+        Vec3 r = s.pos[i] + v * dt;
+        if (walls && walls->project(r, v)) ++projected;  // kept out of the walls (wall_field.hpp)
         const Vec3 a = (v - s.vel[i]) / dt;
         s.force[i] = (a - model.gravity) * s.rho[i];
         s.vel[i] = v;
-        s.pos[i] += v * dt;
+        s.pos[i] = r;
         s.volume[i] = s.mass[i] / s.rho[i];
         const real a2 = norm2(a), v2 = norm2(v);
         if (!std::isfinite(a2) || !std::isfinite(v2) || !is_finite(s.pos[i])) {
@@ -77,6 +80,7 @@ void finish(const Model& model, State& s, int threads) {
     }
   }
   stages::close_step(s, a2max, v2max, non_finite, dt);
+  s.diagnostics.wall_projections = projected;
 }
 
 }  // namespace dentsph::iisph

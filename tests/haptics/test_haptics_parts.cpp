@@ -1,5 +1,5 @@
 // The haptic runtime's parts on their own: the triple buffer, the wire format, the force limiter,
-// the watchdog, the interpolator, the virtual coupling, the timing histogram, the recording and
+// the watchdog, the interpolator, the scripted hand's path, the virtual coupling, the timing histogram, the recording and
 // the passivity measure.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -18,6 +18,7 @@
 #include "haptics/force_interpolator.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/force_limiter.hpp"
+#include "haptics/hand_path.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "haptics/shared.hpp"
 #include "haptics/timing_stats.hpp"
@@ -715,6 +716,67 @@ TEST(VirtualCouplingSpeed, TheProxyIsSlowedToTheStepsLimit) {
     ref.step({0.001, 0, 0}, {}, {}, 1e-3);
   }
   EXPECT_EQ(slow.position().x, ref.position().x) << "below the limit nothing changes";
+}
+
+}  // namespace
+}  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// Keyframes: at rest at the origin until 0.5 s, 0.1 m/s along x until 1.5 s, then 0.1 m/s along y
+// until 2.5 s, held after.
+ToolTrajectory corner_path() {
+  ToolTrajectory tr;
+  for (const auto& [t, x, y] : {std::tuple{0.5, 0.0, 0.0}, {1.5, 0.1, 0.0}, {2.5, 0.1, 0.1}}) {
+    ToolKeyframe k;
+    k.t = t;
+    k.pose.position = {x, y, 0};
+    tr.keyframes.push_back(k);
+  }
+  return tr;
+}
+
+TEST(HandPath, FollowsEachSegmentExactlyOneLagBehind) {
+  const ToolTrajectory tr = corner_path();
+  const haptics::HandPath hand(tr);
+  const double omega = 2 * std::numbers::pi * haptics::hand_bandwidth_hz;
+  EXPECT_NEAR(hand.lag_s(), 2 / omega, 1e-15);
+  // Away from the corners (more than 40 / omega after one), the keyframes delayed by the lag.
+  for (const double t : {0.0, 0.5, 1.4, 1.5, 2.5, 3.5, 10.0}) {
+    const Vec3 want = tr.at(real(t - hand.lag_s())).position;
+    EXPECT_LT(norm(hand.at(t).position - want), 1e-10) << "t = " << t;
+  }
+  // One lag after a corner the keyframes are at it; the hand has cut it.
+  EXPECT_GT(norm(hand.at(1.5 + hand.lag_s()).position - Vec3{0.1, 0, 0}), 1e-3);
+  EXPECT_LT(norm(hand.at(10.0).position - Vec3{0.1, 0.1, 0}), 1e-12) << "comes to rest at the last keyframe";
+}
+
+TEST(HandPath, StartsFromRestWithTheFiltersLargestAcceleration) {
+  const ToolTrajectory tr = corner_path();
+  const haptics::HandPath hand(tr);
+  const double omega = 2 * std::numbers::pi * haptics::hand_bandwidth_hz, h = 1e-4;
+  double vmax_jump = 0, amax = 0;
+  Vec3 v_prev = (hand.at(h).position - hand.at(0).position) / h;
+  for (double t = 2 * h; t < 3.0; t += h) {
+    const Vec3 v = (hand.at(t).position - hand.at(t - h).position) / h;
+    vmax_jump = std::max(vmax_jump, double(norm(v - v_prev)));
+    if (t < 1.4) amax = std::max(amax, double(norm(v - v_prev)) / h);
+    v_prev = v;
+  }
+  // The keyframes jump by 0.1 m/s at once; the hand's velocity moves by at most a ~1e-4 of it per
+  // 0.1 ms step (its acceleration is bounded), and starting from rest at 0.1 m/s its largest
+  // acceleration is the filter's dv omega / e (3.1 m/s^2 for a 0.1 m/s start at 5 Hz).
+  EXPECT_LT(vmax_jump, 0.1 * omega * h);
+  EXPECT_NEAR(amax, 0.1 * omega / std::numbers::e, 0.01 * 0.1 * omega / std::numbers::e);
+}
+
+TEST(HandPath, RefusesAnImpossibleBandwidthAndKeepsAnEmptyPathAtTheOrigin) {
+  const ToolTrajectory tr = corner_path();
+  EXPECT_THROW(haptics::HandPath(tr, 0.0), std::invalid_argument);
+  EXPECT_THROW(haptics::HandPath(tr, std::nan("")), std::invalid_argument);
+  const ToolTrajectory none;
+  EXPECT_EQ(haptics::HandPath(none).at(1.0).position, Vec3{});
 }
 
 }  // namespace

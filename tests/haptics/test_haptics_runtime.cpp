@@ -94,8 +94,8 @@ RealtimeResult expect_passive_press(const Scene& scene) {
 
 TEST(HapticRuntime, VirtualCouplingIsPassiveWhilePressing) { expect_passive_press(press_scene()); }
 
-// The same press on the iisph solver at twice the scene's step (1 ms, the dental scenes' iisph
-// step): the proxy takes the tool force implicitly through the contact's estimated stiffness
+// The same press on the iisph solver at the dental scenes' iisph step (dental_time_step): the proxy
+// takes the tool force implicitly through the contact's estimated stiffness
 // (virtual_coupling.cpp), which must take energy out, never put it in. The box has two layers of
 // wall (with the scene's one, spaced h / 2, the iisph step let the paste run out through the floor
 // and the ball pressed nothing; docs/model.md).
@@ -105,7 +105,7 @@ TEST(HapticRuntime, VirtualCouplingIsPassiveWhilePressingOnTheIisphSolver) {
     ASSERT_NE(json.find(what), std::string::npos) << what;
     json.replace(json.find(what), what.size(), with);
   };
-  replace(R"("dt": 5e-4,)", R"("dt": 1e-3, "solver": "iisph",)");
+  replace(R"("dt": 5e-4,)", "\"dt\": " + std::to_string(dental_time_step(Solver::iisph)) + R"(, "solver": "iisph",)");
   replace(R"("layers": 1)", R"("layers": 2)");
   const Scene scene = parse_scene(json, "press_scene_iisph");
   ASSERT_EQ(scene.model.solver, Solver::iisph);

@@ -88,11 +88,14 @@ void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver:
   const RunSummary s = run_offline(sc, opt);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
-  std::printf("%s, Class %s, %s: %zu boundary particles, %u material, fill %.3f, %d voids, overfill %.2f mm^3, "
-              "leaked %d, lost %d; %.1f s wall (output in %s)\n",
+  std::printf("%s, Class %s, %s: %zu boundary particles, %u material, fill %.3f, %d voids (%.3f mm^3), overfill %.2f mm^3, "
+              "leaked %d, lost %d; %.2f pressure iterations, %llu wall projections in %llu steps; %.1f s wall (output in %s)\n",
               file, kind == CavityClass::class_1 ? "I" : "II", solver_name(solver), ts.boundary.points.size(), s.material,
-              a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["overfill_mm3"].get<double>(),
-              a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(), s.wall_time_s, opt.out_dir.c_str());
+              a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
+              a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(),
+              s.iterations_mean,
+              (unsigned long long)s.wall_projections, (unsigned long long)s.wall_projection_steps, s.wall_time_s,
+              opt.out_dir.c_str());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.9);
   // No paste in the tooth. Before the lining's surface layer closed its holes (0.7 spacing,
   // docs/tooth.md), 2 to 9 particles crept into the scans' upper walls.
@@ -111,9 +114,12 @@ void fills_the_crown(Solver solver) {
   const RunSummary s = run_offline(sc, opt);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
-  std::printf("built-in crown, %s: fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, lost %d\n",
+  std::printf("built-in crown, %s: fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, lost %d; %.2f pressure "
+              "iterations, density error mean %.4f max %.4f, %llu wall projections in %llu steps\n",
               solver_name(solver), a["fill_fraction"].get<double>(), a["void_count"].get<int>(),
-              a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>());
+              a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(),
+              s.iterations_mean, s.density_error_mean, s.density_error_max, (unsigned long long)s.wall_projections,
+              (unsigned long long)s.wall_projection_steps);
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
   EXPECT_EQ(a["void_count"].get<int>(), 0);
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);

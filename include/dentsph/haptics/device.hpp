@@ -72,9 +72,10 @@ class Device {
   virtual std::string report_json() const { return "{}"; }
 };
 
-// Plays the scene's tool keyframes in real time (a hand that follows the procedure exactly),
-// mapped into the device frame by `map`; finished `tail_s` after the last keyframe, or at
-// `duration_s` when it is positive.
+// Plays the scene's tool keyframes in real time as a hand moves through them (through a 5 Hz
+// critically damped low-pass, src/haptics/hand_path.hpp: no instant change of velocity at a
+// keyframe, 64 ms behind them), mapped into the device frame by `map`; finished `tail_s` after the
+// last keyframe (and the hand's lag), or at `duration_s` when it is positive.
 std::unique_ptr<Device> make_scripted_device(const Scene& scene, const WorkspaceMap& map, double duration_s = 0,
                                              double tail_s = 0.1);
 
