@@ -8,11 +8,15 @@
 namespace dentsph::iisph {
 
 void list_material(State& s) {
+  // Paste that set (the cure's gel transition) became wall, so there can be fewer material particles
+  // than the lists were sized for (State::size_iisph_scratch, which particles added later call):
+  // cleared and refilled within their capacity, no allocation.
   IisphScratch& x = s.iisph;
-  std::uint32_t k = 0, t = 0;
+  x.material.clear();
+  x.tools.clear();
   for (std::uint32_t i = 0; i < s.size(); ++i) {
-    if (s.role[i] == Role::material) x.material[k++] = i;
-    if (s.role[i] == Role::tool) x.tools[t++] = i;
+    if (s.role[i] == Role::material) x.material.push_back(i);
+    if (s.role[i] == Role::tool) x.tools.push_back(i);
   }
 }
 

@@ -134,11 +134,13 @@ TEST(Filling, TheBuiltInProcedureFillsTheBuiltInCrown) { fills_the_crown(Solver:
 // condensation left them, so a gap it leaves at a line angle is not closed by the next increment's
 // pressing as in the uncured procedure: measured, 97.6% filled with 2 voids at the walls (0.108
 // mm^3; the uncured procedure: 98.1%, none).
-TEST(Filling, TheCuredProcedureFillsAndCuresTheBuiltInCrown) {
+// The cured procedure on the given solver (one thread).
+void fills_and_cures_the_crown(Solver solver) {
   std::ifstream in("scenes/cured_procedure.json");
   ASSERT_TRUE(in) << "scenes/cured_procedure.json (tests run from the repository root)";
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   Scene sc = dental_procedure(default_tooth_scene(), text, "scenes/cured_procedure.json");
+  select_solver(sc, solver);
   sc.output.snapshot_interval = 0;
   RunOptions opt;
   opt.threads = 1;
@@ -146,23 +148,37 @@ TEST(Filling, TheCuredProcedureFillsAndCuresTheBuiltInCrown) {
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
   const auto c = nlohmann::json::parse(s.cure_json);
-  std::printf("cured procedure: fill %.3f, %d voids (%.3f mm^3), leaked %d, lost %d; %llu steps, %.1f s of light (%.1f s "
-              "in %llu updates at rest); %s\n",
-              a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
-              a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(), (unsigned long long)s.steps, s.light_on_s,
-              s.cure_at_rest_s, (unsigned long long)s.cure_updates_at_rest, s.cure_report.c_str());
+  std::printf("cured procedure, %s: fill %.3f, %d voids (%.3f mm^3), leaked %d, lost %d; %llu steps, %.1f s of light "
+              "(%.1f s in %llu updates at rest); %s\n",
+              solver_name(solver), a["fill_fraction"].get<double>(), a["void_count"].get<int>(),
+              a["void_volume_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(),
+              (unsigned long long)s.steps, s.light_on_s, s.cure_at_rest_s, (unsigned long long)s.cure_updates_at_rest,
+              s.cure_report.c_str());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
   EXPECT_LT(a["void_volume_mm3"].get<double>(), 0.2);
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
   EXPECT_NEAR(s.light_on_s, 60, 1e-6);
-  EXPECT_GT(s.cure_at_rest_s, 40) << "most of the light's time advanced in large updates";
+  // The paper's step (50 us) needs most of the light's time advanced in large updates at rest; the
+  // iisph solver's 2 ms step steps it cheaply (measured 29 s at rest: its paste settles more slowly
+  // below the rest speed, which the fastest particle anywhere decides).
+  if (solver == Solver::paper) {
+    EXPECT_GT(s.cure_at_rest_s, 40) << "most of the light's time advanced in large updates";
+  }
   ASSERT_EQ(c["increments"].size(), 3u);
   for (const auto& inc : c["increments"]) {
     EXPECT_GE(inc["adequately_cured_fraction"].get<double>(), 0.95) << inc["message"];
     EXPECT_GT(inc["top_dose_J_per_cm2"].get<double>(), 10) << inc["message"];
   }
 }
+
+TEST(Filling, TheCuredProcedureFillsAndCuresTheBuiltInCrown) { fills_and_cures_the_crown(Solver::paper); }
+
+// The same on the iisph solver, whose lists of material particles must shrink as paste sets into
+// wall: before they did, the pressure and viscosity solves kept set particles (and stale indices)
+// as material and the run diverged 35 ms after the first increment's top gelled, at any dt down to
+// 0.5 ms. Measured: 97.5% filled, 3 voids of 0.098 mm^3, in 16,669 steps (5 s on one thread).
+TEST(Filling, TheCuredProcedureFillsAndCuresTheBuiltInCrownOnTheIisphSolver) { fills_and_cures_the_crown(Solver::iisph); }
 
 constexpr const char* kFdi36 = "molar_FDI36_lower_left_first.stl";
 constexpr const char* kFdi46 = "molar_FDI46_lower_right_first.stl";
