@@ -34,15 +34,18 @@ struct CureAssessment {
   real paste_volume = 0;                  // m^3
   real under_cured_volume = 0;            // m^3
   std::string message;                    // one line over all increments
-  std::uint32_t left_out = 0;             // paste particles above the ceiling (not assessed)
+  std::uint32_t left_out = 0;             // paste particles above the ceiling or below the floor (not assessed)
 };
 
 // Assesses the paste of `state` (cure.curable particles) by increment; `up` points from the cavity's
 // floor towards its opening (the tooth's long axis; thickness and depth are measured along it).
-// Paste higher than `ceiling` (m, along `up`: dot(position, up / |up|)) is left out and counted
-// (left_out): paste drawn up on the instrument, out of the light, is no part of the filling.
+// Paste higher than `ceiling` or lower than `floor` (m, along `up`: dot(position, up / |up|)) is
+// left out and counted (left_out): paste drawn up on the instrument, out of the light, or thrown
+// out of the cavity and fallen past it, is no part of the filling (an increment's thickness would
+// otherwise reach down to where a lost particle has fallen).
 CureAssessment assess_cure(const CureModel& cure, const State& state, const Vec3& up, real criterion = 0.8,
-                           real ceiling = std::numeric_limits<real>::infinity());
+                           real ceiling = std::numeric_limits<real>::infinity(),
+                           real floor = -std::numeric_limits<real>::infinity());
 // As a JSON object (summary.json's "cure"): mm, J/cm^2, mm^3.
 std::string cure_assessment_json(const CureAssessment& a);
 // As text for the report: the overall line and one line per increment.

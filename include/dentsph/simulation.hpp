@@ -53,6 +53,8 @@ struct CureSchedule {
   real update = 0.02;       // s of light per large update
   int steps_between = 10;   // steps of the paste after each large update
   real rest_speed = 5e-4;   // m/s: the paste is at rest while its fastest particle is slower
+                            // (of those in the cavity's box grown by 4 h in dental scenes, in the
+                            // domain otherwise: a particle flung away does not count)
 };
 
 // What a run did, as summary.json reports it (docs/outputs.md). The Simulation fills what it
@@ -189,7 +191,7 @@ class Simulation {
   CuringLight light_over_cavity() const;
   // Advances the cure by one large update when the run can (CureSchedule): the scene's light is on
   // and stays so, no event is due and the tool stands still in its keyframes for the update, the
-  // paste is at rest (its fastest particle under rest_speed at the last step) and
+  // paste is at rest (its fastest particle where it is filled, paste_at_rest(), under rest_speed) and
   // steps_between steps were taken since the last update; the update ends by `until` (s) at the
   // latest. Returns the simulated time it advanced (0: nothing done, step instead).
   real advance_cure_at_rest(real until);
@@ -222,6 +224,11 @@ class Simulation {
   void cure_after_step(real t_before);
   // s: until when the tool stands still in the keyframes from `t` (t itself when it moves).
   real tool_still_until(real t) const;
+  // Whether the paste is at rest: the fastest material particle of the last step under `speed`,
+  // or else of those within the cavity's box grown by 4 h (dental scenes; within the domain for the
+  // others), so that a particle flung away or falling off the instrument does not keep the cure
+  // stepping at dt. (Those far particles then wait out the update where they are.)
+  bool paste_at_rest(real speed);
 
   const Scene& scene_;
   SimulationOptions options_;

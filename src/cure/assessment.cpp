@@ -34,7 +34,8 @@ std::string increment_message(const IncrementCure& c, real criterion) {
 
 }  // namespace
 
-CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_in, real criterion, real ceiling) {
+CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_in, real criterion, real ceiling,
+                           real floor) {
   CureAssessment a;
   a.criterion = criterion;
   const Vec3 up = up_in / norm(up_in);
@@ -46,9 +47,11 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     real lo = inf, hi = -inf;
   };
   std::map<int, Acc> acc;
-  // The paste assessed: curable, finite, not above the ceiling (drawn up on the instrument).
+  // The paste assessed: curable, finite, not above the ceiling (drawn up on the instrument) nor
+  // below the floor (fallen out of the cavity).
   auto assessed = [&](std::uint32_t i) {
-    return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(dot(s.pos[i], up) > ceiling);
+    const real h = dot(s.pos[i], up);
+    return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(h > ceiling) && !(h < floor);
   };
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];

@@ -188,9 +188,17 @@ RunSummary Simulation::summary() {
     s.cure_updates_at_rest = cure_updates_at_rest_;
     if (scene_.tooth) {
       // Paste more than 1 mm above the occlusal reference (drawn up on the instrument, above the
-      // light's window over the cavity) is no part of the filling.
+      // light's window over the cavity) or more than 1 mm below the cavity's lowest point (thrown
+      // out and fallen) is no part of the filling.
       const ToothFrame& f = scene_.tooth->frame();
-      const CureAssessment a = assess_cure(*cure_, st, f.z, 0.8, dot(f.origin, f.z) / norm(f.z) + 1e-3);
+      const Vec3 up = f.z / norm(f.z);
+      const Bounds cb = scene_.tooth->cavity_bounds();
+      real lowest = std::numeric_limits<real>::infinity();
+      for (int k = 0; k < 8; ++k)
+        lowest = std::min(lowest, dot(Vec3{k & 1 ? cb.max.x : cb.min.x, k & 2 ? cb.max.y : cb.min.y,
+                                          k & 4 ? cb.max.z : cb.min.z},
+                                     up));
+      const CureAssessment a = assess_cure(*cure_, st, f.z, 0.8, dot(f.origin, up) + 1e-3, lowest - 1e-3);
       s.cure_json = cure_assessment_json(a);
       s.cure_report = cure_assessment_report(a);
     }

@@ -95,13 +95,34 @@ real Simulation::tool_still_until(real t) const {
   return std::numeric_limits<real>::infinity();  // held after the last keyframe
 }
 
+bool Simulation::paste_at_rest(real speed) {
+  if (state_.diagnostics.max_speed < speed) return true;
+  if (!std::isfinite(state_.diagnostics.max_speed)) return false;
+  Vec3 lo = model_.domain_min, hi = model_.domain_max;
+  if (scene_.tooth) {
+    const Bounds b = scene_.tooth->cavity_bounds();
+    const real r = 4 * model_.kernel.h;  // the heap above the cavity too
+    lo = b.min - Vec3{r, r, r};
+    hi = b.max + Vec3{r, r, r};
+  }
+  const State& s = synced();  // a GPU backend downloads here only when the fastest particle moves
+  const real speed2 = speed * speed;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    if (s.role[i] != Role::material) continue;
+    const Vec3& p = s.pos[i];
+    const bool inside = p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+    if (inside && !(norm2(s.vel[i]) < speed2)) return false;
+  }
+  return true;
+}
+
 real Simulation::advance_cure_at_rest(real until) {
   if (!cure_ || hand_light_ || diverged_) return 0;
   const CureSchedule& cs = options_.cure_schedule;
   const real t = state_.time;
   const std::optional<CuringLight> light = lights_.at(t + 0.5 * model_.dt);
   if (!light || !light->on || state_.steps == 0 || steps_since_cure_update_ < cs.steps_between ||
-      !(state_.diagnostics.max_speed < cs.rest_speed))
+      !paste_at_rest(cs.rest_speed))
     return 0;
   real end = std::min({t + cs.update, until, lights_.next_change(t), tool_still_until(t)});
   if (next_event_ < scene_.events.size()) end = std::min(end, scene_.events[next_event_].t - model_.dt);

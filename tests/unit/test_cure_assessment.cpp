@@ -78,6 +78,17 @@ TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
   EXPECT_NEAR(without.increments[1].thickness, 3.6 * mm, 1e-12);
   EXPECT_NEAR(without.increments[1].adequate_fraction, two.adequate_fraction, 0.01);
   EXPECT_EQ(nlohmann::json::parse(cure_assessment_json(without))["left_out_particles"].get<int>(), 1);
+
+  // Paste thrown out and fallen far below the cavity (a lost particle) is left out below the floor:
+  // with it, increment 1 would reach 5 m down (as a cured run's report once said).
+  State fallen = st;
+  fallen.pos[fallen.index_of_id[0]].z = -5.0;  // increment 1's first particle
+  const CureAssessment deep = assess_cure(cm, fallen, {0, 0, 1});
+  EXPECT_GT(deep.increments[0].thickness, 4.9) << "unassessed, the fallen paste makes the increment 5 m thick";
+  const CureAssessment kept = assess_cure(cm, fallen, {0, 0, 1}, 0.8, 6 * mm, -1 * mm);
+  EXPECT_EQ(kept.left_out, 1u);
+  EXPECT_EQ(kept.increments[0].particles, one.particles - 1);
+  EXPECT_NEAR(kept.increments[0].thickness, one.thickness, 1e-12);
 }
 
 TEST(CureAssessment, PasteNoLightReachedIsSaidSo) {
