@@ -1,8 +1,9 @@
 // The end of an iisph step: the force on the tool (the reaction of the pressure, viscous and
 // adhesion forces its particles exert on material), then each material particle's velocity
-// v = v** + dt a_p and position r += dt v (kept out of the walls, model.walls), the tool moved to its pose, and the outputs: `pressure`
-// is the solve's (mechanical) pressure, `force` the internal force density of material, the
-// diagnostics of the paper's step (largest acceleration and speed, non-finite material).
+// v = v** + dt a_p and position r += dt v (kept out of the walls, model.walls), the tool moved to
+// its pose, and the outputs: `pressure` is the solve's (mechanical) pressure, `force` the internal
+// force density of material, the diagnostics of the paper's step (largest acceleration and speed,
+// non-finite material, wall projections).
 #include <algorithm>
 #include <cmath>
 
