@@ -30,7 +30,7 @@ class ForceRenderer {
   // Forgets the simulation's outputs (a new device session): no force until the next one, which
   // is then taken as it is, not approached from the previous session's proxy or force.
   void restart() {
-    force_ = proxy_x_ = proxy_v_ = proxy_w_ = stamp_ = ForceInterpolator{};
+    force_ = proxy_x_ = proxy_w_ = stamp_ = ForceInterpolator{};
     motion_ = {};
     started_ = false;
   }
@@ -46,8 +46,8 @@ class ForceRenderer {
   Vec3 proxy_now(std::int64_t now_ns) const;
   static constexpr double kMaxLead = 0.02;       // s
   static constexpr double kMinStampStep = 2e-4;  // s, between device poses the motion is taken over
-  ForceInterpolator force_, proxy_x_, proxy_v_;
-  ForceInterpolator proxy_w_;  // the proxy's motion per second of device time
+  ForceInterpolator force_, proxy_x_;
+  ForceInterpolator proxy_w_;  // the proxy's motion per second of device time (its velocity here)
   ForceInterpolator stamp_;    // x: the stamp (s after base_ns_) of the device pose each proxy followed
   Vec3 motion_, last_x_;
   double last_stamp_s_ = 0;

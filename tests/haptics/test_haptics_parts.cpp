@@ -18,6 +18,7 @@
 #include "haptics/force_interpolator.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/force_limiter.hpp"
+#include "haptics/force_renderer.hpp"
 #include "haptics/hand_path.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "haptics/shared.hpp"
@@ -777,6 +778,65 @@ TEST(HandPath, RefusesAnImpossibleBandwidthAndKeepsAnEmptyPathAtTheOrigin) {
   EXPECT_THROW(haptics::HandPath(tr, std::nan("")), std::invalid_argument);
   const ToolTrajectory none;
   EXPECT_EQ(haptics::HandPath(none).at(1.0).position, Vec3{});
+}
+
+}  // namespace
+}  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// In air (no tool force) the proxy's drag against the world is not felt: a device moving steadily
+// at 62.5 mm/s drags the proxy with it at no force. In contact the drag acts: the hand feels drag x
+// speed (0.125 N at 62.5 mm/s) on top of the tool force.
+TEST(VirtualCoupling, TheDragActsInContactAlone) {
+  CouplingParams p;
+  const Vec3 v{0.0625, 0, 0};
+  for (const bool touching : {false, true}) {
+    haptics::VirtualCoupling c(p);
+    c.reset({});
+    const Vec3 tool = touching ? Vec3{0, 0, 1e-3} : Vec3{};
+    Vec3 f, x;
+    for (int i = 1; i <= 3000; ++i) {
+      x = v * (i * 1e-3);
+      c.step(x, v, tool, 1e-3);
+      f = haptics::coupling_force(p, c.position(), c.velocity(), x, v);
+    }
+    if (touching) {
+      EXPECT_NEAR(f.x, -p.proxy_drag_N_s_per_m * v.x, 1e-6) << "drag x speed against the motion";
+    } else {
+      EXPECT_NEAR(f.x, 0, 1e-9) << "in air the hand feels nothing";
+    }
+  }
+}
+
+// The renderer carries the proxy forward from the device pose it followed to now: a proxy that
+// follows the device exactly, published 3 ms after each pose at 500 Hz, renders no force against a
+// device moving at 62.5 mm/s (interpolated as it stands, the spring is stretched by speed x 5 ms:
+// 0.125 N on 400 N/m), and this holds when the simulation's own clock runs 20 times slower than
+// the device's (a proxy velocity 20 times larger).
+TEST(ForceRenderer, CarriesTheProxyForwardToNow) {
+  CouplingParams p;
+  const double v = 0.0625;
+  for (const double sim_per_device_s : {1.0, 0.05}) {
+    haptics::ForceRenderer r(ForceMode::coupling, p);
+    double worst = 0;
+    for (int k = 0; k < 200; ++k) {
+      const std::int64_t stamp = 1'000'000'000 + std::int64_t(k) * 2'000'000, published = stamp + 3'000'000;
+      haptics::SimOutput o;
+      o.proxy_position = {v * double(stamp) * 1e-9, 0, 0};
+      o.proxy_velocity = {v / sim_per_device_s, 0, 0};
+      o.command_stamp_ns = stamp;
+      o.valid = true;
+      r.add(o, published);
+      if (k < 10) continue;
+      for (std::int64_t t = published; t < published + 2'000'000; t += 1'000'000) {
+        const Vec3 f = r.render({v * double(t) * 1e-9, 0, 0}, {v, 0, 0}, t);
+        worst = std::max(worst, std::abs(f.x));
+      }
+    }
+    EXPECT_LT(worst, 1e-6) << "simulated s per device s " << sim_per_device_s;
+  }
 }
 
 }  // namespace
