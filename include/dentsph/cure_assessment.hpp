@@ -17,8 +17,9 @@ namespace dentsph {
 struct IncrementCure {
   int index = 0;                   // 0: the scene's own paste; k: the k-th increment dispensed
   std::uint32_t particles = 0;
-  real thickness = 0;              // m, along `up`: from its lowest particle to its highest, plus a spacing
-  real top_dose = 0, base_dose = 0;    // J/m^2, mean over its top and base layers (a spacing deep each)
+  real thickness = 0;              // m, along `up`: the median over columns two spacings square of
+                                   // the column's lowest particle to its highest, plus a spacing
+  real top_dose = 0, base_dose = 0;    // J/m^2, mean over its columns' top and base layers (a spacing deep)
   real top_alpha = 0, base_alpha = 0;  // mean conversion of the same layers
   real adequate_fraction = 0;      // share of its particles with alpha >= criterion * top_alpha
   real under_cured_volume = 0;     // m^3

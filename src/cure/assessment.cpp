@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -27,9 +29,10 @@ std::string increment_message(const IncrementCure& c, real criterion) {
       fmt::format("{} is {:.1f} mm thick: its base received {:.2g} J/cm2", name, c.thickness / mm, c.base_dose / 1e4);
   if (under <= 0)
     return fmt::format("{}, bottom/top conversion {:.2f}: adequately cured throughout", head, c.base_alpha / c.top_alpha);
-  return fmt::format("{} and {:.0f}% of it is under-cured (conversion below {:.0f}% of its top's), from {:.1f} mm below its "
+  const int digits = 100 * under < 1 ? 1 : 0;  // "0.4%", never "0%" of paste that is under-cured
+  return fmt::format("{} and {:.{}f}% of it is under-cured (conversion below {:.0f}% of its top's), from {:.1f} mm below its "
                      "top down to {:.1f} mm",
-                     head, 100 * under, 100 * criterion, c.under_cured_from / mm, c.under_cured_to / mm);
+                     head, 100 * under, digits, 100 * criterion, c.under_cured_from / mm, c.under_cured_to / mm);
 }
 
 }  // namespace
@@ -46,31 +49,47 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     std::uint32_t n = 0;
     real lo = inf, hi = -inf;
   };
-  std::map<int, Acc> acc;
   // The paste assessed: curable, finite, not above the ceiling (drawn up on the instrument) nor
   // below the floor (fallen out of the cavity).
   auto assessed = [&](std::uint32_t i) {
     const real h = dot(s.pos[i], up);
     return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(h > ceiling) && !(h < floor);
   };
+  // Each increment is measured in columns along `up`, two spacings square: a column's top and base
+  // are its highest and lowest particle, so paste drawn up a wall in a thin film makes a tall
+  // column at that wall and leaves the increment's (median) thickness alone.
+  const Vec3 side = std::abs(up.x) < 0.8 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 e1 = cross(up, side) / norm(cross(up, side));
+  const Vec3 e2 = cross(up, e1);
+  using Cell = std::pair<long, long>;
+  auto cell_of = [&](std::uint32_t i) {
+    return Cell{std::lround(std::floor(dot(s.pos[i], e1) / (2 * sp))), std::lround(std::floor(dot(s.pos[i], e2) / (2 * sp)))};
+  };
+  std::map<int, std::map<Cell, Acc>> acc;  // increment -> column -> its extent along up
+  std::map<int, std::uint32_t> count;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];
     if (c.curable[id] && is_finite(s.pos[i]) && !assessed(i)) ++a.left_out;
     if (!assessed(i)) continue;
-    Acc& g = acc[c.increment[id]];
+    Acc& g = acc[c.increment[id]][cell_of(i)];
     const real h = dot(s.pos[i], up);
     ++g.n, g.lo = std::min(g.lo, h), g.hi = std::max(g.hi, h);
+    ++count[c.increment[id]];
   }
-  for (const auto& [index, g] : acc) {
+  for (const auto& [index, columns] : acc) {
     IncrementCure r;
     r.index = index;
-    r.particles = g.n;
-    r.thickness = g.hi - g.lo + sp;
-    // Top and base layers: a spacing deep from either end.
+    r.particles = count[index];
+    std::vector<real> thick;
+    for (const auto& [cell, g] : columns) thick.push_back(g.hi - g.lo + sp);
+    std::nth_element(thick.begin(), thick.begin() + std::ptrdiff_t(thick.size() / 2), thick.end());
+    r.thickness = thick[thick.size() / 2];
+    // Top and base layers: a spacing deep from either end of each column.
     std::uint32_t n_top = 0, n_base = 0;
     for (std::uint32_t i = 0; i < s.size(); ++i) {
       const std::uint32_t id = s.id[i];
       if (!assessed(i) || c.increment[id] != index) continue;
+      const Acc& g = columns.at(cell_of(i));
       const real h = dot(s.pos[i], up);
       if (h > g.hi - 0.5 * sp) r.top_dose += c.dose[id], r.top_alpha += c.alpha[id], ++n_top;
       if (h < g.lo + 0.5 * sp) r.base_dose += c.dose[id], r.base_alpha += c.alpha[id], ++n_base;
@@ -89,10 +108,10 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
         continue;
       }
       r.under_cured_volume += volume;
-      const real depth = g.hi - dot(s.pos[i], up);  // below the top particle's centre
+      const real depth = columns.at(cell_of(i)).hi - dot(s.pos[i], up);  // below its column's top particle's centre
       from = std::min(from, depth), to = std::max(to, depth + sp);
     }
-    r.adequate_fraction = real(adequate) / real(g.n);
+    r.adequate_fraction = real(adequate) / real(r.particles);
     if (to > from) r.under_cured_from = std::max<real>(0, from), r.under_cured_to = to;
     a.under_cured_volume += r.under_cured_volume;
     r.message = increment_message(r, criterion);
@@ -105,8 +124,10 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
   else if (bad == 0)
     a.message = fmt::format("all paste adequately cured (bottom/top conversion at least {:.1f} in every increment)", criterion);
   else
-    a.message = fmt::format("{:.2f} mm3 of paste under-cured ({:.0f}% of {:.2f} mm3) in {} of {} increments", a.under_cured_volume / (mm * mm * mm),
-                            100 * a.under_cured_volume / a.paste_volume, a.paste_volume / (mm * mm * mm), bad, a.increments.size());
+    a.message = fmt::format("{:.2f} mm3 of paste under-cured ({:.{}f}% of {:.2f} mm3) in {} of {} increments",
+                            a.under_cured_volume / (mm * mm * mm), 100 * a.under_cured_volume / a.paste_volume,
+                            a.under_cured_volume < 0.01 * a.paste_volume ? 1 : 0, a.paste_volume / (mm * mm * mm), bad,
+                            a.increments.size());
   return a;
 }
 

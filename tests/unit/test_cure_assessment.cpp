@@ -71,24 +71,28 @@ TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
   drawn.cure.dose[top_id] = 0;
   drawn.cure.alpha[top_id] = 0;
   const CureAssessment with = assess_cure(cm, drawn, {0, 0, 1});
-  EXPECT_GT(with.increments[1].thickness, 7 * mm) << "unassessed, the drawn-up paste makes the increment thick";
+  EXPECT_NEAR(with.increments[1].thickness, 3.6 * mm, 1e-12)
+      << "one tall column (paste drawn up, or a film up a wall) leaves the median column's thickness alone";
   const CureAssessment without = assess_cure(cm, drawn, {0, 0, 1}, 0.8, 6 * mm);
   EXPECT_EQ(without.left_out, 1u);
   EXPECT_EQ(without.increments[1].particles, two.particles - 1);
   EXPECT_NEAR(without.increments[1].thickness, 3.6 * mm, 1e-12);
+  EXPECT_NEAR(without.increments[1].top_dose, two.top_dose, 0.01 * two.top_dose)
+      << "the top layer is the paste's (its column one particle lower), not the drawn particle's";
   EXPECT_NEAR(without.increments[1].adequate_fraction, two.adequate_fraction, 0.01);
   EXPECT_EQ(nlohmann::json::parse(cure_assessment_json(without))["left_out_particles"].get<int>(), 1);
 
   // Paste thrown out and fallen far below the cavity (a lost particle) is left out below the floor:
-  // with it, increment 1 would reach 5 m down (as a cured run's report once said).
+  // with it, its column would reach 5 m down (as a cured run's report once said of the increment).
   State fallen = st;
   fallen.pos[fallen.index_of_id[0]].z = -5.0;  // increment 1's first particle
   const CureAssessment deep = assess_cure(cm, fallen, {0, 0, 1});
-  EXPECT_GT(deep.increments[0].thickness, 4.9) << "unassessed, the fallen paste makes the increment 5 m thick";
+  EXPECT_NEAR(deep.increments[0].thickness, one.thickness, 1e-12) << "the median column is not the fallen one's";
   const CureAssessment kept = assess_cure(cm, fallen, {0, 0, 1}, 0.8, 6 * mm, -1 * mm);
   EXPECT_EQ(kept.left_out, 1u);
   EXPECT_EQ(kept.increments[0].particles, one.particles - 1);
   EXPECT_NEAR(kept.increments[0].thickness, one.thickness, 1e-12);
+  EXPECT_NEAR(kept.increments[0].base_dose, one.base_dose, 1e-6);
 }
 
 TEST(CureAssessment, PasteNoLightReachedIsSaidSo) {
