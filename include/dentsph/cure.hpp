@@ -25,7 +25,7 @@ struct CureModel {
   real spacing = 0;
   real tissue_attenuation = 5000;   // 1/m, boundary particles other than set paste (the tooth)
   real tool_attenuation = 1e5;      // 1/m, the instrument's particles (metal: opaque)
-  // Pa s: the largest viscosity cured_parameters may give (make_cure_model: 0.8 of the viscous
+  // Pa s: the largest viscosity cured_parameters may give (make_cure_model: half the viscous
   // stability limit of the Model's dt), so that stiffening never makes the step unstable.
   real viscosity_limit = 1e30;
   // s between cure passes (cure_between_steps): the light's transport, the conversion and the

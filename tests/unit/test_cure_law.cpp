@@ -73,7 +73,9 @@ TEST(CureModel, ViscosityLimitComesFromTheTimeStep) {
   Model model = cure_model(s, {0, 0, 0}, {3 * mm, 3 * mm, 3 * mm}, 5e-5);
   const CureModel cm = make_cure_model(model, cure_material_preset("composite"), s, kPaste);
   const real h = 2 * s;
-  EXPECT_NEAR(cm.viscosity_limit, 0.8 * 0.125 * h * h * kPaste.rho0 / 5e-5, 1e-12);
+  // Half the bulk's viscous limit: at 0.8 of it a pair of surface particles (a third of the rest
+  // density) oscillated unstably and flung paste out of a cured filling (src/cure/cure_step.cpp).
+  EXPECT_NEAR(cm.viscosity_limit, 0.5 * 0.125 * h * h * kPaste.rho0 / 5e-5, 1e-12);
   EXPECT_NEAR(cm.shrink_tolerance, 0.01 * s, 1e-15);
   CureMaterial bad = cure_material_preset("composite");
   bad.alpha_gel = 2 * bad.alpha_max;
@@ -88,10 +90,12 @@ TEST(CureModel, ViscosityLimitComesFromTheTimeStep) {
 }
 
 // Setting without light: nothing during the working time, then the degree of set rises and the paste
-// becomes rigid at half of it, t_w + tau ln 2 after it was mixed.
+// becomes rigid at half of it, t_w + tau ln 2 after it was mixed. At dt = 10 us, whose viscous limit
+// leaves the viscosity room to rise (at the dental scenes' 50 us the cap, 0.9 Pa s, is under the
+// paste's own 1 Pa s: it stays, tested below).
 TEST(CureSetting, AmalgamBecomesRigidAfterItsWorkingTime) {
   const real s = 0.3 * mm;
-  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm});
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm}, 1e-5);
   State st;
   add_paste_layers(model, st, s, 4, 4, 0, 3);
   const CureMaterial am = cure_material_preset("amalgam");
@@ -106,6 +110,9 @@ TEST(CureSetting, AmalgamBecomesRigidAfterItsWorkingTime) {
   EXPECT_EQ(st.count(Role::boundary), 0u);
   EXPECT_GT(st.mu[0], kPaste.mu) << "stiffer as it sets";
   EXPECT_DOUBLE_EQ(st.mu[0], cured_parameters(am, kPaste, st.cure.alpha[0], cm.viscosity_limit).mu);
+  const CureModel at_50us = make_cure_model(cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 3 * mm}, 5e-5), am, s, kPaste);
+  EXPECT_EQ(cured_parameters(am, kPaste, st.cure.alpha[0], at_50us.viscosity_limit).mu, kPaste.mu)
+      << "the paper's step at 50 us cannot carry a higher viscosity at the paste's surface";
   cure_at_rest(cm, st, std::nullopt, 4, 1.0);  // just after
   EXPECT_EQ(st.count(Role::boundary), st.size()) << "set: rigid";
   // A light changes nothing: the conversion is the age's.
