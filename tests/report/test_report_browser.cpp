@@ -116,7 +116,9 @@ TEST(ReportBrowser, OfflineRunsReportRendersWithItsPicturesPlotAndNumbers) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(dom, m, std::regex("id=\"force-plot\"[^>]*data-plotted=\"([0-9]+)\""))) << dom.substr(0, 3000);
   EXPECT_GE(std::stoi(m[1]), 3);  // the force, the device limit, the increments
-  EXPECT_EQ(expect_numbers_equal(dom, summary), 6);
+  // The filling's six numbers and the cure's one (the built-in procedure cures; 0.075 s is before
+  // its light: the first increment's adequately cured share, 0).
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 7);
   EXPECT_NE(dom.find("A. Student, class I"), std::string::npos);
   EXPECT_NE(dom.find("id=\"picture-cut\""), std::string::npos);
   EXPECT_NE(dom.find("id=\"picture-top\""), std::string::npos);
@@ -140,13 +142,13 @@ TEST(ReportBrowser, OfflineRunsReportRendersWithItsPicturesPlotAndNumbers) {
   EXPECT_GT(paste, 3000);
 }
 
-// The built-in procedure with curing (scenes/cured_procedure.json) until 0.3 s into its first
+// The built-in procedure (each increment light-cured) until 0.3 s into its first
 // increment's cure: the report's Light curing section gives the increment's verdict and message,
 // with the numbers summary.json holds, and the curing light's marker on the force plot.
 TEST(ReportBrowser, OfflineRunsReportShowsTheLightCuring) {
   NEED_CHROMIUM();
   const fs::path out = work() / "cured";
-  const Result run = dentsph("run --procedure scenes/cured_procedure.json --duration 1.2 --threads 2 --out " + out.string() + " -q");
+  const Result run = dentsph("run --duration 1.2 --threads 2 --out " + out.string() + " -q");
   ASSERT_EQ(run.code, 0) << run.output;
   const nlohmann::json summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
   ASSERT_TRUE(summary.contains("cure")) << summary.dump(2);
@@ -190,8 +192,8 @@ TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   const std::string dom = dump_dom(out / "report.html");
   EXPECT_NE(dom.find("id=\"haptic\""), std::string::npos);
   EXPECT_NE(dom.find("data-plotted=\""), std::string::npos);
-  // The filling's six numbers and the haptic loop's six.
-  EXPECT_EQ(expect_numbers_equal(dom, summary), 12);
+  // The filling's six numbers, the haptic loop's six and the cure's one (the built-in procedure).
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 13);
   EXPECT_NE(dom.find("force sent to the device"), std::string::npos);
 
   // Its replay written as a run folder: the same forces (exit 0), a report of its own, and the

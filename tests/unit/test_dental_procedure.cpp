@@ -39,11 +39,11 @@ TEST(DentalProcedure, TheBuiltInProcedureIsTheShippedFile) {
   EXPECT_EQ(a.duration, b.duration);
 }
 
-// scenes/cured_procedure.json: the built-in procedure with each increment cured 20 s, the light's
+// The built-in procedure (scenes/default_procedure.json) cures each increment 20 s, the light's
 // window 1 mm above the occlusal reference pointing down the tooth's axis, after the instrument is
 // lifted and before the next increment; the instrument held still while the light is on.
-TEST(DentalProcedure, TheCuredProcedureCuresEachIncrementFor20Seconds) {
-  const Scene sc = load_dental_procedure(crown(), "scenes/cured_procedure.json");
+TEST(DentalProcedure, TheBuiltInProcedureCuresEachIncrementFor20Seconds) {
+  const Scene sc = load_dental_procedure(crown(), "scenes/default_procedure.json");
   const ToothFrame& f = crown().tooth.frame();
   std::vector<const ProcedureEvent*> cures, dispenses;
   for (const ProcedureEvent& e : sc.events) {
@@ -65,6 +65,17 @@ TEST(DentalProcedure, TheCuredProcedureCuresEachIncrementFor20Seconds) {
     EXPECT_GT(dot(sc.tool.at(c.t).position - f.origin, f.z), 2e-3) << "the instrument held above the light";
   }
   EXPECT_GE(sc.duration, cures.back()->t + 20);
+  // scenes/uncured_procedure.json: the same filling without the light (its increments pressed into
+  // each other while they flow), kept for comparison and for what was measured on it.
+  const Scene dark = load_dental_procedure(crown(), "scenes/uncured_procedure.json");
+  int dark_cures = 0, dark_dispenses = 0;
+  for (const ProcedureEvent& e : dark.events) {
+    dark_cures += e.kind == ProcedureEvent::Kind::cure;
+    dark_dispenses += e.kind == ProcedureEvent::Kind::dispense;
+  }
+  EXPECT_EQ(dark_cures, 0);
+  EXPECT_EQ(dark_dispenses, 3);
+  EXPECT_LT(dark.duration, 3);
 }
 
 TEST(DentalProcedure, TheBuiltInProcedureFillsInIncrementsWithAToolSwitch) {
