@@ -140,7 +140,7 @@ class Simulation {
   // The tool's pose from the scene's keyframes at the end of the next step.
   Pose keyframe_pose() const { return scene_.tool.at(state_.time + model_.dt); }
   // Applies the scene's procedure events due before the next step (those at t <= time + dt / 2,
-  // so that an event at t lands on the step at t), in order, calling on_applied(index) for each.
+  // so that an event at t lands on the step at t), in order, calling on_applied(index) after each.
   // Returns how many.
   std::size_t apply_due_events(const std::function<void(std::size_t)>& on_applied = {});
   // Applies the scene's event `index` now (a replay applies them at their recorded steps).

@@ -165,6 +165,15 @@ TEST(ReportBrowser, OfflineRunsReportShowsTheLightCuring) {
   EXPECT_NE(dom.find(one["message"].get<std::string>()), std::string::npos) << one["message"];
   EXPECT_NE(dom.find("data-criterion=\"cure_1\""), std::string::npos);
   EXPECT_EQ(expect_numbers_equal(dom, summary), 7);
+  // The procedure's log counts each dispense's particles (it once logged an event before applying
+  // it, so every count was the interval's before and no increment's thickness was measured).
+  const nlohmann::json proc = nlohmann::json::parse(std::ifstream(out / "procedure.json"));
+  ASSERT_GE(proc["events"].size(), 2u);
+  EXPECT_EQ(proc["events"][0]["kind"], "dispense");
+  EXPECT_EQ(proc["events"][0]["particles"].get<int>(), summary["particles"]["material"].get<int>());
+  ASSERT_EQ(proc["increments"].size(), 1u);
+  EXPECT_GT(proc["increments"][0]["thickness_median_mm"].get<double>(), 0.3);
+  EXPECT_LT(proc["increments"][0]["thickness_median_mm"].get<double>(), 1.5);
   std::smatch m;
   ASSERT_TRUE(std::regex_search(dom, m, std::regex("id=\"force-plot\"[^>]*data-plotted=\"([0-9]+)\"")));
   EXPECT_GE(std::stoi(m[1]), 4);  // the force, the device limit, the increments, the curing light
