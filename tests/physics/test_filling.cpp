@@ -115,13 +115,17 @@ void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver:
 // in a corner of the box is not closed by the next increment's pressing as in the uncured
 // procedure: measured, 97.8% filled with 1 to 3 voids in the corners, 0.03 to 0.09 mm^3 in all (a
 // particle holds 0.027 mm^3); the uncured procedure: 97.9-98.1%, none.
-void fills_and_cures_the_crown(Solver solver) {
-  Scene sc = default_dental_procedure();
+// A dental procedure run offline on the given solver with the given threads, no snapshots.
+RunSummary run_on(Scene sc, Solver solver, int threads) {
   select_solver(sc, solver);
   sc.output.snapshot_interval = 0;
   RunOptions opt;
-  opt.threads = 1;
-  const RunSummary s = run_offline(sc, opt);
+  opt.threads = threads;
+  return run_offline(sc, opt);
+}
+
+void fills_and_cures_the_crown(Solver solver) {
+  const RunSummary s = run_on(default_dental_procedure(), solver, 1);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
   const auto c = nlohmann::json::parse(s.cure_json);
@@ -157,12 +161,7 @@ void fills_the_crown_uncured(Solver solver) {
   std::ifstream in("scenes/uncured_procedure.json");
   ASSERT_TRUE(in) << "scenes/uncured_procedure.json (tests run from the repository root)";
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Scene sc = dental_procedure(default_tooth_scene(), text, "scenes/uncured_procedure.json");
-  select_solver(sc, solver);
-  sc.output.snapshot_interval = 0;
-  RunOptions opt;
-  opt.threads = 2;
-  const RunSummary s = run_offline(sc, opt);
+  const RunSummary s = run_on(dental_procedure(default_tooth_scene(), text, "scenes/uncured_procedure.json"), solver, 2);
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
   std::printf("uncured procedure, crown, %s: fill %.3f, %d voids, overfill %.2f mm^3, leaked %d, lost %d; %.2f pressure "
