@@ -93,6 +93,9 @@ struct RunSummary {
   // Times the wall field moved a paste particle out of the walls (StepDiagnostics::wall_projections),
   // summed over the run, and in how many steps.
   std::uint64_t wall_projections = 0, wall_projection_steps = 0;
+  // Steps the iisph solver took in equal parts (its velocity CFL limit under dt), and the most parts.
+  std::uint64_t substepped_steps = 0;
+  int substeps_max = 1;
   // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it
   // was advanced in large updates (CureSchedule) and in how many; the cure's assessment (JSON
   // object, cure_assessment_json; empty without curing) and its text.
@@ -247,7 +250,8 @@ class Simulation {
   std::uint64_t solver_steps_ = 0;
   double iterations_sum_ = 0, density_error_sum_ = 0, density_error_max_ = 0, pressure_residual_max_ = 0;
   int iterations_max_ = 0;
-  std::uint64_t wall_projections_ = 0, wall_projection_steps_ = 0;
+  std::uint64_t wall_projections_ = 0, wall_projection_steps_ = 0, substepped_steps_ = 0;
+  int substeps_max_ = 1;
   bool diverged_ = false;
   std::string divergence_;
   // Curing.

@@ -124,6 +124,8 @@ bool Simulation::step(const Pose& tool_pose) {
     pressure_residual_max_ = std::max<double>(pressure_residual_max_, d.pressure_residual);
     wall_projections_ += d.wall_projections;
     wall_projection_steps_ += d.wall_projections > 0;
+    substepped_steps_ += d.substeps > 1;
+    substeps_max_ = std::max(substeps_max_, d.substeps);
   }
   // Exploded material: the run says so instead of stepping garbage.
   if (!diverged_ && exploded(d, limits_.sound_speed)) {
@@ -156,6 +158,8 @@ RunSummary Simulation::summary() {
     s.pressure_residual_max = pressure_residual_max_;
     s.wall_projections = wall_projections_;
     s.wall_projection_steps = wall_projection_steps_;
+    s.substepped_steps = substepped_steps_;
+    s.substeps_max = substeps_max_;
   }
   if (diverged_) {
     s.status = "diverged";

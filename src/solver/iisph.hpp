@@ -23,8 +23,13 @@
 
 namespace dentsph::iisph {
 
-// One step of the iisph solver (step() runs it for a model whose solver is iisph).
+// One step of the iisph solver (step() runs it for a model whose solver is iisph). Where the last
+// step's fastest paste would cross more than cfl h in dt (a squeeze against set paste or a wall),
+// it takes substeps() equal steps instead, counted as one (diagnostics.substeps).
 void step(const Model& model, State& state, const StepOptions& options);
+// How many: ceil(max|v| dt / (cfl h)) of the last step, 1 to kMaxSubsteps.
+inline constexpr int kMaxSubsteps = 16;
+int substeps(const Model& model, const State& state);
 
 // rows.cpp: lists the material and the tool particles (after a rebuild).
 void list_material(State& state);

@@ -1,12 +1,17 @@
 // The iisph solver's step (solver/iisph.hpp lists its stages). The grid part is the paper's step's:
 // cell keys, sort and reorder when the neighbour lists must be rebuilt (src/step).
+#include <algorithm>
+#include <cmath>
+
 #include "solver/iisph.hpp"
 #include "step/stage_clock.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::iisph {
 
-void step(const Model& model, State& state, const StepOptions& opt) {
+namespace {
+
+void one_step(const Model& model, State& state, const StepOptions& opt) {
   const int t = opt.threads < 1 ? 1 : opt.threads;
   stages::StageClock clock(opt.times);
   const bool rebuild = stages::lists_need_rebuild(model, state, t, /*tool_listed=*/false);  // tool_pairs.cpp
@@ -35,6 +40,46 @@ void step(const Model& model, State& state, const StepOptions& opt) {
   finish(model, state, t);                   // velocity, position, tool, diagnostics, wrench
   clock.lap(&StageTimes::integrate_us);
   state.diagnostics.rebuilt = rebuild;
+}
+
+}  // namespace
+
+int substeps(const Model& model, const State& state) {
+  const real v = state.diagnostics.max_speed;
+  if (!(v > 0) || !std::isfinite(v)) return 1;
+  const real n = std::ceil(v * model.dt / (model.iisph.cfl * model.kernel.h));
+  return int(std::clamp<real>(n, 1, kMaxSubsteps));
+}
+
+void step(const Model& model, State& state, const StepOptions& opt) {
+  const int n = substeps(model, state);
+  if (n == 1) {
+    one_step(model, state, opt);
+    state.diagnostics.substeps = 1;
+    return;
+  }
+  // The last step's fastest paste would cross more than cfl h in dt: n equal steps, the tool
+  // moved a share of the way in each, its wrench their mean, counted as one step (a run's steps
+  // and recordings go by dt).
+  Model sub = model;
+  sub.dt = model.dt / n;
+  const Pose from = state.tool_pose_applied, to = state.tool_pose;
+  const std::uint64_t steps = state.steps;
+  const real time = state.time;
+  ToolWrench mean;
+  std::uint64_t projections = 0;
+  for (int k = 1; k <= n; ++k) {
+    state.tool_pose = k == n ? to : interpolate(from, to, real(k) / real(n));
+    one_step(sub, state, opt);
+    mean.force += state.tool_wrench.force / real(n);
+    mean.torque += state.tool_wrench.torque / real(n);
+    projections += state.diagnostics.wall_projections;
+  }
+  state.tool_wrench = mean;
+  state.steps = steps + 1;
+  state.time = time + model.dt;
+  state.diagnostics.wall_projections = projections;
+  state.diagnostics.substeps = n;
 }
 
 }  // namespace dentsph::iisph
