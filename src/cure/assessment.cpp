@@ -65,8 +65,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
   auto cell_of = [&](std::uint32_t i) {
     return Cell{std::lround(std::floor(dot(s.pos[i], e1) / (2 * sp))), std::lround(std::floor(dot(s.pos[i], e2) / (2 * sp)))};
   };
-  std::map<int, std::map<Cell, Acc>> acc;  // increment -> column -> its extent along up
-  std::map<int, std::uint32_t> count;
+  std::map<int, std::map<Cell, Acc>> acc;  // increment -> column -> its particles and extent along up
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];
     if (c.curable[id] && is_finite(s.pos[i]) && !assessed(i)) ++a.left_out;
@@ -74,14 +73,12 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     Acc& g = acc[c.increment[id]][cell_of(i)];
     const real h = dot(s.pos[i], up);
     ++g.n, g.lo = std::min(g.lo, h), g.hi = std::max(g.hi, h);
-    ++count[c.increment[id]];
   }
   for (const auto& [index, columns] : acc) {
     IncrementCure r;
     r.index = index;
-    r.particles = count[index];
     std::vector<real> thick;
-    for (const auto& [cell, g] : columns) thick.push_back(g.hi - g.lo + sp);
+    for (const auto& [cell, g] : columns) r.particles += g.n, thick.push_back(g.hi - g.lo + sp);
     std::nth_element(thick.begin(), thick.begin() + std::ptrdiff_t(thick.size() / 2), thick.end());
     r.thickness = thick[thick.size() / 2];
     // Top and base layers: a spacing deep from either end of each column.

@@ -47,7 +47,7 @@ void one_step(const Model& model, State& state, const StepOptions& opt) {
 int substeps(const Model& model, const State& state) {
   const real v = state.diagnostics.max_speed;
   if (!(v > 0) || !std::isfinite(v)) return 1;
-  const real n = std::ceil(v * model.dt / (model.iisph.cfl * model.kernel.h));
+  const real n = std::ceil(model.dt / velocity_time_step_limit(model, v));
   return int(std::clamp<real>(n, 1, kMaxSubsteps));
 }
 
@@ -61,7 +61,10 @@ void step(const Model& model, State& state, const StepOptions& opt) {
   // The last step's fastest paste would cross more than cfl h in dt: n equal steps, the tool
   // moved a share of the way in each, its wrench their mean, counted as one step (a run's steps
   // and recordings go by dt).
-  Model sub = model;
+  // The model at dt / n, kept per thread: assigning into it reuses its tables' storage, so only the
+  // first split step of a thread allocates.
+  thread_local Model sub;
+  sub = model;
   sub.dt = model.dt / n;
   const Pose from = state.tool_pose_applied, to = state.tool_pose;
   const std::uint64_t steps = state.steps;

@@ -114,7 +114,7 @@ void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver:
 // 95% of it). The increments set where their own condensation left them, so a gap the ball leaves
 // in a corner of the box is not closed by the next increment's pressing as in the uncured
 // procedure: measured, 97.8% filled with 1 to 3 voids in the corners, 0.03 to 0.09 mm^3 in all (a
-// particle holds 0.027 mm^3); the uncured procedure: 97.9-98.1%, none.
+// particle holds 0.027 mm^3); the uncured procedure: 97.9-98.3%, none.
 // A dental procedure run offline on the given solver with the given threads, no snapshots.
 RunSummary run_on(Scene sc, Solver solver, int threads) {
   select_solver(sc, solver);
