@@ -144,9 +144,8 @@ class Simulation {
   Pose keyframe_pose() const { return scene_.tool.at(state_.time + model_.dt); }
   // Applies the scene's procedure events due before the next step (those at t <= time + dt / 2,
   // so that an event at t lands on the step at t), in order, calling on_applied(index) after each.
-  // With `delay_s`, each event is due that much later (a scripted hand that plays the keyframes
-  // behind their times: the events wait for it). Returns how many.
-  std::size_t apply_due_events(const std::function<void(std::size_t)>& on_applied = {}, real delay_s = 0);
+  // Returns how many.
+  std::size_t apply_due_events(const std::function<void(std::size_t)>& on_applied = {});
   // Applies the scene's event `index` now (a replay applies them at their recorded steps).
   void apply_event(std::size_t index);
   // An increment of `volume` m^3 of `paste` dropped on the tooth's axis (dispense_increment).

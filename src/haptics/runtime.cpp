@@ -77,7 +77,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   // The simulation's virtual coupling hears of a new device session from the haptic loop.
   RealtimeOptions sim_opt = opt;
   sim_opt.coupling.sessions = &shared.sessions;
-  haptics::SimLoop sim(core, sim_opt, force_scale, shared, device.keyframe_lag_s());
+  haptics::SimLoop sim(core, sim_opt, force_scale, shared);
   haptics::ConsumerLoop consumer(opt, shared);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together

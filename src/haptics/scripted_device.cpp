@@ -15,7 +15,6 @@ class ScriptedDevice final : public haptics::PlaybackDevice {
   ScriptedDevice(const ToolTrajectory& trajectory, const WorkspaceMap& map, double end_s)
       : path_(trajectory), map_(map), end_s_(end_s) {}
   std::string name() const override { return "scripted"; }
-  double keyframe_lag_s() const override { return path_.lag_s(); }
 
  protected:
   Pose pose_at(double t) override {

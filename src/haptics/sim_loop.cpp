@@ -9,9 +9,8 @@
 
 namespace dentsph::haptics {
 
-SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared,
-                 double event_delay_s)
-    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), event_delay_s_(event_delay_s), step_times_(1e6) {
+SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
+    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
   steps.reserve(1 << 16);
 }
 
@@ -68,7 +67,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       sim_.toggle_light();
       ++rep_.light_toggles;
     }
-    sim_.apply_due_events([&](std::size_t i) { events.push_back({state.steps, std::uint32_t(i)}); }, real(event_delay_s_));
+    sim_.apply_due_events([&](std::size_t i) { events.push_back({state.steps, std::uint32_t(i)}); });
     Pose pose = state.tool_pose;  // without a device pose yet, the tool stays where it is
     if (cmd.valid) {
       Vec3 tool = cmd.pose.position;

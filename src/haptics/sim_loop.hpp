@@ -19,10 +19,7 @@ namespace dentsph::haptics {
 
 class SimLoop {
  public:
-  // event_delay_s: the scene's procedure events are applied this much after their times (the
-  // device's Device::keyframe_lag_s()).
-  SimLoop(Simulation& sim, const RealtimeOptions& options, double force_scale, RuntimeShared& shared,
-          double event_delay_s = 0);
+  SimLoop(Simulation& sim, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
   // Runs on the calling thread from t0_ns until shared.stop is set or should_stop(now) says so
   // (then it sets shared.stop), or the simulation diverges.
   void run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop);
@@ -38,7 +35,6 @@ class SimLoop {
   RealtimeOptions opt_;
   double force_scale_;
   RuntimeShared& shared_;
-  double event_delay_s_;
   DurationHistogram step_times_;
   SimReport rep_;
   std::int64_t t0_ns_ = 0, end_ns_ = 0;

@@ -35,10 +35,9 @@ State& Simulation::edit() {
   return state_;
 }
 
-std::size_t Simulation::apply_due_events(const std::function<void(std::size_t)>& on_applied, real delay_s) {
+std::size_t Simulation::apply_due_events(const std::function<void(std::size_t)>& on_applied) {
   std::size_t applied = 0;
-  while (next_event_ < scene_.events.size() &&
-         scene_.events[next_event_].t + delay_s <= state_.time + 0.5 * model_.dt) {
+  while (next_event_ < scene_.events.size() && scene_.events[next_event_].t <= state_.time + 0.5 * model_.dt) {
     apply_event(next_event_);
     if (on_applied) on_applied(next_event_);  // after: the log counts the particles it added
     ++next_event_;

@@ -592,43 +592,6 @@ TEST(HapticRuntime, ButtonTwoTurnsTheCuringLightOnAndIsReplayed) {
   EXPECT_EQ(*std::max_element(dark.cure.alpha.begin(), dark.cure.alpha.end()), 0);
 }
 
-// A scripted hand plays the keyframes 64 ms behind their times (its 5 Hz low-pass): the scene's
-// procedure events wait as long, so that the light comes on where the keyframes put the hand then
-// (before, the light of the built-in procedure came on while the hand was still lifting out of the
-// paste, and the paste that set on the instrument let go with a click of up to 0.24 N). Replayed
-// at the step it was applied at.
-TEST(HapticRuntime, ScriptedSessionsApplyTheProcedureEventsWhenTheHandGetsThere) {
-  Scene scene = press_scene();
-  ProcedureEvent light;
-  light.kind = ProcedureEvent::Kind::cure;
-  light.t = 0.1;
-  light.light.tip = {0, 0, 0.05};
-  light.duration = 0.1;
-  scene.events.push_back(light);
-  RealtimeOptions o = options(ForceMode::direct);
-  auto device = make_scripted_device(scene, o.workspace);
-  const double lag = device->keyframe_lag_s();
-  EXPECT_NEAR(lag, 2 / (2 * std::numbers::pi * 5.0), 1e-12);
-  const RealtimeResult r = run_realtime(scene, *device, o);
-  EXPECT_EQ(r.run.status, "completed") << r.run.message;
-  ASSERT_EQ(r.recording.events.size(), 1u);
-  EXPECT_EQ(r.recording.events[0].index, 0u);
-  // Applied before the first step whose end is past t + lag: at step round((t + lag) / dt).
-  const double dt = scene.model.dt;
-  const double applied_at = double(r.recording.events[0].step) * dt;
-  EXPECT_GE(applied_at, light.t + lag - 0.5 * dt);
-  EXPECT_LT(applied_at, light.t + lag + 0.5 * dt);
-  EXPECT_TRUE(r.run.curing);
-  // Offline (no hand) the same event is applied at its time.
-  Simulation sim(scene);
-  while (sim.apply_due_events() == 0) ASSERT_TRUE(sim.step(sim.keyframe_pose()));
-  EXPECT_NEAR(double(sim.state().time), light.t, 0.5 * dt);
-  // The replay applies it where the session did, and reproduces its forces.
-  const std::vector<Vec3> f = replay_steps(scene, r.recording, 1);
-  ASSERT_EQ(f.size(), r.recording.steps.size());
-  for (std::size_t k = 0; k < f.size(); ++k) ASSERT_EQ(f[k], r.recording.steps[k].tool_force) << k;
-}
-
 // Presses shorter than the simulation's step interval are not lost: with the simulation capped at
 // 5 steps per second, three taps of 20 ms within 0.2 s, all between two steps, give three increments.
 TEST(HapticRuntime, ButtonTapsBetweenTwoSimulationStepsAreEachDispensed) {

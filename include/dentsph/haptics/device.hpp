@@ -70,17 +70,12 @@ class Device {
   virtual bool finished(std::int64_t now_ns) const { (void)now_ns; return false; }
   // Device-specific counters as a JSON object (written to summary.json under "device").
   virtual std::string report_json() const { return "{}"; }
-  // How far behind the scene's keyframe times this device's hand moves (a scripted hand: its
-  // low-pass's lag). The runtime applies the scene's procedure events as much later, so that the
-  // light comes on, or an increment arrives, where the keyframes put the hand at that moment.
-  virtual double keyframe_lag_s() const { return 0; }
 };
 
 // Plays the scene's tool keyframes in real time as a hand moves through them (through a 5 Hz
 // critically damped low-pass, src/haptics/hand_path.hpp: no instant change of velocity at a
-// keyframe, 64 ms behind them: keyframe_lag_s(), by which the scene's procedure events wait too),
-// mapped into the device frame by `map`; finished `tail_s` after the last keyframe (and the hand's
-// lag), or at `duration_s` when it is positive.
+// keyframe, 64 ms behind them), mapped into the device frame by `map`; finished `tail_s` after the
+// last keyframe (and the hand's lag), or at `duration_s` when it is positive.
 std::unique_ptr<Device> make_scripted_device(const Scene& scene, const WorkspaceMap& map, double duration_s = 0,
                                              double tail_s = 0.1);
 
