@@ -11,6 +11,7 @@
 # Runs two at a time on one thread each; ../shared/data holds the scans. About 45 min on two cores
 # for both solvers (the paper's step takes about 35 s a run, the iisph solver 15 s).
 set -euo pipefail
+cd "$(dirname "$0")/.."  # the project root: BUILD_DIR and ../shared/data are relative to it
 build="${1:-build/test}"
 [ $# -gt 0 ] && shift
 solvers=(paper iisph)
