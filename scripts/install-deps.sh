@@ -14,6 +14,8 @@ packages=(
   libjs-chart.js libsqlite3-dev libpq-dev chromium postgresql
   # dentsph-viewer, and its tests under a virtual display with Mesa's software OpenGL
   libglfw3-dev libepoxy-dev libimgui-dev libglm-dev xvfb xauth libgl1-mesa-dri libglx-mesa0
+  # the benchmark scripts (bench/*.sh) read the runs' JSON
+  python3
 )
 # --sanitizers: also clang 14, its runtimes (libFuzzer, the sanitizers) and LLVM's OpenMP, for the
 # tsan preset (Archer makes OpenMP visible to ThreadSanitizer) and the fuzz preset (scripts/fuzz.sh).
