@@ -69,7 +69,7 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
       case ScriptAction::Kind::switch_tool:
         act.name = a.string("tool", "the instrument: ball_burnisher, flat_plugger or condenser");
         try {
-          (void)tool_by_name(act.name, 3e-4);
+          (void)tool_by_name(act.name, 3e-4, Solver::paper);
         } catch (const std::exception& e) {
           a.fail("tool", e.what(), "use ball_burnisher, flat_plugger or condenser");
         }

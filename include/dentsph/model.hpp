@@ -68,6 +68,11 @@ struct IisphParams {
   real warm_start = 1;            // the last step's pressure times this starts the solve
   int viscosity_iterations = 8;   // conjugate-gradient iterations of the backward-Euler viscosity
   real cfl = 0.4;                 // velocity Courant number: dt <= cfl h / max|v|
+  // The solve's equation of state is p = stiffness Kp (rho - rho0). The paper's eq. 5 turns half of
+  // a pressure field's gradient into force (its (P_i + P_j) / 2 average), so under a load the paper's
+  // paste compresses twice what Kp (rho - rho0) with a consistent force gives: 0.5 makes the same Kp
+  // the same paste on both solvers (docs/model.md), 1 takes the equation of state as written.
+  real stiffness = 0.5;
 };
 
 // The user's choices; make_model() checks them and derives the rest.

@@ -49,6 +49,7 @@ struct ProcedureEvent {
   std::vector<ParticleInit> particles;   // dispense: the increment (world frame);
                                          // switch_tool: the new tool's particles (tool frame)
   std::string tool;                      // switch_tool: the instrument's name
+  real tool_spacing = 0;                 // switch_tool: the spacing tool_by_name made it at (m)
   // dispense: when `count` > 0, `particles` are candidate sites in order of preference and the
   // increment is the first `count` of them that keep `clearance` (m) from the material already
   // there: an increment laid on the previous one, whose shape after compaction a procedure file
@@ -88,11 +89,20 @@ struct Scene {
   // Dental scenes: dt is the solver's dental time step (dental_time_step), so choosing another
   // solver (select_solver) chooses its time step too. Scene files give dt themselves.
   bool dt_follows_solver = false;
+  // Dental scenes: the first instrument's name and the spacing tool_by_name made it at (m), so that
+  // choosing another solver makes it again as that solver runs it. Empty: a scene file's blocks.
+  std::string instrument;
+  real instrument_spacing = 0;
 };
 
 // Chooses the step that runs the scene (the command line's --solver over the scene's
-// simulation.solver) and rebuilds its Model; a dental scene takes the solver's dental time step.
+// simulation.solver) and rebuilds its Model; a dental scene takes the solver's dental time step,
+// and the instruments made by name are made again as the solver runs them (shape_instruments).
 void select_solver(Scene& scene, Solver solver);
+// Makes the scene's named instruments (its first one, Scene::instrument, and those its switch_tool
+// events take up) as scene.model.solver runs them (tool_by_name), with the masses and materials
+// they have. The scene builders and select_solver call it.
+void shape_instruments(Scene& scene);
 // A dental scene run by the iisph solver: its Model gets the prepared tooth's wall field
 // (wall_field.hpp: sampled at half the paste's spacing over its boundary particles' box grown by h,
 // in cells large enough for at most about a million corners; clearance a quarter spacing). Other

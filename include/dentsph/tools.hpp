@@ -18,8 +18,10 @@ struct ToolShape {
 
 // A ball burnisher: particles evenly on a sphere of `diameter` (a Fibonacci lattice with about
 // one particle per spacing^2 of surface), centred `diameter / 2` above the tip. The paper's tool
-// is about 42 particles: diameter 1.1 mm at 0.3 mm spacing.
-ToolShape ball_burnisher(real diameter, real spacing);
+// is about 42 particles: diameter 1.1 mm at 0.3 mm spacing. `layers` >= 2 adds shells a spacing
+// apart inwards (while larger than half a spacing) and a particle at the centre: 42 + 9 + 1 at
+// the paper's size.
+ToolShape ball_burnisher(real diameter, real spacing, int layers = 1);
 // A flat plugger: a solid cylinder of `diameter` and `length` on a lattice, its flat face the tip.
 ToolShape flat_plugger(real diameter, real length, real spacing);
 // A condenser: a plugger whose face is serrated (alternate rows of the face set back by a third
@@ -28,9 +30,14 @@ ToolShape condenser(real diameter, real length, real spacing);
 // The names tool_by_name knows, in a fixed order (a recording names a switched tool by its
 // position here: new instruments go at the end).
 const std::vector<std::string>& instrument_names();
+// The layers of particles an instrument's walls have for a solver: the iisph solver's walls need
+// two (docs/model.md, "What changes in the paper's model"), the paper's ball is one shell.
+int instrument_layers(Solver solver);
 // A tool by name ("ball_burnisher", "flat_plugger", "condenser") with its default size for a
-// material spacing; throws std::invalid_argument naming the known tools otherwise.
-ToolShape tool_by_name(const std::string& name, real spacing);
+// material spacing, as `solver` runs it (the ball burnisher has instrument_layers(solver) layers;
+// the plugger and the condenser are solid); throws std::invalid_argument naming the known tools
+// otherwise.
+ToolShape tool_by_name(const std::string& name, real spacing, Solver solver);
 
 // The particles of an instrument (tool frame) with the given mass and material.
 // `index`: the material's entry of Model::materials (kNoMaterial: found by its values).

@@ -82,6 +82,8 @@ Model make_model(const ModelParams& p) {
   if (ip.viscosity_iterations < 1 || ip.viscosity_iterations > 1000)
     fail("iisph.viscosity_iterations", fmt::format("must be in [1, 1000], got {}", ip.viscosity_iterations));
   require_finite_positive(ip.cfl, "iisph.cfl", "about 0.4 is usual");
+  if (!(ip.stiffness > 0 && ip.stiffness <= 1))
+    fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
   if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
       !(p.domain_min.y < p.domain_max.y) || !(p.domain_min.z < p.domain_max.z))
     fail("domain", "min must be below max on every axis (metres)");

@@ -84,9 +84,11 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   for (std::size_t q = 0; q < above.size() && inside.size() + q < std::size_t(dp.material_particles); ++q)
     sc.particles.push_back(make_particle(Role::material, above[q], m, dp.paste, {}, paste));
 
-  // The tool: a ball burnisher of 42 particles, pressing 2.5 spacings into the paste and lifting,
+  // The tool: a ball burnisher of 42 particles (52 as the iisph solver runs it), pressing 2.5 spacings into the paste and lifting,
   // every 0.1 s.
-  const ToolShape ball = tool_by_name("ball_burnisher", s);
+  const ToolShape ball = tool_by_name("ball_burnisher", s, sc.model.solver);
+  sc.instrument = ball.name;
+  sc.instrument_spacing = s;
   for (const Vec3& b : ball.points)
     sc.particles.push_back(make_particle(Role::tool, b, m, dp.wall, {}, *sc.model.materials.instrument));
   real top = 0;

@@ -136,15 +136,18 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
                                .value_or("ball_burnisher");
   ToolShape shape;
   try {
-    shape = tool_by_name(tool, s);
+    shape = tool_by_name(tool, s, sc.model.solver);
   } catch (const std::invalid_argument& err) {
     root.fail("tool", err.what(), "use one of the known instruments");
   }
   const real tool_mass = lattice_particle_mass(dp.wall.rho0, s, sc.model.kernel);
   budget.add(root, "tool", double(shape.points.size()), double(shape.points.size()), "choose another instrument");
   for (const ParticleInit& p : tool_particles(shape, tool_mass, dp.wall, *sc.model.materials.instrument)) sc.particles.push_back(p);
+  sc.instrument = tool;
+  sc.instrument_spacing = s;
   sc.tool = scene::read_trajectory(root, place);
   if (root.has("events")) sc.events = scene::read_events(root, place, nullptr, dp.wall, sc.model.kernel);
+  shape_instruments(sc);  // the switch_tool events' instruments, read as the paper's step runs them
   sc.duration = root.number_or("duration", sc.tool.keyframes.back().t,
                                "the procedure's length in s (default: the last keyframe's time)", Range::positive);
   // The run's length: at most limits::max_run_steps steps.

@@ -278,6 +278,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
               fmt::format("use at most {} different materials (the named ones, and inline ones with values of their own)",
                           MaterialTable::kCapacity));
   }
+  shape_instruments(sc);  // the switch_tool events' instruments, as the scene's solver runs them
   return sc;
 }
 

@@ -3,11 +3,13 @@
 // is checked against.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <memory>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/tools.hpp"
 
 namespace dentsph {
 
@@ -23,6 +25,39 @@ void select_solver(Scene& scene, Solver solver) {
   scene.model = make_model(scene.params);
   scene.model.materials = std::move(materials);
   attach_walls(scene);
+  shape_instruments(scene);
+}
+
+namespace {
+
+// `particles` (one instrument's, tool frame) made again as `name` at `spacing` for `solver`, with
+// the first one's mass and material.
+void remake(std::vector<ParticleInit>& particles, const std::string& name, real spacing, Solver solver) {
+  if (particles.empty()) return;
+  const ParticleInit like = particles.front();
+  particles.clear();
+  for (const Vec3& p : tool_by_name(name, spacing, solver).points)
+    particles.push_back(make_particle(Role::tool, p, like.mass, like.material, {}, like.material_index));
+}
+
+}  // namespace
+
+void shape_instruments(Scene& scene) {
+  const Solver solver = scene.model.solver;
+  if (!scene.instrument.empty() && scene.instrument_spacing > 0) {
+    // In the place of the old ones (the particles' order is the run's).
+    const auto is_tool = [](const ParticleInit& p) { return p.role == Role::tool; };
+    const auto first = std::find_if(scene.particles.begin(), scene.particles.end(), is_tool);
+    const std::ptrdiff_t at = first - scene.particles.begin();
+    std::vector<ParticleInit> tool;
+    std::copy_if(first, scene.particles.end(), std::back_inserter(tool), is_tool);
+    std::erase_if(scene.particles, is_tool);
+    remake(tool, scene.instrument, scene.instrument_spacing, solver);
+    scene.particles.insert(scene.particles.begin() + at, tool.begin(), tool.end());
+  }
+  for (ProcedureEvent& e : scene.events)
+    if (e.kind == ProcedureEvent::Kind::switch_tool && !e.tool.empty() && e.tool_spacing > 0)
+      remake(e.particles, e.tool, e.tool_spacing, solver);
 }
 
 void attach_walls(Scene& scene) {

@@ -127,7 +127,7 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
       sw.fail("spacing", problem, limits::spacing_fix(kernel.h, unit, place.length_scale));
     ToolShape shape;
     try {
-      shape = tool_by_name(ev.tool, spacing);
+      shape = tool_by_name(ev.tool, spacing, Solver::paper);  // shape_instruments: as the scene's solver runs it
     } catch (const std::invalid_argument& err) {
       sw.fail("name", err.what(), "use one of the known instruments");
     }
@@ -135,6 +135,7 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
       place.budget->add(sw, "name", double(shape.points.size()), double(shape.points.size()),
                         "switch instruments less often");
     ev.particles = tool_particles(shape, lattice_particle_mass(tool_material.rho0, spacing, kernel), tool_material);
+    ev.tool_spacing = spacing;
   }
   return ev;
 }

@@ -13,15 +13,29 @@
 
 namespace dentsph {
 
-ToolShape ball_burnisher(real diameter, real spacing) {
-  // Fibonacci lattice: one particle per spacing^2 of the sphere's area.
-  const real R = 0.5 * diameter;
+namespace {
+
+// Fibonacci lattice: one particle per spacing^2 of a sphere of radius R, centred `centre_z` above the tip.
+void sphere_shell(ToolShape& t, real R, real centre_z, real spacing) {
   const int count = std::max(4, int(std::lround(4 * kernels::pi * R * R / (spacing * spacing))));
   const real golden = kernels::pi * (3 - std::sqrt(5.0));
-  ToolShape t{"ball_burnisher", {}};
   for (int q = 0; q < count; ++q) {
     const real z = 1 - 2 * (q + 0.5) / count, r = std::sqrt(1 - z * z);
-    t.points.push_back({R * r * std::cos(golden * q), R * r * std::sin(golden * q), R + R * z});
+    t.points.push_back({R * r * std::cos(golden * q), R * r * std::sin(golden * q), centre_z + R * z});
+  }
+}
+
+}  // namespace
+
+ToolShape ball_burnisher(real diameter, real spacing, int layers) {
+  const real R = 0.5 * diameter;
+  ToolShape t{"ball_burnisher", {}};
+  sphere_shell(t, R, R, spacing);
+  if (layers >= 2) {
+    // Shells a spacing apart inwards while they are larger than half a spacing, then the centre.
+    real inner = R - spacing;
+    for (int k = 1; k < layers && inner > 0.5 * spacing; ++k, inner -= spacing) sphere_shell(t, inner, R, spacing);
+    t.points.push_back({0, 0, R});
   }
   return t;
 }
@@ -60,9 +74,11 @@ const std::vector<std::string>& instrument_names() {
   return names;
 }
 
-ToolShape tool_by_name(const std::string& name, real spacing) {
+int instrument_layers(Solver solver) { return solver == Solver::iisph ? 2 : 1; }
+
+ToolShape tool_by_name(const std::string& name, real spacing, Solver solver) {
   // Default sizes in spacings: the paper's 42-particle ball at 0.3 mm is 1.1 mm across.
-  if (name == "ball_burnisher") return ball_burnisher(3.65 * spacing, spacing);
+  if (name == "ball_burnisher") return ball_burnisher(3.65 * spacing, spacing, instrument_layers(solver));
   if (name == "flat_plugger") return flat_plugger(5 * spacing, 3 * spacing, spacing);
   if (name == "condenser") return condenser(3 * spacing, 3 * spacing, spacing);
   throw std::invalid_argument(fmt::format("unknown tool \"{}\"; known: {}", name, fmt::join(instrument_names(), ", ")));

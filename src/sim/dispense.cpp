@@ -50,7 +50,7 @@ MaterialIndex scene_tool_material_index(const Scene& scene) {
 }
 
 void switch_instrument(const Scene& scene, State& state, const std::string& name) {
-  switch_tool(state, scene.model, tool_by_name(name, increment_spacing(scene)), scene_paste(scene).mass,
+  switch_tool(state, scene.model, tool_by_name(name, increment_spacing(scene), scene.model.solver), scene_paste(scene).mass,
               scene_tool_material(scene), scene_tool_material_index(scene));
 }
 

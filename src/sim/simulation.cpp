@@ -56,7 +56,7 @@ std::size_t Simulation::dispense(real volume, const IncrementPaste& paste) {
 }
 
 void Simulation::switch_instrument(const std::string& name) {
-  (void)tool_by_name(name, increment_spacing(scene_));  // an unknown name changes nothing
+  (void)tool_by_name(name, increment_spacing(scene_), Solver::paper);  // an unknown name changes nothing
   dentsph::switch_instrument(scene_, edit(), name);
 }
 

@@ -1,6 +1,8 @@
-// The iisph solver's pressure: the paper's equation of state, P = max(0, Kp (rho - rho0)), taken at
-// the end of the step (backward Euler) instead of its start, with every particle's density as in the
-// paper (material, boundary and tool particles each have one, and a pressure). The pressures p >= 0
+// The iisph solver's pressure: the paper's equation of state, P = max(0, k Kp (rho - rho0)) with
+// k = model.iisph.stiffness (0.5: the paper's paste's stiffness, as its eq. 5 turns only half of a
+// pressure gradient into force; model.hpp), taken at the end of the step (backward Euler) instead of
+// its start, with every particle's density as in the paper (material, boundary and tool particles
+// each have one, and a pressure). Below, Kp stands for k Kp. The pressures p >= 0
 // are those for which the density predicted at the end of the step,
 //   rho_pred,i = rho_i + dt sum_j m_j (v_i - v_j) . gradW_ij,   v = v* + dt a_p for material, given otherwise,
 // satisfies p_i = Kp_i (rho_pred,i - rho0_i) where p_i > 0, and rho_pred,i <= rho0_i where p_i = 0.
@@ -93,8 +95,8 @@ void solve_pressure(const Model& model, State& s, int threads) {
     const Vec3 sums = for_rows_summed(rows, threads, x.partial.data(), [&](std::int64_t k) {
       const std::uint32_t i = x.active[k];
       const bool material = s.role[i] == Role::material;
-      const real compliance = 1 / s.Kp[i];  // kg/m^3 per Pa: rho - rho0 = p / Kp
-      // rho0 - rho_predicted + p / Kp: zero where the equation of state holds at the end of the step
+      const real compliance = 1 / (ip.stiffness * s.Kp[i]);  // kg/m^3 per Pa: rho - rho0 = p / (stiffness Kp)
+      // rho0 - rho_predicted + p / (k Kp): zero where the equation of state holds at the end of the step
       const real residual = x.source[i] - pressure_density_change(x, i, material, dt2) + s.pressure[i] * compliance;
       // The solve's error: where the pressure pushes, the equation of state's; where it is 0, the
       // compression it leaves (expansion is free).

@@ -117,7 +117,7 @@ TEST(DentalProcedure, PositionsAreMillimetresInTheToothFrame) {
   EXPECT_EQ(sc.duration, 0.1) << "default: the last keyframe";
   EXPECT_EQ(sc.source, "small.json");
   State st = make_state(sc);
-  EXPECT_EQ(st.count(Role::tool), tool_by_name("condenser", crown().boundary.spacing).points.size());
+  EXPECT_EQ(st.count(Role::tool), tool_by_name("condenser", crown().boundary.spacing, Solver::paper).points.size());
   // The increment: 5 mm^3 of lattice sites in the cavity from its floor up.
   apply_event(sc, st, sc.events[0]);
   const real s = crown().boundary.spacing;

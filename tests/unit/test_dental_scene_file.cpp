@@ -3,6 +3,8 @@
 // file, the field and the fix named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -70,10 +72,41 @@ TEST(DentalSceneFile, TheSolverChoosesTheStepAndItsTimeStep) {
   EXPECT_EQ(iisph.model.solver, Solver::iisph);
   EXPECT_EQ(iisph.model.dt, dental_time_step(Solver::iisph));
   EXPECT_EQ(dental_time_step(Solver::iisph), 2e-3);
-  // --solver over the file's: a dental scene takes the solver's time step with it.
+  // The instruments are the solver's: the iisph solver's ball burnisher has two layers (tools.hpp).
+  const auto tool_count = [](const std::vector<ParticleInit>& ps) {
+    return std::count_if(ps.begin(), ps.end(), [](const ParticleInit& p) { return p.role == Role::tool; });
+  };
+  EXPECT_EQ(tool_count(paper.particles), 42);
+  EXPECT_EQ(tool_count(iisph.particles), 52);
+  // --solver over the file's: a dental scene takes the solver's time step and instruments with it,
+  // particle for particle the paper's scene.
   select_solver(iisph, Solver::paper);
   EXPECT_EQ(iisph.model.solver, Solver::paper);
   EXPECT_EQ(iisph.model.dt, paper.model.dt);
+  const auto same = [](const std::vector<ParticleInit>& a, const std::vector<ParticleInit>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].role, b[k].role) << k;
+      EXPECT_EQ(a[k].pos, b[k].pos) << k;
+      EXPECT_EQ(a[k].mass, b[k].mass) << k;
+      EXPECT_EQ(a[k].material_index, b[k].material_index) << k;
+    }
+  };
+  same(iisph.particles, paper.particles);
+  ASSERT_EQ(iisph.events.size(), paper.events.size());
+  for (std::size_t e = 0; e < paper.events.size(); ++e) same(iisph.events[e].particles, paper.events[e].particles);
+  // A switch_tool event's instrument too: the built-in procedure's plugger, made a ball.
+  const auto plugger = std::find_if(iisph.events.begin(), iisph.events.end(), [](const ProcedureEvent& e) {
+    return e.kind == ProcedureEvent::Kind::switch_tool;
+  });
+  ASSERT_NE(plugger, iisph.events.end());
+  EXPECT_EQ(plugger->tool, "flat_plugger");
+  EXPECT_GT(plugger->tool_spacing, 0);
+  plugger->tool = "ball_burnisher";
+  select_solver(iisph, Solver::iisph);
+  EXPECT_EQ(tool_count(iisph.particles), 52);
+  EXPECT_EQ(tool_count(plugger->particles), 52);
+  EXPECT_EQ(plugger->particles.front().mass, paper.particles.back().mass) << "the instrument's mass kept";
 }
 
 TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {

@@ -39,7 +39,7 @@ TEST(Procedure, EventsAreReadAndResolved) {
   EXPECT_NEAR(real(sc.events[0].particles.size()) * 1e-6, 2.7e-5, 0.15 * 2.7e-5) << "spacing h/2 = 0.01";
   EXPECT_EQ(sc.events[1].kind, ProcedureEvent::Kind::switch_tool);
   EXPECT_EQ(sc.events[1].tool, "condenser");
-  EXPECT_EQ(sc.events[1].particles.size(), tool_by_name("condenser", 0.01).points.size());
+  EXPECT_EQ(sc.events[1].particles.size(), tool_by_name("condenser", 0.01, Solver::paper).points.size());
   EXPECT_NEAR(real(sc.events[2].particles.size()) * 1.25e-7, 1e-6, 0.2e-6);
 }
 

@@ -14,7 +14,7 @@ namespace {
 constexpr real s = 0.3e-3;  // m
 
 TEST(Tools, BallBurnisherIsThePapersFortyTwoParticlesOnASphere) {
-  const ToolShape t = tool_by_name("ball_burnisher", s);
+  const ToolShape t = tool_by_name("ball_burnisher", s, Solver::paper);
   EXPECT_EQ(t.points.size(), 42u);
   const real R = 0.5 * 3.65 * s;
   real min_z = 1, min_gap = 1, max_gap = 0;
@@ -31,6 +31,34 @@ TEST(Tools, BallBurnisherIsThePapersFortyTwoParticlesOnASphere) {
   EXPECT_LT(min_z, 0.05 * s);
   EXPECT_GT(min_gap, 0.6 * s) << "evenly spread";
   EXPECT_LT(max_gap, 1.3 * s);
+}
+
+// The iisph solver's walls need two layers: its ball is the paper's shell, a shell a spacing
+// inside it and a particle at the centre; the plugger and the condenser are solid for both.
+TEST(Tools, TheIisphSolversBallBurnisherHasTwoLayers) {
+  const ToolShape paper = tool_by_name("ball_burnisher", s, Solver::paper);
+  const ToolShape t = tool_by_name("ball_burnisher", s, Solver::iisph);
+  ASSERT_EQ(t.points.size(), 52u);
+  const real R = 0.5 * 3.65 * s;
+  const Vec3 centre{0, 0, R};
+  int outer = 0, inner = 0, middle = 0;
+  for (std::size_t k = 0; k < t.points.size(); ++k) {
+    const real r = norm(t.points[k] - centre);
+    if (k < paper.points.size()) {
+      EXPECT_EQ(t.points[k], paper.points[k]) << "the outer shell is the paper's ball";
+    }
+    outer += std::abs(r - R) < 1e-12;
+    inner += std::abs(r - (R - s)) < 1e-12;
+    middle += r < 1e-12;
+  }
+  EXPECT_EQ(outer, 42);
+  EXPECT_EQ(inner, 9) << "one particle per spacing^2 of the inner sphere";
+  EXPECT_EQ(middle, 1);
+  EXPECT_EQ(instrument_layers(Solver::iisph), 2);
+  EXPECT_EQ(instrument_layers(Solver::paper), 1);
+  for (const char* name : {"flat_plugger", "condenser"}) {
+    EXPECT_EQ(tool_by_name(name, s, Solver::iisph).points, tool_by_name(name, s, Solver::paper).points) << name;
+  }
 }
 
 TEST(Tools, PluggerIsASolidCylinderAndTheCondenserFaceIsSerrated) {
@@ -52,7 +80,7 @@ TEST(Tools, PluggerIsASolidCylinderAndTheCondenserFaceIsSerrated) {
 
 TEST(Tools, UnknownToolNamesTheKnownOnes) {
   try {
-    tool_by_name("spatula", s);
+    tool_by_name("spatula", s, Solver::paper);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("ball_burnisher, flat_plugger, condenser"), std::string::npos);
