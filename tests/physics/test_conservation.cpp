@@ -62,7 +62,7 @@ TEST(Conservation, MomentumOfFreeMaterialOver1000Steps) {
 // The iisph solver on the same free blob at its own larger step: the pressure force is pairwise
 // antisymmetric (m_i m_j (p_i / rho_i^2 + p_j / rho_j^2) gradW_ij) and so are the bonds' adhesion
 // and the viscosity's system is symmetric; the viscosity's solve stopped after its fixed iterations
-// and the single-precision pair rows could leave a drift, measured at 4.6e-10 of sum m |v| over
+// and the single-precision pair rows could leave a drift, measured at 2.7e-10 of sum m |v| over
 // 200 steps of 2 ms (docs/model.md, "Solvers").
 TEST(Conservation, MomentumOfFreeMaterialOnTheIisphSolver) {
   Blob b = free_blob(2e-3, Solver::iisph);
