@@ -84,8 +84,8 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   for (std::size_t q = 0; q < above.size() && inside.size() + q < std::size_t(dp.material_particles); ++q)
     sc.particles.push_back(make_particle(Role::material, above[q], m, dp.paste, {}, paste));
 
-  // The tool: a ball burnisher of 42 particles (52 as the iisph solver runs it), pressing 2.5 spacings into the paste and lifting,
-  // every 0.1 s.
+  // The tool: a ball burnisher of 42 particles (52 as the iisph solver runs it), pressing 2.5
+  // spacings into the paste and lifting, every 0.1 s.
   const ToolShape ball = tool_by_name("ball_burnisher", s, sc.model.solver);
   sc.instrument = ball.name;
   sc.instrument_spacing = s;
