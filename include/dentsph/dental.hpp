@@ -18,8 +18,14 @@ namespace dentsph {
 // ticks of a 1 kHz haptic loop, with the prepared tooth's wall field; docs/model.md).
 real dental_time_step(Solver solver);
 
+// The iisph solver's settings for the dental scenes: the defaults, relaxed by 0.7 (at the 2 ms dental
+// step 4.3 pressure iterations a step over bench_step's window with 0.6 to 1.0, 0.7 the least; 5.4
+// with 0.5; docs/model.md).
+IisphParams dental_iisph_params();
+
 struct DentalSceneParams {
   Solver solver = Solver::paper;         // which step runs (Model::solver)
+  IisphParams iisph = dental_iisph_params();  // the iisph solver's settings
   real dt = 0;                           // s; 0: dental_time_step(solver)
   int material_particles = 1600;         // the cavity's share first, the rest heaped above it
   Material paste{1.0, 10, 2000, 50};     // mu Pa s, Kp m^2/s^2, rho0 kg/m^3, Ka Pa

@@ -113,6 +113,10 @@ struct Model {
   std::shared_ptr<const WallField> walls;
 };
 
+// Checks the iisph solver's settings (make_model does too); throws std::invalid_argument whose message
+// reads "iisph.<field>: <problem>; <fix>".
+void check_iisph_params(const IisphParams& p);
+
 // Checks `p` and derives the kernel constants, C_d and the grid. Throws std::invalid_argument
 // whose message names the offending field and says how to fix it.
 Model make_model(const ModelParams& p);

@@ -43,6 +43,24 @@ real adhesion_normalisation(real eps, real zeta) {
   return 1.0 / (std::pow(xs, zeta) - std::pow(xs, eps));
 }
 
+void check_iisph_params(const IisphParams& ip) {
+  if (ip.min_iterations < 1 || ip.max_iterations < ip.min_iterations || ip.max_iterations > 1000)
+    fail("iisph.max_iterations",
+         fmt::format("need 1 <= min_iterations <= max_iterations <= 1000, got {} and {}", ip.min_iterations,
+                     ip.max_iterations));
+  if (!(ip.density_error > 0 && ip.density_error < 1))
+    fail("iisph.density_error", fmt::format("must be in (0, 1), got {}; 0.001 to 0.01 is usual", ip.density_error));
+  if (!(ip.omega > 0 && ip.omega <= 1))
+    fail("iisph.omega", fmt::format("must be in (0, 1], got {}; 0.5 is usual", ip.omega));
+  if (!(ip.warm_start >= 0 && ip.warm_start <= 1))
+    fail("iisph.warm_start", fmt::format("must be in [0, 1], got {}", ip.warm_start));
+  if (ip.viscosity_iterations < 1 || ip.viscosity_iterations > 1000)
+    fail("iisph.viscosity_iterations", fmt::format("must be in [1, 1000], got {}", ip.viscosity_iterations));
+  require_finite_positive(ip.cfl, "iisph.cfl", "about 0.4 is usual");
+  if (!(ip.stiffness > 0 && ip.stiffness <= 1))
+    fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
+}
+
 Model make_model(const ModelParams& p) {
   require_finite_positive(p.dt, "dt", "give the time step in seconds, e.g. 1e-4");
   if (p.dt < limits::min_dt)
@@ -68,22 +86,7 @@ Model make_model(const ModelParams& p) {
     fail("neighbour_skin", fmt::format("must be in [0, h] metres, got {}; 0.1 h to 0.3 h is usual", p.neighbour_skin));
   if (p.grid_reach < 1 || p.grid_reach > 3)
     fail("grid_reach", fmt::format("must be 1, 2 or 3 (cells of h / reach), got {}", p.grid_reach));
-  const IisphParams& ip = p.iisph;
-  if (ip.min_iterations < 1 || ip.max_iterations < ip.min_iterations || ip.max_iterations > 1000)
-    fail("iisph.max_iterations",
-         fmt::format("need 1 <= min_iterations <= max_iterations <= 1000, got {} and {}", ip.min_iterations,
-                     ip.max_iterations));
-  if (!(ip.density_error > 0 && ip.density_error < 1))
-    fail("iisph.density_error", fmt::format("must be in (0, 1), got {}; 0.001 to 0.01 is usual", ip.density_error));
-  if (!(ip.omega > 0 && ip.omega <= 1))
-    fail("iisph.omega", fmt::format("must be in (0, 1], got {}; 0.5 is usual", ip.omega));
-  if (!(ip.warm_start >= 0 && ip.warm_start <= 1))
-    fail("iisph.warm_start", fmt::format("must be in [0, 1], got {}", ip.warm_start));
-  if (ip.viscosity_iterations < 1 || ip.viscosity_iterations > 1000)
-    fail("iisph.viscosity_iterations", fmt::format("must be in [1, 1000], got {}", ip.viscosity_iterations));
-  require_finite_positive(ip.cfl, "iisph.cfl", "about 0.4 is usual");
-  if (!(ip.stiffness > 0 && ip.stiffness <= 1))
-    fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
+  check_iisph_params(p.iisph);
   if (!is_finite(p.domain_min) || !is_finite(p.domain_max) || !(p.domain_min.x < p.domain_max.x) ||
       !(p.domain_min.y < p.domain_max.y) || !(p.domain_min.z < p.domain_max.z))
     fail("domain", "min must be below max on every axis (metres)");

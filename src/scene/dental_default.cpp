@@ -13,6 +13,12 @@ namespace dentsph {
 
 real dental_time_step(Solver solver) { return solver == Solver::iisph ? 2e-3 : 5e-5; }
 
+IisphParams dental_iisph_params() {
+  IisphParams p;
+  p.omega = 0.7;
+  return p;
+}
+
 Scene default_dental_scene(const DentalSceneParams& dp) {
   return dental_scene(default_tooth_scene(), dp, "dental_default", "built-in");
 }
@@ -37,9 +43,7 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   p.adhesion.A = 1.2 * s;
   p.adhesion.B = 3 * s;
   p.neighbour_skin = 0.1 * p.h;  // measured: 1609 -> 1824 steps/s on 2 threads
-  // The iisph pressure solve's relaxation at the dental step: at 2 ms, 4.3 iterations a step over
-  // bench_step's window with 0.6 to 1.0 (0.7 the least), 5.4 with the default 0.5 (docs/model.md).
-  p.iisph.omega = 0.7;
+  p.iisph = dp.iisph;
   const Bounds cb = tooth.cavity_bounds();
   const Vec3 pad{4e-3, 4e-3, 4e-3};
   p.domain_min = cb.min - pad;

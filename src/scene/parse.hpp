@@ -40,6 +40,9 @@ bool is_dental_scene(const Reader& root);
 // "solver" of a "simulation" object: "paper" (the default) or "iisph"; anything else names the
 // field and the choices.
 Solver read_solver(const Reader& simulation);
+// "iisph" of `simulation`, the iisph solver's settings over `defaults` (stiffness, max_iterations,
+// density_error, omega, viscosity_iterations, cfl), checked (check_iisph_params) naming the field.
+IisphParams read_iisph(const Reader& simulation, IisphParams defaults);
 // Reads one; paths in it are relative to the folder of root.source().
 Scene parse_dental_scene(const Reader& root);
 // A "cavity" object into CavityParams (missing fields keep the defaults).

@@ -24,6 +24,37 @@ Solver read_solver(const Reader& simulation) {
   return *s;
 }
 
+IisphParams read_iisph(const Reader& simulation, IisphParams p) {
+  const std::optional<Reader> i = simulation.optional_object(
+      "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
+  if (!i) return p;
+  i->only({"stiffness", "max_iterations", "density_error", "omega", "viscosity_iterations", "cfl"});
+  constexpr std::int64_t lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
+  p.stiffness = i->number_or("stiffness", p.stiffness,
+                             "the share of Kp the solve's equation of state takes: 0.5 the paper's paste's "
+                             "stiffness, 1 the equation of state as written",
+                             Range::positive);
+  p.max_iterations = int(i->integer_or("max_iterations", p.max_iterations, "the pressure iterations at most, e.g. 12", lo, hi));
+  p.density_error = i->number_or("density_error", p.density_error, "the pressure solve's target mean density error, e.g. 0.002",
+                                 Range::positive);
+  p.omega = i->number_or("omega", p.omega, "the Jacobi relaxation, in (0, 1], e.g. 0.5", Range::positive);
+  p.viscosity_iterations = int(i->integer_or("viscosity_iterations", p.viscosity_iterations,
+                                             "the viscosity's conjugate-gradient iterations, e.g. 8", lo, hi));
+  p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
+  try {
+    check_iisph_params(p);
+  } catch (const std::invalid_argument& e) {
+    // "iisph.<field>: <problem>; <fix>"
+    const std::string_view msg = e.what();
+    const std::size_t dot = msg.find('.'), colon = msg.find(": ");
+    const std::string_view field = msg.substr(dot + 1, colon - dot - 1), rest = msg.substr(colon + 2);
+    const std::size_t semi = rest.find("; ");
+    i->fail(field, rest.substr(0, semi),
+            semi == std::string_view::npos ? "see docs/scene-format.md" : rest.substr(semi + 2));
+  }
+  return p;
+}
+
 namespace {
 
 // nlohmann's messages read "[json.exception.parse_error.101] parse error at line 3, column 7:
@@ -74,9 +105,10 @@ ModelParams read_simulation(const Reader& root, Domain& domain) {
   const Reader sim =
       root.object("simulation", "the simulation settings {\"dt\": 5e-4, \"h\": 0.02, ...}");
   sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "neighbour_skin", "grid_reach", "domain",
-            "solver"});
+            "solver", "iisph"});
   ModelParams p;
   p.solver = read_solver(sim);
+  p.iisph = read_iisph(sim, p.iisph);
   p.dt = sim.number("dt", "the time step in s, e.g. 5e-4", Range::positive);
   p.h = sim.number("h", "the kernel support in m, about twice the spacing, e.g. 0.02",
                    Range::positive);

@@ -109,6 +109,22 @@ TEST(DentalSceneFile, TheSolverChoosesTheStepAndItsTimeStep) {
   EXPECT_EQ(plugger->particles.front().mass, paper.particles.back().mass) << "the instrument's mass kept";
 }
 
+// simulation.iisph over the dental scenes' settings (omega 0.7), and a wrong one named.
+TEST(DentalSceneFile, TheIisphSolversSettings) {
+  const Scene sc = parse(R"({"name": "i", "tooth": {}, "simulation": {"solver": "iisph", "iisph": {"stiffness": 1}}})");
+  EXPECT_EQ(sc.model.iisph.stiffness, 1);
+  EXPECT_EQ(sc.model.iisph.omega, 0.7) << "the dental scenes' relaxation kept";
+  EXPECT_EQ(parse(R"({"name": "d", "tooth": {}})").model.iisph.stiffness, 0.5);
+  try {
+    parse(R"({"name": "i", "tooth": {}, "simulation": {"iisph": {"viscosity_iterations": 0}}})");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("simulation.iisph.viscosity_iterations"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[1, 1000]"), std::string::npos) << msg;
+  }
+}
+
 TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {
   const Scene sc = load_scene("scenes/class2_fill.json");
   ASSERT_TRUE(sc.tooth);

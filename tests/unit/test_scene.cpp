@@ -181,6 +181,22 @@ TEST(SceneParse, ReadsTheSolverAndTheCommandLineChoosesAnother) {
   EXPECT_GT(make_state(sc).iisph.pairs.size(), 0u);
 }
 
+// simulation.iisph: the iisph solver's settings over the defaults; the paper's step ignores them.
+TEST(SceneParse, ReadsTheIisphSolversSettings) {
+  json j = base_scene();
+  EXPECT_EQ(parse(j).model.iisph.stiffness, 0.5) << "the paper's paste's stiffness by default";
+  j["simulation"]["iisph"] = {{"stiffness", 1}, {"max_iterations", 20}, {"density_error", 0.001},
+                              {"omega", 0.6},   {"viscosity_iterations", 12}, {"cfl", 0.3}};
+  const Scene sc = parse(j);
+  EXPECT_EQ(sc.model.iisph.stiffness, 1);
+  EXPECT_EQ(sc.model.iisph.max_iterations, 20);
+  EXPECT_EQ(sc.model.iisph.density_error, 0.001);
+  EXPECT_EQ(sc.model.iisph.omega, 0.6);
+  EXPECT_EQ(sc.model.iisph.viscosity_iterations, 12);
+  EXPECT_EQ(sc.model.iisph.cfl, 0.3);
+  EXPECT_EQ(sc.model.iisph.min_iterations, IisphParams{}.min_iterations) << "not given: the default";
+}
+
 TEST(SceneParse, ReadsGivenSettings) {
   json j = base_scene();
   j["simulation"]["gravity"] = {0, -1, 0};
@@ -533,6 +549,13 @@ const BrokenCase broken_cases[] = {
     {"unknown solver", [](json& j) { j["simulation"]["solver"] = "isph"; }, "simulation.solver",
      "give \"paper\" (the paper's explicit step) or \"iisph\""},
     {"solver not a string", [](json& j) { j["simulation"]["solver"] = 2; }, "simulation.solver", "expected a string"},
+    {"iisph stiffness over 1", [](json& j) { j["simulation"]["iisph"] = {{"stiffness", 2}}; },
+     "simulation.iisph.stiffness", "must be in (0, 1], got 2"},
+    {"iisph omega 0", [](json& j) { j["simulation"]["iisph"] = {{"omega", 0}}; }, "simulation.iisph.omega", "> 0"},
+    {"iisph too many iterations", [](json& j) { j["simulation"]["iisph"] = {{"max_iterations", 5000}}; },
+     "simulation.iisph.max_iterations", "<= 1000"},
+    {"iisph misspelt", [](json& j) { j["simulation"]["iisph"] = {{"stifness", 1}}; }, "simulation.iisph",
+     "stiffness"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},
 };
 
