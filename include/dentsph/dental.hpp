@@ -19,8 +19,8 @@ namespace dentsph {
 real dental_time_step(Solver solver);
 
 // The iisph solver's settings for the dental scenes: the defaults, relaxed by 0.7 (at the 2 ms dental
-// step 4.3 pressure iterations a step over bench_step's window with 0.6 to 1.0, 0.7 the least; 5.4
-// with 0.5; docs/model.md).
+// step, with the equation of state as written, 4.3 pressure iterations a step over bench_step's
+// window with 0.6 to 1.0, 0.7 the least; 5.4 with 0.5; docs/model.md).
 IisphParams dental_iisph_params();
 
 struct DentalSceneParams {
@@ -45,8 +45,9 @@ Scene dental_base_scene(const ToothScene& tooth, const DentalSceneParams& params
                         const std::string& source);
 
 // A dental scene on a prepared, lined tooth: `material_particles` of paste in the cavity (half a
-// spacing clear of its walls) and heaped above it within the outline, a 42-particle ball tool
-// pressing in and lifting every 0.1 s, gravity down the tooth's long axis.
+// spacing clear of its walls) and heaped above it within the outline, a ball tool (42 particles; 52
+// on the iisph solver, tool_by_name) pressing in and lifting every 0.1 s, gravity down the tooth's
+// long axis.
 Scene dental_scene(const ToothScene& tooth, const DentalSceneParams& params, const std::string& name,
                    const std::string& source);
 

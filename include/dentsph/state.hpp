@@ -58,7 +58,8 @@ struct StepDiagnostics {
   real density_error = 0;       // mean compression of the material at the end of the step: mean over
                                 // material particles of max(0, rho_predicted - rho0) / rho0
   real pressure_residual = 0;   // the pressure solve's error: mean over material particles of
-                                // |rho_predicted - rho0 - p / Kp| / rho0 (where p = 0: its positive part)
+                                // |rho_predicted - rho0 - p / (k Kp)| / rho0 (where p = 0: its positive
+                                // part; k = iisph.stiffness)
   std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)

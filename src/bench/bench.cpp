@@ -249,7 +249,7 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
 
   DentalSceneParams dental;
   dental.solver = opt.solver;
-  const Scene paper = default_dental_scene(dental);  // the paper's counts
+  const Scene paper = default_dental_scene(dental);  // the counts (the iisph solver's ball has 52)
   res.default_scene = paper.name;
   const State paper_start = make_state(paper);
   for (Role r : {Role::material, Role::boundary, Role::tool}) res.default_particles[role_name(r)] = paper_start.count(r);

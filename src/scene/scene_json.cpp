@@ -29,17 +29,18 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "omega", "viscosity_iterations", "cfl"});
-  constexpr std::int64_t lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
   p.stiffness = i->number_or("stiffness", p.stiffness,
                              "the share of Kp the solve's equation of state takes: 0.5 the paper's paste's "
                              "stiffness, 1 the equation of state as written",
                              Range::positive);
-  p.max_iterations = int(i->integer_or("max_iterations", p.max_iterations, "the pressure iterations at most, e.g. 12", lo, hi));
+  p.max_iterations = int(i->integer_or("max_iterations", p.max_iterations,
+                                       "the pressure iterations at most, e.g. 12 (the solve always takes 2)",
+                                       p.min_iterations, 1000));
   p.density_error = i->number_or("density_error", p.density_error, "the pressure solve's target mean density error, e.g. 0.002",
                                  Range::positive);
   p.omega = i->number_or("omega", p.omega, "the Jacobi relaxation, in (0, 1], e.g. 0.5", Range::positive);
   p.viscosity_iterations = int(i->integer_or("viscosity_iterations", p.viscosity_iterations,
-                                             "the viscosity's conjugate-gradient iterations, e.g. 8", lo, hi));
+                                             "the viscosity's conjugate-gradient iterations, e.g. 8", 1, 1000));
   p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
   try {
     check_iisph_params(p);

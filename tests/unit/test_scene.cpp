@@ -553,7 +553,7 @@ const BrokenCase broken_cases[] = {
      "simulation.iisph.stiffness", "must be in (0, 1], got 2"},
     {"iisph omega 0", [](json& j) { j["simulation"]["iisph"] = {{"omega", 0}}; }, "simulation.iisph.omega", "> 0"},
     {"iisph too many iterations", [](json& j) { j["simulation"]["iisph"] = {{"max_iterations", 5000}}; },
-     "simulation.iisph.max_iterations", "<= 1000"},
+     "simulation.iisph.max_iterations", "must be in [2, 1000], got 5000"},
     {"iisph misspelt", [](json& j) { j["simulation"]["iisph"] = {{"stifness", 1}}; }, "simulation.iisph",
      "stiffness"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},
