@@ -101,7 +101,7 @@ struct Scene {
 void select_solver(Scene& scene, Solver solver);
 // Makes the scene's named instruments (its first one, Scene::instrument, and those its switch_tool
 // events take up) as scene.model.solver runs them (tool_by_name), with the masses and materials
-// they have. The scene builders and select_solver call it.
+// they have. select_solver calls it (the scene builders make them for the scene's solver).
 void shape_instruments(Scene& scene);
 // A dental scene run by the iisph solver: its Model gets the prepared tooth's wall field
 // (wall_field.hpp: sampled at half the paste's spacing over its boundary particles' box grown by h,

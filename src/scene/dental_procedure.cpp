@@ -131,6 +131,7 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
   place.to_world = [&](const Pose& p) { return Pose{fr.to_world(p.position), frame_q * p.orientation}; };
   place.dispense = [&](const Reader& d, ProcedureEvent& ev) { cavity_increment(d, ctx, ev); };
   place.budget = &budget;
+  place.solver = sc.model.solver;
 
   const std::string tool = root.optional_string("tool", "the first instrument: ball_burnisher, flat_plugger or condenser")
                                .value_or("ball_burnisher");
@@ -147,7 +148,6 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
   sc.instrument_spacing = s;
   sc.tool = scene::read_trajectory(root, place);
   if (root.has("events")) sc.events = scene::read_events(root, place, nullptr, dp.wall, sc.model.kernel);
-  shape_instruments(sc);  // the switch_tool events' instruments (read as the paper's) as sc's solver runs them
   sc.duration = root.number_or("duration", sc.tool.keyframes.back().t,
                                "the procedure's length in s (default: the last keyframe's time)", Range::positive);
   // The run's length: at most limits::max_run_steps steps.

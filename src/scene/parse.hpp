@@ -112,8 +112,9 @@ struct ToolPart {
 };
 
 // Reads the "tool" object, counting its particles and its events' in `budget`.
+// `solver`: the step that runs the scene (its switch_tool events' instruments are made for it).
 ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const KernelCoeffs& kernel,
-                    ParticleBudget& budget);
+                    ParticleBudget& budget, Solver solver);
 
 // Where the keyframes and events of a file land. A scene file gives world metres (the default);
 // a procedure file (procedure_json.cpp) gives millimetres in a tooth's frame.
@@ -127,6 +128,8 @@ struct Placement {
   std::function<void(const Reader& d, ProcedureEvent& event)> dispense;
   // Counts every event's particles before they are made (the dispense function counts its own).
   ParticleBudget* budget = nullptr;
+  // The step that runs the scene: a switch_tool event's instrument is made as it runs it (tool_by_name).
+  Solver solver = Solver::paper;
 };
 
 // "keyframes" of `owner`: at least one, times strictly increasing, each placed by `placement`.

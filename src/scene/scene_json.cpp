@@ -24,6 +24,23 @@ Solver read_solver(const Reader& simulation) {
   return *s;
 }
 
+namespace {
+
+// make_model's messages read "<field>: <problem>; <fix>" with fields named as in ModelParams:
+// adhesion.* keep their name, the rest live under "simulation".
+[[noreturn]] void throw_model_error(const std::invalid_argument& e, const std::string& source) {
+  const std::string_view msg = e.what();
+  const auto colon = msg.find(": ");
+  const std::string_view field = msg.substr(0, colon);
+  const std::string path = field.starts_with("adhesion") ? std::string(field) : fmt::format("simulation.{}", field);
+  const std::string_view rest = colon == std::string_view::npos ? msg : msg.substr(colon + 2);
+  // Keep our "<problem>; <fix>" shape where make_model gave no fix.
+  const bool has_fix = rest.find("; ") != std::string_view::npos;
+  throw SceneError(fmt::format("{}: {}: {}{}", source, path, rest, has_fix ? "" : "; see docs/scene-format.md"));
+}
+
+}  // namespace
+
 IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   const std::optional<Reader> i = simulation.optional_object(
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
@@ -43,15 +60,9 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
                                              "the viscosity's conjugate-gradient iterations, e.g. 8", 1, 1000));
   p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
   try {
-    check_iisph_params(p);
+    check_iisph_params(p);  // make_model does too, but a dental scene's Model is made later
   } catch (const std::invalid_argument& e) {
-    // "iisph.<field>: <problem>; <fix>"
-    const std::string_view msg = e.what();
-    const std::size_t dot = msg.find('.'), colon = msg.find(": ");
-    const std::string_view field = msg.substr(dot + 1, colon - dot - 1), rest = msg.substr(colon + 2);
-    const std::size_t semi = rest.find("; ");
-    i->fail(field, rest.substr(0, semi),
-            semi == std::string_view::npos ? "see docs/scene-format.md" : rest.substr(semi + 2));
+    throw_model_error(e, simulation.source());
   }
   return p;
 }
@@ -77,22 +88,11 @@ namespace {
        "numbers within double range)");
 }
 
-// make_model's messages read "<field>: <problem>; <fix>" with fields named as in ModelParams:
-// adhesion.* keep their name, the rest live under "simulation".
 Model build_model(const ModelParams& p, const std::string& source) {
   try {
     return make_model(p);
   } catch (const std::invalid_argument& e) {
-    const std::string_view msg = e.what();
-    const auto colon = msg.find(": ");
-    const std::string_view field = msg.substr(0, colon);
-    const std::string path =
-        field.starts_with("adhesion") ? std::string(field) : fmt::format("simulation.{}", field);
-    const std::string_view rest = colon == std::string_view::npos ? msg : msg.substr(colon + 2);
-    // Keep our "<problem>; <fix>" shape where make_model gave no fix.
-    const bool has_fix = rest.find("; ") != std::string_view::npos;
-    throw SceneError(fmt::format("{}: {}: {}{}", source, path, rest,
-                                 has_fix ? "" : "; see docs/scene-format.md"));
+    throw_model_error(e, source);
   }
 }
 
@@ -279,7 +279,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   std::optional<ToolPart> tool;
   if (const std::optional<Reader> t =
           root.optional_object("tool", "the tool {\"blocks\": [...], \"keyframes\": [...]}"))
-    tool = parse_tool(*t, materials, kernel, budget);
+    tool = parse_tool(*t, materials, kernel, budget, sc.params.solver);
   sc.particles = make_blocks(world);
   if (tool) {
     const std::vector<ParticleInit> tool_particles = make_blocks(tool->blocks);
@@ -311,7 +311,6 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
               fmt::format("use at most {} different materials (the named ones, and inline ones with values of their own)",
                           MaterialTable::kCapacity));
   }
-  shape_instruments(sc);  // the switch_tool events' instruments, as the scene's solver runs them
   return sc;
 }
 

@@ -127,7 +127,7 @@ ProcedureEvent read_event(const Reader& e, const ProcedureEvent* previous, const
       sw.fail("spacing", problem, limits::spacing_fix(kernel.h, unit, place.length_scale));
     ToolShape shape;
     try {
-      shape = tool_by_name(ev.tool, spacing, Solver::paper);  // shape_instruments: as the scene's solver runs it
+      shape = tool_by_name(ev.tool, spacing, place.solver);
     } catch (const std::invalid_argument& err) {
       sw.fail("name", err.what(), "use one of the known instruments");
     }
@@ -167,7 +167,7 @@ std::vector<ProcedureEvent> read_events(const Reader& owner, const Placement& pl
 }
 
 ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const KernelCoeffs& kernel,
-                    ParticleBudget& budget) {
+                    ParticleBudget& budget, Solver solver) {
   tool.only({"material", "blocks", "keyframes", "events"});
   // The tool's own material (default roles.tool) is the default of each of its blocks.
   MaterialDefault tool_material{materials.default_for(Role::tool), "roles.tool"};
@@ -188,6 +188,7 @@ ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const K
     if (!tool_material.material) tool.fail("events", "need the tool's material", "set tool.material or roles.tool");
     Placement place;
     place.budget = &budget;
+    place.solver = solver;
     part.events = read_events(tool, place, &materials, *tool_material.material, kernel);
   }
   return part;

@@ -123,6 +123,13 @@ TEST(DentalSceneFile, TheIisphSolversSettings) {
     EXPECT_NE(msg.find("simulation.iisph.viscosity_iterations"), std::string::npos) << msg;
     EXPECT_NE(msg.find("[1, 1000]"), std::string::npos) << msg;
   }
+  try {  // checked when read, before the tooth is prepared and its Model made
+    parse(R"({"name": "i", "tooth": {}, "simulation": {"iisph": {"stiffness": 2}}})");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("scene.json: simulation.iisph.stiffness: must be in (0, 1], got 2; "), std::string::npos) << msg;
+  }
 }
 
 TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {

@@ -38,6 +38,14 @@ TEST(Procedure, EventsAreReadAndResolved) {
   EXPECT_EQ(sc.events[0].kind, ProcedureEvent::Kind::dispense);
   EXPECT_NEAR(real(sc.events[0].particles.size()) * 1e-6, 2.7e-5, 0.15 * 2.7e-5) << "spacing h/2 = 0.01";
   EXPECT_EQ(sc.events[1].kind, ProcedureEvent::Kind::switch_tool);
+  // A ball burnisher taken up on the iisph solver is made as it runs it: two layers (tools.hpp).
+  std::string iisph = with_events(R"([{"t": 0.1, "switch_tool": {"name": "ball_burnisher"}}])");
+  const std::string h = R"("h": 0.02})";
+  iisph.replace(iisph.find(h), h.size(), R"("h": 0.02, "solver": "iisph"})");
+  const Scene ball = parse_scene(iisph, "p.json");
+  ASSERT_EQ(ball.model.solver, Solver::iisph);
+  EXPECT_EQ(ball.events[0].particles.size(), tool_by_name("ball_burnisher", 0.01, Solver::iisph).points.size());
+  EXPECT_GT(ball.events[0].particles.size(), tool_by_name("ball_burnisher", 0.01, Solver::paper).points.size());
   EXPECT_EQ(sc.events[1].tool, "condenser");
   EXPECT_EQ(sc.events[1].particles.size(), tool_by_name("condenser", 0.01, Solver::paper).points.size());
   EXPECT_NEAR(real(sc.events[2].particles.size()) * 1.25e-7, 1e-6, 0.2e-6);
