@@ -253,6 +253,10 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   const Json json = parse_json(json_text, source);
   const Reader root(json, "", source, "a scene");
   if (is_dental_scene(root)) return parse_dental_scene(root);
+  // A filling procedure (procedure-format.md) given where a scene is expected.
+  if (root.has("keyframes") && !root.has("simulation"))
+    root.fail("keyframes", "this is a filling procedure, not a scene",
+              "run it with `dentsph run --procedure FILE`, or name it in a dental scene file's \"procedure\"");
   root.only({"name", "description", "simulation", "adhesion", "materials", "roles", "blocks",
              "tool", "output", "run", "haptics", "student", "exercise"});
 

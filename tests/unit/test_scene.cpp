@@ -603,6 +603,17 @@ TEST(SceneErrors, SyntaxErrorsNameLineAndColumn) {
   expect_error("[1, 2]", "broken.json: (top level): expected a scene", "{");
 }
 
+TEST(SceneErrors, AProcedureFileIsToldFromAScene) {
+  try {
+    load_scene("scenes/default_procedure.json");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("scenes/default_procedure.json: keyframes: this is a filling procedure"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--procedure"), std::string::npos) << msg;
+  }
+}
+
 TEST(SceneErrors, MissingFileNamesTheFile) {
   try {
     load_scene("scenes/no_such_scene.json");
