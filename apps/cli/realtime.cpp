@@ -150,8 +150,9 @@ int replay_recording(const Scene& scene, const std::string& dir, int threads, Ba
              f.size(), r.events.size(), dir, backend_name(backend), r.backend, c.differ, c.largest, c.peak);
   if (!out_dir.empty()) fmt::print("wrote {}: summary.json, tool_force.csv, report.html\n", out_dir.string());
   if (exact) return c.differ == 0 ? 0 : 4;
-  fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} of the recorded peak)\n",
-             c.outside, kBackendParityTolerance);
+  fmt::print("another backend than the recording's: {} forces outside the parity tolerance ({:g} of the recorded peak, "
+             "or of {:g} N if larger)\n",
+             c.outside, kBackendParityTolerance, kBackendParityForceFloor);
   return c.outside == 0 ? 0 : 4;
 }
 

@@ -32,6 +32,11 @@ Backend parse_backend(const std::string& name);
 // another backend relative to the session's peak force (compare_replay: dentsph replay,
 // tests/haptics). They differ only in the order of summation.
 inline constexpr real kBackendParityTolerance = 1e-4;
+// The least force (N) that the replay's tolerance is taken relative to: a session whose tool
+// touched nothing records forces of the size of rounding (about 1e-32 N), which two summation
+// orders change entirely; a force under 1e-9 N is 1.5e-5 N on a device at the dental scenes'
+// force scale.
+inline constexpr real kBackendParityForceFloor = 1e-9;
 
 // Whether the CUDA backend can run here: built with CUDA, and a device present. `reason` says why
 // not ("this build has no CUDA backend: ..." or "no CUDA device: ..."); `device` names the GPU.

@@ -536,6 +536,40 @@ TEST(SceneFile, HapticsForceScaleIsReadAndChecked) {
 namespace dentsph {
 namespace {
 
+// A replay on another backend agrees within kBackendParityTolerance of the recorded peak force,
+// or of kBackendParityForceFloor where the session's peak is smaller (a tool that touched nothing
+// records rounding, which another summation order changes entirely).
+TEST(ReplayComparison, ToleranceIsRelativeToThePeakWithAFloor) {
+  auto recording = [](const std::vector<Vec3>& forces) {
+    Recording r;
+    for (std::size_t k = 0; k < forces.size(); ++k) {
+      StepSample s;
+      s.step = k;
+      s.tool_force = forces[k];
+      r.steps.push_back(s);
+    }
+    return r;
+  };
+  // Rounding alone: 4.3e-32 N recorded, 4.6e-32 N off.
+  const Recording air = recording({{0, 0, 4.3e-32}, {1e-33, 0, 0}});
+  ReplayComparison c = compare_replay({{0, 0, 9e-32}, {0, 0, 0}}, air, kBackendParityTolerance);
+  EXPECT_EQ(c.differ, 2u);
+  EXPECT_EQ(c.outside, 0u);
+  EXPECT_NEAR(c.peak, 4.3e-32, 1e-45);
+  // A session that pressed: 1e-3 N peak, so 1e-7 N is the bound.
+  const Recording press = recording({{0, 0, 1e-3}, {0, 5e-4, 0}, {0, 0, 0}});
+  c = compare_replay({{0, 0, 1e-3 + 5e-8}, {0, 5e-4 - 2e-7, 0}, {0, 0, 0}}, press, kBackendParityTolerance);
+  EXPECT_EQ(c.differ, 2u);
+  EXPECT_EQ(c.outside, 1u);
+  EXPECT_NEAR(c.largest, 2e-7, 1e-15);
+  // Just under the floor's bound, and over it.
+  c = compare_replay({{0, 0, 0.9e-13}, {0, 0, 0}}, air, kBackendParityTolerance);
+  EXPECT_EQ(c.outside, 0u);
+  c = compare_replay({{0, 0, 1.1e-13}, {0, 0, 0}}, air, kBackendParityTolerance);
+  EXPECT_EQ(c.outside, 1u);
+  EXPECT_THROW(compare_replay({{0, 0, 0}}, air, kBackendParityTolerance), std::invalid_argument);
+}
+
 // The force in air: ticks whose last 20 ms of steps had no tool force are free, the others in
 // contact; ticks before any step count as neither.
 TEST(FreeAir, TicksAreSplitByTheToolForceOfTheLastWindow) {
