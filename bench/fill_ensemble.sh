@@ -8,6 +8,7 @@
 # particles leaked into the tooth and lost, summed.
 # Usage: bench/fill_ensemble.sh [BUILD_DIR] [SOLVER...]   (default: build/test paper iisph)
 #        CAVITIES="crown 36II" RUNS=3 bench/fill_ensemble.sh ...   (fewer cavities or offsets)
+#        OFFSETS=2 bench/fill_ensemble.sh ...   (the second family of nine offsets, 0.01 to 0.04 mm)
 # Runs two at a time on one thread each; ../shared/data holds the scans. Measured on two idle
 # cores (test build): the iisph solver's 45 runs in 3 min; a run of the paper's step takes several
 # times as long (about 35 s on the crown beside other runs).
@@ -23,6 +24,9 @@ data="${DENTSPH_DATA:-../shared/data}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 offsets=("0 0" "0.03 0" "-0.03 0" "0 0.03" "0 -0.03" "0.02 0.02" "-0.02 0.02" "0.02 -0.02" "-0.02 -0.02")
+# A second family, none of whose paths is the first's: whether a difference between two means holds
+# for other paths than the first nine.
+[ "${OFFSETS:-1}" = 2 ] && offsets=("0.01 0" "-0.01 0" "0 0.01" "0 -0.01" "0.015 0.015" "-0.015 0.015" "0.015 -0.015" "-0.015 -0.015" "0.04 0")
 offsets=("${offsets[@]:0:${RUNS:-9}}")
 for k in "${!offsets[@]}"; do
   python3 - "$k" ${offsets[$k]} > "$tmp/p$k.json" <<'PY'
