@@ -60,6 +60,7 @@ struct Options {
   double spike_at_s = -1, spike_m = 0;  // one pose at this time with x = spike_m
   double toggle_button_hz = 0;     // button 1 toggled at this rate the whole run
   double start_after_s = 0;        // wait this long before the first message
+  double wait_s = 0;               // > 0: heartbeats until dentsph answers, at most this long, before the first pose
   unsigned seed = 1;
   std::string report;
 };
@@ -129,6 +130,10 @@ int main(int argc, char** argv) {
   app.add_option("--toggle-button-hz", o.toggle_button_hz, "Toggle button 1 at this rate (Hz) the whole run")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--start-after", o.start_after_s, "Wait this long (s) before the first message")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--wait", o.wait_s,
+                 "Send a heartbeat every 100 ms until dentsph answers, at most this long (s), before the first pose "
+                 "(a dentsph still starting misses no pose); exit 3 if it never answers")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
@@ -221,6 +226,30 @@ int main(int argc, char** argv) {
     send(std::span<const std::uint8_t>(buf.data(), proto::encode_header_only(h, buf)));
   };
   std::uint64_t hellos = 0, heartbeats_sent = 0, restarts = 0, spikes = 0;
+  if (o.wait_s > 0) {
+    // The first valid message opens a session (a heartbeat: a hello would open a new one each
+    // time), and dentsph sends a heartbeat every 100 ms while a session has no pose
+    // (docs/haptic-protocol.md): the first message back says it listens.
+    const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.wait_s));
+    bool answered = false;
+    while (!answered && Clock::now() < until) {
+      send_header(proto::Type::heartbeat);
+      ++heartbeats_sent;
+      const auto next_beat = Clock::now() + std::chrono::milliseconds(100);
+      while (!answered && Clock::now() < next_beat) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        const std::uint64_t heard = st.heartbeats + st.forces + st.malformed;
+        receive();
+        answered = st.heartbeats + st.forces + st.malformed > heard;
+      }
+    }
+    if (!answered) {
+      fmt::print(stderr, "error: dentsph at {}:{} did not answer within {} s (--wait); is it running with --device udp?\n",
+                 o.host, o.port, o.wait_s);
+      ::close(fd);
+      return 3;
+    }
+  }
   if (o.hello) send_header(proto::Type::hello), ++hellos;
 
   const auto period = std::chrono::nanoseconds(std::int64_t(1e9 / o.rate_hz));

@@ -57,7 +57,7 @@ TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   EXPECT_GT(c["max_force_N"].get<double>(), 0.2);  // the tool pressed into the paste
   // The summary agrees with the client.
   EXPECT_EQ(d["name"], "udp");
-  EXPECT_EQ(d["sessions"], 1);
+  EXPECT_EQ(d["sessions"], 1) << "its heartbeats opened one session";
   EXPECT_EQ(d["byes"], 1);
   EXPECT_EQ(d["poses"], c["poses_sent"]);
   EXPECT_EQ(d["malformed"], 0);
@@ -73,6 +73,41 @@ TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   EXPECT_GT(s["sim"]["steps_per_second"].get<double>(), 0);
   EXPECT_TRUE(h.contains("deadline_misses"));
   expect_safe(r, o.profile);
+}
+
+// The reference client's --wait: it sends heartbeats until dentsph answers and only then plays, so a
+// dentsph that starts late (a viewer still loading, a slow host) misses none of its poses; with
+// nobody listening it gives up after the time given and exits 3.
+TEST(HapticRuntime, ReferenceClientWaitsForDentsphToListen) {
+  RealtimeOptions o = options(ForceMode::coupling);
+  o.duration_s = 1.6;
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  ClientProcess client(port, {"--wait", "30", "--duration", "1", "--motion", "hold", "--depth", "0.02"}, "wait");
+  ASSERT_TRUE(client.started());
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // dentsph not yet running
+  const RealtimeResult r = run_realtime(press_scene(), *device, o);
+  const nlohmann::json c = client.wait();
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json d = testing::realtime_sections(r)["device"];
+  EXPECT_GE(c["heartbeats_sent"].get<int>(), 4) << "it called while nobody answered";
+  EXPECT_GE(c["heartbeats_received"].get<int>(), 1) << "dentsph's answer";
+  EXPECT_EQ(d["poses"], c["poses_sent"]) << "every pose reached the running dentsph";
+  EXPECT_GT(c["forces_received"].get<int>(), 100);
+  EXPECT_EQ(d["sessions"], 1);
+
+  // Nobody listening: exit 3 after the time given, saying so.
+  const std::string out = (std::filesystem::temp_directory_path() / ("dentsph_client_nobody_" + std::to_string(::getpid()))).string();
+  const auto t0 = std::chrono::steady_clock::now();
+  const int raw = std::system(("'" + std::string(DENTSPH_HAPTIC_CLIENT) + "' --port " + std::to_string(port) +
+                               " --wait 0.3 --duration 1 > '" + out + "' 2>&1").c_str());
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 3) << raw;
+  EXPECT_GE(waited, 0.3);
+  std::ifstream in(out);
+  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("did not answer within 0.3 s (--wait)"), std::string::npos) << said;
+  std::filesystem::remove(out);
 }
 
 // The press scene's scripted press under virtual coupling: safe, it did press, and passive (the

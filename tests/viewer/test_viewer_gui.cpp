@@ -280,14 +280,16 @@ TEST(ViewerGui, TheCudaBackendWithoutAGpuIsAClearError) {
 
 TEST(ViewerGui, ALostDeviceConnectionDegradesToZeroForce) {
   REQUIRE_XVFB();
-  // The reference client plays 1.5 s and leaves without a goodbye; the viewer keeps drawing for
-  // another few seconds, its bridge times the session out and renders zero force.
+  // The reference client waits for the viewer's bridge to answer (--wait: a viewer that starts
+  // slowly, under a sanitizer on a busy host, missed its first poses), plays 1.5 s and leaves
+  // without a goodbye; the viewer keeps drawing for another few seconds, its bridge times the
+  // session out and renders zero force.
   const int port = 40000 + int(::getpid() % 20000);
   const fs::path sum = temp("udp.json"), client_report = temp("client.json"), out = temp("udp_out.txt");
   const std::string cmd = fmt::format(
       "timeout -s KILL 240 xvfb-run -a -s '-screen 0 1024x768x24' {} sh -c \"'{}' --width 640 --height 480 --threads 1 "
-      "--timeout 200 --max-fps 30 --frames 150 --device udp --port {} --summary '{}' & v=$!; sleep 1; "
-      "'{}' --port {} --duration 1.5 --no-bye --report '{}' >/dev/null; wait $v\" >'{}' 2>&1",
+      "--timeout 200 --max-fps 30 --frames 150 --device udp --port {} --summary '{}' & v=$!; "
+      "'{}' --port {} --wait 60 --duration 1.5 --no-bye --report '{}' >/dev/null; wait $v\" >'{}' 2>&1",
       kNoDriverLeakCheck, kViewer.string(), port, sum.string(), kClient.string(), port, client_report.string(),
       out.string());
   const int raw = std::system(cmd.c_str());
