@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   app.add_option("--wait", o.wait_s,
                  "Send a heartbeat every 100 ms until dentsph answers, at most this long (s), before the first pose "
                  "(a dentsph still starting misses no pose); exit 3 if it never answers")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--seed", o.seed, "Seed of the fault injection")->capture_default_str();
   app.add_option("--report", o.report, "Write what the client saw as JSON to this file");
   try {
