@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
   app.add_option("--truncate", o.truncate, "Probability that a pose is cut short")->check(CLI::Range(0.0, 1.0));
   app.add_option("--garbage", o.garbage, "Probability of a random datagram after a pose")->check(CLI::Range(0.0, 1.0));
   app.add_option("--pause-at", o.pause_at_s, "Go silent at this time (s)");
-  app.add_option("--pause-for", o.pause_for_s, "For this long (s)");
+  app.add_option("--pause-for", o.pause_for_s, "For this long (s)")->check(CLI::Range(0.0, 86400.0));
   app.add_option("--press-button-at", o.press_button_at_s,
                  "Hold button 1 (dispense an increment) down from these times (s), e.g. --press-button-at 0.5 1.5");
   app.add_option("--press-button-for", o.press_button_for_s, "For this long each time (s)")
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   app.add_option("--toggle-button-hz", o.toggle_button_hz, "Toggle button 1 at this rate (Hz) the whole run")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--start-after", o.start_after_s, "Wait this long (s) before the first message")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--wait", o.wait_s,
                  "Send a heartbeat every 100 ms until dentsph answers, at most this long (s), before the first pose "
                  "(a dentsph still starting misses no pose); exit 3 if it never answers")
