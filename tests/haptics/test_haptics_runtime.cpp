@@ -110,6 +110,32 @@ TEST(HapticRuntime, ReferenceClientWaitsForDentsphToListen) {
   std::filesystem::remove(out);
 }
 
+// Times the client would sleep or wait for are checked: a negative or astronomical one (which
+// overflowed the clock's nanoseconds) exits 2 naming the option.
+TEST(HapticRuntime, ReferenceClientRefusesImpossibleTimes) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--wait", "1e300"}, {"--wait", "-1"}, {"--start-after", "1e300"}, {"--pause-for", "-1"}, {"--pause-for", "1e300"}};
+  const std::string out = (std::filesystem::temp_directory_path() / ("dentsph_client_bad_" + std::to_string(::getpid()))).string();
+  for (const auto& [option, value] : cases) {
+    std::string cmd = "'";
+    cmd += DENTSPH_HAPTIC_CLIENT;
+    cmd += "' ";
+    cmd += option;
+    cmd += ' ';
+    cmd += value;
+    cmd += " --duration 0.1 > '";
+    cmd += out;
+    cmd += "' 2>&1";
+    const std::string bad = option + " " + value;
+    const int raw = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << bad << ": " << raw;
+    std::ifstream in(out);
+    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(said.find(option + ": Value"), std::string::npos) << bad << ": " << said;  // "--wait: Value ... not in range"
+    std::filesystem::remove(out);
+  }
+}
+
 // The press scene's scripted press under virtual coupling: safe, it did press, and passive (the
 // device never delivers net energy to the hand, E(t) <= 0, within 1% of the work the hand did).
 RealtimeResult expect_passive_press(const Scene& scene) {
