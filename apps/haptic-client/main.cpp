@@ -231,18 +231,18 @@ int main(int argc, char** argv) {
     // time), and dentsph sends a heartbeat every 100 ms while a session has no pose
     // (docs/haptic-protocol.md): the first message back says it listens.
     const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.wait_s));
-    bool answered = false;
-    while (!answered && Clock::now() < until) {
+    auto heard = [&] { return st.heartbeats + st.forces + st.malformed; };  // every message receive() counts
+    const std::uint64_t before = heard();
+    while (heard() == before && Clock::now() < until) {
       send_header(proto::Type::heartbeat);
       ++heartbeats_sent;
       const auto next_beat = Clock::now() + std::chrono::milliseconds(100);
-      while (!answered && Clock::now() < next_beat) {
+      while (heard() == before && Clock::now() < next_beat) {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        const std::uint64_t heard = st.heartbeats + st.forces + st.malformed;
         receive();
-        answered = st.heartbeats + st.forces + st.malformed > heard;
       }
     }
+    const bool answered = heard() > before;
     if (!answered) {
       fmt::print(stderr, "error: dentsph at {}:{} did not answer within {} s (--wait); is it running with --device udp?\n",
                  o.host, o.port, o.wait_s);

@@ -73,12 +73,12 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
   return forces;
 }
 
-ReplayComparison compare_replay(const std::vector<Vec3>& f, const Recording& r, double rel, double floor) {
+ReplayComparison compare_replay(const std::vector<Vec3>& f, const Recording& r, double rel) {
   if (f.size() != r.steps.size())
     throw std::invalid_argument(fmt::format("compare_replay: {} replayed steps against {} recorded", f.size(), r.steps.size()));
   ReplayComparison c;
   for (const StepSample& s : r.steps) c.peak = std::max(c.peak, double(norm(s.tool_force)));
-  const double bound = rel * std::max(c.peak, floor);
+  const double bound = rel * std::max(c.peak, double(kBackendParityForceFloor));
   for (std::size_t k = 0; k < f.size(); ++k) {
     const Vec3 d = f[k] - r.steps[k].tool_force;
     c.largest = std::max(c.largest, double(norm(d)));

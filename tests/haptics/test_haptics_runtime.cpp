@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "client_process.hpp"
+#include "support/cli_process.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
@@ -57,7 +58,7 @@ TEST(HapticRuntime, ReferenceClientPlaysADeviceAt1kHzOverUdp) {
   EXPECT_GT(c["max_force_N"].get<double>(), 0.2);  // the tool pressed into the paste
   // The summary agrees with the client.
   EXPECT_EQ(d["name"], "udp");
-  EXPECT_EQ(d["sessions"], 1) << "its heartbeats opened one session";
+  EXPECT_EQ(d["sessions"], 1);
   EXPECT_EQ(d["byes"], 1);
   EXPECT_EQ(d["poses"], c["poses_sent"]);
   EXPECT_EQ(d["malformed"], 0);
@@ -94,45 +95,25 @@ TEST(HapticRuntime, ReferenceClientWaitsForDentsphToListen) {
   EXPECT_GE(c["heartbeats_received"].get<int>(), 1) << "dentsph's answer";
   EXPECT_EQ(d["poses"], c["poses_sent"]) << "every pose reached the running dentsph";
   EXPECT_GT(c["forces_received"].get<int>(), 100);
-  EXPECT_EQ(d["sessions"], 1);
+  EXPECT_EQ(d["sessions"], 1) << "its heartbeats opened one session";
 
   // Nobody listening: exit 3 after the time given, saying so.
-  const std::string out = (std::filesystem::temp_directory_path() / ("dentsph_client_nobody_" + std::to_string(::getpid()))).string();
   const auto t0 = std::chrono::steady_clock::now();
-  const int raw = std::system(("'" + std::string(DENTSPH_HAPTIC_CLIENT) + "' --port " + std::to_string(port) +
-                               " --wait 0.3 --duration 1 > '" + out + "' 2>&1").c_str());
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 3) << raw;
-  EXPECT_GE(waited, 0.3);
-  std::ifstream in(out);
-  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(said.find("did not answer within 0.3 s (--wait)"), std::string::npos) << said;
-  std::filesystem::remove(out);
+  const testing::CliResult nobody =
+      testing::run_command(std::string(DENTSPH_HAPTIC_CLIENT) + " --port " + std::to_string(port) + " --wait 0.3 --duration 1");
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.3);
+  EXPECT_EQ(nobody.code, 3) << nobody.output;
+  EXPECT_NE(nobody.output.find("did not answer within 0.3 s (--wait)"), std::string::npos) << nobody.output;
 }
 
 // Times the client would sleep or wait for are checked: a negative or astronomical one (which
 // overflowed the clock's nanoseconds) exits 2 naming the option.
 TEST(HapticRuntime, ReferenceClientRefusesImpossibleTimes) {
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--wait", "1e300"}, {"--wait", "-1"}, {"--start-after", "1e300"}, {"--pause-for", "-1"}, {"--pause-for", "1e300"}};
-  const std::string out = (std::filesystem::temp_directory_path() / ("dentsph_client_bad_" + std::to_string(::getpid()))).string();
-  for (const auto& [option, value] : cases) {
-    std::string cmd = "'";
-    cmd += DENTSPH_HAPTIC_CLIENT;
-    cmd += "' ";
-    cmd += option;
-    cmd += ' ';
-    cmd += value;
-    cmd += " --duration 0.1 > '";
-    cmd += out;
-    cmd += "' 2>&1";
-    const std::string bad = option + " " + value;
-    const int raw = std::system(cmd.c_str());
-    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << bad << ": " << raw;
-    std::ifstream in(out);
-    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_NE(said.find(option + ": Value"), std::string::npos) << bad << ": " << said;  // "--wait: Value ... not in range"
-    std::filesystem::remove(out);
+  for (const std::string bad : {"--wait 1e300", "--wait -1", "--start-after 1e300", "--pause-for -1", "--pause-for 1e300"}) {
+    const testing::CliResult r = testing::run_command(std::string(DENTSPH_HAPTIC_CLIENT) + " " + bad + " --duration 0.1");
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    const std::string option = bad.substr(0, bad.find(' '));
+    EXPECT_NE(r.output.find(option + ": Value"), std::string::npos) << bad << ": " << r.output;  // "--wait: Value ... not in range"
   }
 }
 

@@ -95,13 +95,12 @@ struct ReplayComparison {
   double peak = 0;          // N, the largest recorded |force|
 };
 // Compares `replayed` with r.steps' tool forces: a step is within the tolerance when every
-// component is off by at most `rel` of the recorded peak force, or of `floor` (N) where the peak is
-// smaller. (Two backends differ in the order of their sums, by the last bits; over a long session
+// component is off by at most `rel` of the recorded peak force, or of kBackendParityForceFloor (N)
+// where the peak is smaller. (Two backends differ in the order of their sums, by the last bits; over a long session
 // the paste's motion amplifies that, so the bound is set by the force the session reached, not by
 // each step's; a session that touched nothing reached only rounding.) Throws
 // std::invalid_argument when the counts differ.
-ReplayComparison compare_replay(const std::vector<Vec3>& replayed, const Recording& r, double rel,
-                                double floor = kBackendParityForceFloor);
+ReplayComparison compare_replay(const std::vector<Vec3>& replayed, const Recording& r, double rel);
 
 // Energy delivered to the hand, E(t_k) = sum of F . v dt over the recorded ticks (J), with v from
 // the recorded device positions (central differences). A passive rendering keeps it bounded by
