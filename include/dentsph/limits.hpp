@@ -72,7 +72,8 @@ std::string run_length_problem(real duration, real dt);
 std::uint64_t run_steps(real duration, real dt);
 
 // Bytes the simulation's state takes per particle (every per-particle array, the bond lists of
-// `max_bonds` each, the neighbour lists, with the skin's copies when `skin`), an upper estimate.
+// `max_bonds` each, the neighbour lists, with the skin's copies when `skin`, the iisph solver's
+// scratch), an upper estimate for either solver.
 std::uint64_t state_bytes_per_particle(int max_bonds, bool skin);
 // The memory a scene needs: `held` particles as read and `simulated` in the state.
 std::uint64_t scene_bytes(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin);

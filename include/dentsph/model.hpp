@@ -31,8 +31,15 @@ struct KernelCoeffs {
   real spiky_grad = 0;   // 45 / (pi h^6), 1/m^6; gradW = -spiky_grad (h - r)^2 rhat
   real visc_lap = 0;     // 45 / (pi h^6), 1/m^6; lapW = visc_lap (h - r)
   real adh_scale = 0;    // Cd / h^4, 1/m^4
-  real cubic = 0;        // 8 / (pi h^3), 1/m^3: the cubic spline of support h (the iisph solver's gradient)
+  real cubic = 0;        // 8 / (pi h^3), 1/m^3: the cubic spline of support h (an iisph gradient)
+  real spiky_lattice = 0;  // spiky_grad / kSpikyLatticeGradient, 1/m^6: the iisph solver's spiky gradient
 };
+
+// On a simple cubic lattice of spacing h / 2 whose particles have the poly6 lattice mass
+// (lattice_particle_mass), the spiky gradient of a linear field is this share of the true one
+// (tests/unit/test_kernels.cpp recomputes it); the iisph solver's spiky gradient divides by it so
+// that its pressure is the mechanical one.
+inline constexpr real kSpikyLatticeGradient = 0.9470316764699314;
 
 // The uniform grid of the broad phase. Cells are cubes of edge `cell_size` starting at `origin`;
 // a particle's neighbours within h lie in the (2 reach + 1)^3 cells around its own, with
@@ -55,6 +62,11 @@ struct GridSpec {
 // - iisph: implicit incompressible SPH (Ihmsen et al. 2014) with implicit viscosity and the
 //   paper's adhesion bonds (src/solver), capped by the velocity CFL condition only.
 enum class Solver { paper, iisph };
+// The kernel whose gradient the iisph solver's pressure uses: the paper's spiky kernel (scaled by
+// 1 / kSpikyLatticeGradient) or the cubic spline (docs/model.md, "The iisph solver").
+enum class PressureGradient { spiky, cubic };
+const char* gradient_name(PressureGradient g);  // "spiky", "cubic"
+std::optional<PressureGradient> gradient_from_name(std::string_view name);
 const char* solver_name(Solver s);                           // "paper", "iisph"
 std::optional<Solver> solver_from_name(std::string_view name);
 inline constexpr const char* solver_choices = "paper or iisph";
@@ -73,6 +85,7 @@ struct IisphParams {
   // paste compresses twice what Kp (rho - rho0) with a consistent force gives: 0.5 makes the same Kp
   // the same paste on both solvers (docs/model.md), 1 takes the equation of state as written.
   real stiffness = 0.5;
+  PressureGradient gradient = PressureGradient::spiky;
 };
 
 // The user's choices; make_model() checks them and derives the rest.
@@ -89,6 +102,11 @@ struct ModelParams {
                                   // particle has moved skin / 2 (0: rebuilt every step)
   Solver solver = Solver::paper;  // which step runs
   IisphParams iisph;              // the iisph solver's budget (unused by the paper's step)
+  // The iisph solver holds material that would leave the domain where it is, at rest (dental
+  // scenes: the domain is the lined tooth and 4 mm around the cavity, and paste beyond it has fallen
+  // off the model; without it, overfill falling past the lined walls would fall for ever, and its
+  // speed would split every step into substeps). The paper's step ignores it.
+  bool hold_outside_domain = false;
 };
 
 struct Model {
@@ -103,6 +121,7 @@ struct Model {
   Vec3 domain_min, domain_max;
   Solver solver = Solver::paper;
   IisphParams iisph;
+  bool hold_outside_domain = false;  // see ModelParams
   // The materials the particles' State::material indices name (material.hpp). A dental scene names
   // "paste", "tooth" and each instrument; a scene file its `materials`. make_model() leaves it
   // empty: the scene builders fill it, and State::add_particles with a Model it may grow adds the

@@ -112,6 +112,12 @@ void attach_walls(Scene& scene);
 // and those a switch_tool event takes up): what the velocity CFL limit of the iisph solver is
 // checked against before a run.
 real scene_tool_speed(const Scene& scene);
+// A dental scene whose dt follows its solver (Scene::dt_follows_solver) takes the solver's dental
+// time step (dental_time_step) or, for the iisph solver, the velocity CFL limit of the scene's
+// fastest tool speed where that is smaller (rounded down to 10 us), so that a procedure with a fast
+// instrument runs instead of being refused; the Model's dt with it. Other scenes: unchanged.
+// select_solver and the procedure builder call it.
+void fit_dental_time_step(Scene& scene);
 
 // Reads and checks a scene file. Throws SceneError.
 Scene load_scene(const std::filesystem::path& file);

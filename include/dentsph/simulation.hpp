@@ -96,6 +96,9 @@ struct RunSummary {
   // Steps the iisph solver took in equal parts (its velocity CFL limit under dt), and the most parts.
   std::uint64_t substepped_steps = 0;
   int substeps_max = 1;
+  // Paste held at the domain's edge at the end (StepDiagnostics::held, Model::hold_outside_domain):
+  // it fell off the model.
+  std::uint64_t held_outside_domain = 0;
   // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it
   // was advanced in large updates (CureSchedule) and in how many; the cure's assessment (JSON
   // object, cure_assessment_json; empty without curing) and its text.

@@ -63,6 +63,7 @@ struct StepDiagnostics {
   std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)
+  std::uint64_t held = 0;               // material held at the domain's edge (Model::hold_outside_domain)
 };
 
 // What the force pass reads of a neighbour, gathered in one record per particle by the density

@@ -36,5 +36,9 @@ DENTSPH_HD inline real norm(const Vec3& a) { return std::sqrt(norm2(a)); }
 DENTSPH_HD inline bool is_finite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
+// Whether p lies in the box [lo, hi] (faces included; false for NaN).
+DENTSPH_HD constexpr bool inside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+}
 
 }  // namespace dentsph

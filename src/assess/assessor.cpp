@@ -59,10 +59,6 @@ AssessParams resolved(AssessParams p) {
   return p;
 }
 
-bool inside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
-}
-
 // Empty voxels whose centre lies within one spacing of a tool particle become open space. The
 // tool's particles are about a spacing apart on its surface, so these balls cover the surface
 // without gaps and the flood fill reaches the tool's inside from them.

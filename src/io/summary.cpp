@@ -39,7 +39,8 @@ std::string summary_json(const RunSummary& s) {
                         {"density_error", {{"mean", s.density_error_mean}, {"max", s.density_error_max}}},
                         {"pressure_residual_max", s.pressure_residual_max},
                         {"wall_projections", {{"particles", s.wall_projections}, {"steps", s.wall_projection_steps}}},
-                        {"substepped", {{"steps", s.substepped_steps}, {"most", s.substeps_max}}}});
+                        {"substepped", {{"steps", s.substepped_steps}, {"most", s.substeps_max}}},
+                        {"held_outside_domain", s.held_outside_domain}});
   j["stability"] = {{"dt_s", s.dt},
                     {"limits_s", {{"acoustic", seconds(s.limits.acoustic)},
                                   {"viscous", seconds(s.limits.viscous)},

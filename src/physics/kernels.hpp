@@ -22,6 +22,7 @@ DENTSPH_HD inline KernelCoeffs make_coeffs(real h, const AdhesionParams& a) {
   k.visc_lap = 45.0 / (pi * h6);
   k.adh_scale = a.Cd / (h * h * h * h);
   k.cubic = 8.0 / (pi * h3);
+  k.spiky_lattice = k.spiky_grad / kSpikyLatticeGradient;
   return k;
 }
 

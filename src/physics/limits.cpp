@@ -53,7 +53,11 @@ std::uint64_t state_bytes_per_particle(int max_bonds, bool skin) {
   constexpr std::uint64_t grid = 4 + 4 + 3 * 8 + sizeof(PairData);                  // key, order, x y z, pair data
   constexpr std::uint64_t scratch = 24 + 8 + 4 + 1;
   const std::uint64_t kept = skin ? 4 * 64 + 2 + 24 : 0;  // within-h lists, build positions
-  return 2 * arrays + by_id + lists + grid + scratch + kept;
+  // The iisph solver's scratch (IisphScratch), counted whichever solver the scene names, since
+  // --solver may choose it after the scene is built: a row of pairs, two counts, ten vectors, seven
+  // numbers, four indices and the tool links.
+  constexpr std::uint64_t iisph = IisphScratch::kPairStride * sizeof(SolverPair) + 2 + 10 * 24 + 7 * 8 + 4 * 4 + 12;
+  return 2 * arrays + by_id + lists + grid + scratch + kept + iisph;
 }
 
 std::uint64_t scene_bytes(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin) {

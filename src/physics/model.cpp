@@ -37,6 +37,20 @@ std::optional<Solver> solver_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+const char* gradient_name(PressureGradient g) {
+  switch (g) {
+    case PressureGradient::spiky: return "spiky";
+    case PressureGradient::cubic: return "cubic";
+  }
+  return "unknown";
+}
+
+std::optional<PressureGradient> gradient_from_name(std::string_view name) {
+  for (PressureGradient g : {PressureGradient::spiky, PressureGradient::cubic})
+    if (name == gradient_name(g)) return g;
+  return std::nullopt;
+}
+
 real adhesion_normalisation(real eps, real zeta) {
   // The bracket x^eps - x^zeta has its minimum where eps x^(eps-1) = zeta x^(zeta-1).
   const real xs = std::pow(zeta / eps, 1.0 / (eps - zeta));
@@ -104,6 +118,7 @@ Model make_model(const ModelParams& p) {
   m.domain_max = p.domain_max;
   m.solver = p.solver;
   m.iisph = p.iisph;
+  m.hold_outside_domain = p.hold_outside_domain;
 
   // Grid: cells of edge h / reach over the domain; at least 2 reach + 1 per axis (distinct
   // searched cells), at most 2^22 cells in all (the domain wraps beyond, which stays correct).

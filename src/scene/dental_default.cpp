@@ -11,7 +11,7 @@
 
 namespace dentsph {
 
-real dental_time_step(Solver solver) { return solver == Solver::iisph ? 2e-3 : 5e-5; }
+real dental_time_step(Solver solver) { return solver == Solver::iisph ? 1.5e-3 : 5e-5; }
 
 IisphParams dental_iisph_params() {
   IisphParams p;
@@ -44,6 +44,7 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   p.adhesion.B = 3 * s;
   p.neighbour_skin = 0.1 * p.h;  // measured: 1609 -> 1824 steps/s on 2 threads
   p.iisph = dp.iisph;
+  p.hold_outside_domain = true;  // paste beyond the domain has fallen off the lined tooth
   const Bounds cb = tooth.cavity_bounds();
   const Vec3 pad{4e-3, 4e-3, 4e-3};
   p.domain_min = cb.min - pad;
@@ -102,6 +103,7 @@ Scene dental_scene(const ToothScene& ts, const DentalSceneParams& dp, const std:
   for (int c = 0; c <= 40; ++c)
     sc.tool.keyframes.push_back({0.05 * c, Pose{above_paste - fr.z * ((c % 2 ? 2.5 : 0.0) * s), {}}});
   sc.duration = 2.0;
+  fit_dental_time_step(sc);
   return sc;
 }
 

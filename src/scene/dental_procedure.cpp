@@ -150,6 +150,7 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
   if (root.has("events")) sc.events = scene::read_events(root, place, nullptr, dp.wall, sc.model.kernel);
   sc.duration = root.number_or("duration", sc.tool.keyframes.back().t,
                                "the procedure's length in s (default: the last keyframe's time)", Range::positive);
+  fit_dental_time_step(sc);  // the iisph solver's step within the instrument's fastest speed
   // The run's length: at most limits::max_run_steps steps.
   if (const std::string problem = limits::run_length_problem(sc.duration, sc.model.dt); !problem.empty()) {
     const std::string field =

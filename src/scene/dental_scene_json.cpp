@@ -110,7 +110,7 @@ Scene parse_dental_scene(const Reader& root) {
   if (const std::optional<Reader> sim = root.optional_object(
           "simulation", "the simulation settings of a dental scene: {\"solver\": \"iisph\"}")) {
     sim->only({"solver", "iisph"});
-    params.solver = read_solver(*sim);
+    params.solver = read_solver(*sim, params.solver);
     params.iisph = read_iisph(*sim, params.iisph);
   }
   Scene sc = procedure_or_built_in(*tooth, procedure, params);

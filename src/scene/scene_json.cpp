@@ -13,10 +13,10 @@
 
 namespace dentsph::scene {
 
-Solver read_solver(const Reader& simulation) {
+Solver read_solver(const Reader& simulation, Solver fallback) {
   const std::optional<std::string> name =
       simulation.optional_string("solver", "the step that runs the scene: \"paper\" or \"iisph\"");
-  if (!name) return Solver::paper;
+  if (!name) return fallback;
   const std::optional<Solver> s = solver_from_name(*name);
   if (!s)
     simulation.fail("solver", fmt::format("unknown solver \"{}\"", *name),
@@ -45,7 +45,15 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   const std::optional<Reader> i = simulation.optional_object(
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
   if (!i) return p;
-  i->only({"stiffness", "max_iterations", "density_error", "omega", "viscosity_iterations", "cfl"});
+  i->only({"stiffness", "max_iterations", "density_error", "omega", "viscosity_iterations", "cfl", "gradient"});
+  if (const std::optional<std::string> g =
+          i->optional_string("gradient", "the pressure's kernel gradient: \"spiky\" or \"cubic\"")) {
+    const std::optional<PressureGradient> grad = gradient_from_name(*g);
+    if (!grad)
+      i->fail("gradient", fmt::format("unknown gradient \"{}\"", *g),
+              "give \"spiky\" (the paper's kernel, lattice-scaled) or \"cubic\" (the cubic spline; docs/model.md)");
+    p.gradient = *grad;
+  }
   p.stiffness = i->number_or("stiffness", p.stiffness,
                              "the share of Kp the solve's equation of state takes: 0.5 the paper's paste's "
                              "stiffness, 1 the equation of state as written",
@@ -108,7 +116,7 @@ ModelParams read_simulation(const Reader& root, Domain& domain) {
   sim.only({"dt", "h", "gravity", "max_bonds_per_particle", "cfl_lambda", "neighbour_skin", "grid_reach", "domain",
             "solver", "iisph"});
   ModelParams p;
-  p.solver = read_solver(sim);
+  p.solver = read_solver(sim, Solver::paper);
   p.iisph = read_iisph(sim, p.iisph);
   p.dt = sim.number("dt", "the time step in s, e.g. 5e-4", Range::positive);
   p.h = sim.number("h", "the kernel support in m, about twice the spacing, e.g. 0.02",

@@ -20,12 +20,29 @@ constexpr real kMaxWallNodes = 1e6;
 
 void select_solver(Scene& scene, Solver solver) {
   scene.params.solver = solver;
-  if (scene.dt_follows_solver) scene.params.dt = dental_time_step(solver);
   MaterialTable materials = std::move(scene.model.materials);  // the scene's, not the parameters'
   scene.model = make_model(scene.params);
   scene.model.materials = std::move(materials);
   attach_walls(scene);
   shape_instruments(scene);
+  fit_dental_time_step(scene);
+}
+
+void fit_dental_time_step(Scene& scene) {
+  if (!scene.dt_follows_solver) return;
+  real dt = dental_time_step(scene.params.solver);
+  if (scene.params.solver == Solver::iisph) {
+    const real speed = scene_tool_speed(scene);
+    const real limit = speed > 0 ? scene.params.iisph.cfl * scene.params.h / speed : inf;
+    if (dt > limit) {
+      constexpr real tick = 1e-5;
+      dt = std::floor(limit / tick) * tick;
+      if (dt > limit) dt -= tick;
+      dt = std::max(dt, tick);  // a tool this fast is refused by the run's check, naming it
+    }
+  }
+  scene.params.dt = dt;
+  scene.model.dt = dt;
 }
 
 namespace {

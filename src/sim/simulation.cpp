@@ -160,6 +160,7 @@ RunSummary Simulation::summary() {
     s.wall_projection_steps = wall_projection_steps_;
     s.substepped_steps = substepped_steps_;
     s.substeps_max = substeps_max_;
+    s.held_outside_domain = st.diagnostics.held;
   }
   if (diverged_) {
     s.status = "diverged";

@@ -1,7 +1,8 @@
 // The end of an iisph step: the force on the tool (the reaction of the pressure, viscous and
 // adhesion forces its particles exert on material), then each material particle's velocity
 // v = v** + dt a_p and position r += dt v (kept out of the walls, model.walls), the tool moved to
-// its pose, and the outputs: `pressure` is the solve's (mechanical) pressure, `force` the internal
+// its pose (material that would leave the domain held where it is, with Model::hold_outside_domain),
+// and the outputs: `pressure` is the solve's (mechanical) pressure, `force` the internal
 // force density of material, the diagnostics of the paper's step (largest acceleration and speed,
 // non-finite material, wall projections).
 #include <algorithm>
@@ -46,16 +47,26 @@ void finish(const Model& model, State& s, int threads) {
   const IisphScratch& x = s.iisph;
   const real dt = model.dt;
   real a2max = 0, v2max = 0;
-  std::uint64_t non_finite = 0, projected = 0;
+  std::uint64_t non_finite = 0, projected = 0, held = 0;
   const WallField* walls = model.walls.get();
+  const bool hold = model.hold_outside_domain;
   const std::int64_t n = s.size();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite, projected)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : a2max, v2max) reduction(+ : non_finite, projected, held)
   for (std::int64_t i = 0; i < n; ++i) {
     switch (s.role[i]) {
       case Role::material: {
         Vec3 v = x.v_a[i];
         Vec3 r = s.pos[i] + v * dt;
         if (walls && walls->project(r, v)) ++projected;  // kept out of the walls (wall_field.hpp)
+        if (hold && !inside(r, model.domain_min, model.domain_max)) {
+          // Off the model (Model::hold_outside_domain): held where it is, at rest, out of the
+          // step's figures.
+          s.force[i] = {};
+          s.vel[i] = {};
+          s.volume[i] = s.mass[i] / s.rho[i];
+          ++held;
+          break;
+        }
         const Vec3 a = (v - s.vel[i]) / dt;
         s.force[i] = (a - model.gravity) * s.rho[i];
         s.vel[i] = v;
@@ -82,6 +93,7 @@ void finish(const Model& model, State& s, int threads) {
   }
   stages::close_step(s, a2max, v2max, non_finite, dt);
   s.diagnostics.wall_projections = projected;
+  s.diagnostics.held = held;
 }
 
 }  // namespace dentsph::iisph

@@ -1,7 +1,8 @@
 // The iisph solver's pair pass: every particle's density (the paper's, rho_i = sum_j m_j
 // W_poly6(r_ij), self included; a boundary particle's boundary part is static, rho_static) and its
 // row of neighbours within h:
-//  - a material particle lists every neighbour: m_j gradW_cubic(r_i - r_j) and the viscosity weight
+//  - a material particle lists every neighbour: m_j gradW(r_i - r_j) (the spiky kernel's or the
+//    cubic spline's, model.iisph.gradient) and the viscosity weight
 //    (mu_i + mu_j)/2 m_j lapW_visc, material neighbours from the front of the row, boundary and tool
 //    ones from the back, so that each solver sweep is a short loop over precomputed numbers;
 //  - a boundary or tool particle lists its material neighbours alone (its density is a constraint of
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "bonds/hysteresis.hpp"
 #include "physics/kernels.hpp"
@@ -45,7 +47,8 @@ class RowBuilder {
   RowBuilder(const Model& model, State& s, std::uint32_t i)
       : k_(model.kernel), s_(s), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
         A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
-        grad6_(6 * k_.cubic / k_.h), grad6_over_h_(grad6_ * inv_h_), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+        grad6_(6 * k_.cubic / k_.h), grad6_over_h_(grad6_ * inv_h_),
+        spiky_(model.iisph.gradient == PressureGradient::spiky), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
   // Candidate j at d = r_i - r_j, r2 = |d|^2: kept when within h and not i itself.
   void offer(std::uint32_t j, const Vec3& d, real r2) {
@@ -80,35 +83,52 @@ class RowBuilder {
   }
 
  private:
-  // The gathered neighbours into the row: the density's sum over all of them; a material row lists
-  // every one (material from the front, boundary and tool from the back), a boundary or tool row
-  // its material ones.
-  void take() {
-    Within& w = within_;
-    const std::uint32_t n = w.n;
-    // Each neighbour's numbers first, in a loop without branches the compiler can vectorise: its
-    // density term, the cubic spline's radial derivative g (kernels::cubic_grad_radial; r < h
-    // here) and g / r: for q = r / h <= 1/2, g = grad6 q (3 q - 2) and g / r = grad6 (3 q - 2) / h,
-    // so the division is needed beyond h / 2 alone (computed for both, the other selected; r = 0
-    // selects the first).
+  // Fills w's density terms, gradient terms (m_j g / r, m_j g^2) and viscosity weights for its
+  // first n neighbours; radial(r) gives g and g / r.
+  template <class Radial>
+  void gradients(Within& w, std::uint32_t n, Radial radial) const {
     const real* mass = s_.mass.data();
     const real* mu = s_.mu.data();
     for (std::uint32_t e = 0; e < n; ++e) {
       const real r2 = w.r2[e], mj = mass[w.j[e]];
       const real wk = k_.h2 - r2;
       w.rho[e] = mj * wk * wk * wk;
-      const real r = std::sqrt(r2), q = r * inv_h_;
-      const real inner_over_r = grad6_over_h_ * (3 * q - 2);
-      const real c = 1 - q;
-      const real outer = -grad6_ * c * c;
-      const real outer_over_r = outer / r;  // r = 0 (coincident particles): not selected
-      const bool inner = q <= 0.5;
-      const real g = inner ? inner_over_r * r : outer;
-      const real g_over_r = inner ? inner_over_r : outer_over_r;
+      const real r = std::sqrt(r2);
+      const auto [g, g_over_r] = radial(r);
       w.f[e] = mj * g_over_r;
       w.g2[e] = mj * g * g;  // |m_j gradW|^2 / m_j
       w.visc[e] = 0.5 * (mu_i_ + mu[w.j[e]]) * mj * k_.visc_lap * (k_.h - r);
     }
+  }
+
+  // The gathered neighbours into the row.
+  void take() {
+    Within& w = within_;
+    const std::uint32_t n = w.n;
+    // Each neighbour's numbers first, in a loop without branches the compiler can vectorise
+    // (one loop per gradient): its density term, the kernel's radial derivative g (r < h here) and
+    // g / r, and the viscosity weight.
+    if (spiky_)
+      gradients(w, n, [this](real r) {
+        // The spiky kernel's (kernels::spiky_grad_radial) over kSpikyLatticeGradient; g / r = 0 for
+        // coincident particles (no direction).
+        const real c = k_.h - r;
+        const real g = -k_.spiky_lattice * c * c;
+        return std::pair<real, real>{g, r > 0 ? g / r : 0};
+      });
+    else
+      gradients(w, n, [this](real r) {
+        // The cubic spline's (kernels::cubic_grad_radial): for q = r / h <= 1/2,
+        // g = grad6 q (3 q - 2) and g / r = grad6 (3 q - 2) / h, so the division is needed beyond
+        // h / 2 alone (computed for both, the other selected; r = 0 selects the first).
+        const real q = r * inv_h_;
+        const real inner_over_r = grad6_over_h_ * (3 * q - 2);
+        const real c = 1 - q;
+        const real outer = -grad6_ * c * c;
+        const real outer_over_r = outer / r;  // r = 0 (coincident particles): not selected
+        const bool inner = q <= 0.5;
+        return std::pair<real, real>{inner ? inner_over_r * r : outer, inner ? inner_over_r : outer_over_r};
+      });
     // Then the row, in the order given: the density's sum over all of them; a material row lists
     // every one (material from the front, boundary and tool from the back), a boundary or tool row
     // its material ones.
@@ -148,6 +168,7 @@ class RowBuilder {
   std::uint32_t i_;
   Role role_;
   real mi_, mu_i_, A2_, inv_h_, grad6_, grad6_over_h_;
+  bool spiky_;
   SolverPair* pairs_;
   std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
   real rho_sum_ = 0, g2_ = 0;

@@ -31,9 +31,14 @@ int inside_tooth(const State& st, const PreparedTooth& tooth, real s) {
   return n;
 }
 
-TEST(Filling, PressingAFullCavityAtTheLargestRenderedForceLeaksNothing) {
+// A ball pressed into the full cavity by a force controller aiming at the device's largest force.
+// The paper's paste, compressible, pushes back with that force and holds it; the iisph solver's,
+// incompressible, flows up round the ball, which goes down to the floor's lining (measured: 0.28e-3
+// N at most, 4.2 N on the device): neither lets paste into the tooth.
+void press_full_cavity(Solver solver) {
   const ToothScene ts = default_tooth_scene();
   DentalSceneParams dp;
+  dp.solver = solver;
   dp.material_particles = 0;  // the cavity's lattice sites only: full, no heap
   Scene sc = dental_scene(ts, dp, "full_cavity", "built-in");
   sc.tool.keyframes.clear();
@@ -47,6 +52,7 @@ TEST(Filling, PressingAFullCavityAtTheLargestRenderedForceLeaksNothing) {
   real height = s;  // of the ball's tip above the occlusal reference
   const real lowest = -ts.tooth.params().depth, speed = 10e-3;
   const int steps = int(std::lround(2.0 / sc.model.dt));
+  const int every = int(std::lround(0.1 / sc.model.dt));
   real peak = 0, held = 0;
   int worst = 0;
   for (int k = 0; k < steps; ++k) {
@@ -58,15 +64,23 @@ TEST(Filling, PressingAFullCavityAtTheLargestRenderedForceLeaksNothing) {
     ASSERT_EQ(st.diagnostics.non_finite, 0u) << "step " << k;
     peak = std::max(peak, push);
     if (push >= 0.9 * target) held += sc.model.dt;
-    if (k % 2000 == 1999) worst = std::max(worst, inside_tooth(st, ts.tooth, s));  // every 0.1 s
+    if (k % every == every - 1) worst = std::max(worst, inside_tooth(st, ts.tooth, s));  // every 0.1 s
   }
-  std::printf("target %.3g N (12 N / force_scale %.4g), peak %.3g N, held within 10%% for %.2f s, tip at %.2f mm\n",
-              target, sc.force_scale, peak, held, height * 1e3);
-  EXPECT_GE(peak, target) << "the press reached the largest rendered force";
-  EXPECT_GT(held, 1.0) << "and held it for most of the 2 s";
+  std::printf("%s: target %.3g N (12 N / force_scale %.4g), peak %.3g N, held within 10%% for %.2f s, tip at %.2f mm\n",
+              solver_name(solver), target, sc.force_scale, peak, held, height * 1e3);
+  if (solver == Solver::paper) {
+    EXPECT_GE(peak, target) << "the press reached the largest rendered force";
+    EXPECT_GT(held, 1.0) << "and held it for most of the 2 s";
+  } else {
+    EXPECT_LT(height, lowest + 0.1 * s) << "the ball went down to the floor's lining";
+    EXPECT_GT(peak, 0.1 * target) << "pressing the paste on its way";
+  }
   EXPECT_EQ(worst, 0) << "material inside the tooth during the press";
   EXPECT_EQ(inside_tooth(st, ts.tooth, s), 0) << "material inside the tooth wall or below the floor";
 }
+
+TEST(Filling, PressingAFullCavityAtTheLargestRenderedForceLeaksNothing) { press_full_cavity(Solver::paper); }
+TEST(Filling, IisphPressingAFullCavityToTheFloorLeaksNothing) { press_full_cavity(Solver::iisph); }
 
 // The built-in procedure (each increment light-cured 20 s) on a scanned molar's cavity of the given
 // class, on the given solver (at its dental time step).
@@ -141,9 +155,10 @@ void fills_and_cures_the_crown(Solver solver) {
   EXPECT_LT(a["void_volume_mm3"].get<double>(), 0.15) << "a few particles' volume in all";
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
-  EXPECT_NEAR(s.light_on_s, 60, 1e-6);
+  // The light goes on and off at the steps nearest its events: within a step of each.
+  EXPECT_NEAR(s.light_on_s, 60, 3 * dental_time_step(solver) + 1e-9);
   // The paper's step (50 us) needs most of the light's time advanced in large updates at rest; the
-  // iisph solver's 2 ms step steps it cheaply (its paste settles more slowly below the rest speed).
+  // iisph solver's 1.5 ms step steps it cheaply (its paste settles more slowly below the rest speed).
   if (solver == Solver::paper) {
     EXPECT_GT(s.cure_at_rest_s, 40) << "most of the light's time advanced in large updates";
   }

@@ -121,6 +121,45 @@ TEST(IisphStep, SplitsAStepWhoseFastestPasteWouldCrossMoreThanCflH) {
   EXPECT_EQ(iisph::substeps(c.model, a), 1);
 }
 
+// Model::hold_outside_domain (dental scenes): a drop of paste that falls out of the domain is held at
+// rest where it was, inside it, counted, and out of the step's figures, so its speed neither splits
+// steps nor reads as an explosion; without it, or on the paper's step, it falls on.
+TEST(IisphStep, MaterialThatWouldLeaveTheDomainIsHeldAtRest) {
+  const real dt = 1.5e-3;
+  auto drop = [&](Solver solver, bool hold) {
+    ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{5, 5, 5} * s, solver == Solver::iisph ? dt : 5e-5,
+                                                {0, 0, -g});
+    p.solver = solver;
+    p.hold_outside_domain = hold;
+    Column c{make_model(p), {}};
+    const real m = lattice_particle_mass(rho0, s, c.model.kernel);
+    std::vector<ParticleInit> ps;
+    for (Vec3 x : testing::lattice({0, 0, 0}, s, 2, 2, 2)) ps.push_back(testing::particle(Role::material, x, m, Material{1.0, 10, rho0, 0}));
+    c.state.add_particles(c.model, ps);
+    const real t_end = 0.5;  // free fall: 1.2 m below the start, 4.9 m/s
+    while (c.state.time < t_end - 0.5 * c.model.dt) step(c.model, c.state, StepOptions{1, nullptr});
+    return c;
+  };
+  const Column held = drop(Solver::iisph, true);
+  EXPECT_EQ(held.state.diagnostics.held, 8u) << "the whole drop";
+  EXPECT_EQ(held.state.diagnostics.max_speed, 0) << "held particles are out of the step's figures";
+  EXPECT_EQ(held.state.diagnostics.substeps, 1);
+  for (std::uint32_t i = 0; i < held.state.size(); ++i) {
+    EXPECT_TRUE(inside(held.state.pos[i], held.model.domain_min, held.model.domain_max)) << i;
+    EXPECT_LT(held.state.pos[i].z, held.model.domain_min.z + 0.2 * s) << "held where it would have left";
+    EXPECT_EQ(held.state.vel[i], Vec3{}) << i;
+  }
+  // Without it the drop falls on, at g (no other force acts on it).
+  const Column falling = drop(Solver::iisph, false);
+  EXPECT_EQ(falling.state.diagnostics.held, 0u);
+  EXPECT_NEAR(falling.state.diagnostics.max_speed, g * 0.5, 0.02 * g * 0.5) << "m/s";
+  EXPECT_GT(falling.state.diagnostics.substeps, 1) << "a speed past cfl h / dt splits the step";
+  // The paper's step ignores it (its step is the reference, unchanged).
+  const Column paper = drop(Solver::paper, true);
+  EXPECT_EQ(paper.state.diagnostics.held, 0u);
+  EXPECT_NEAR(paper.state.diagnostics.max_speed, g * 0.5, 0.02 * g * 0.5) << "m/s";
+}
+
 TEST(IisphHydrostatic, PressureIsRhoGDepthAndTheDensityHolds) {
   Column c = column(1e-3);
   State& st = c.state;

@@ -16,7 +16,9 @@ namespace dentsph {
 namespace {
 
 TEST(Bench, DefaultDentalSceneHasThePapersCounts) {
-  const Scene sc = default_dental_scene();
+  DentalSceneParams dp;
+  dp.solver = Solver::paper;  // the paper's scene, on its step (bench's default)
+  const Scene sc = default_dental_scene(dp);
   const State st = make_state(sc);
   EXPECT_EQ(st.count(Role::material), 1600u);
   EXPECT_EQ(st.count(Role::tool), 42u);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 
+#include "dentsph/scene.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {
@@ -66,6 +67,33 @@ TEST(Kernels, SpikyGradientMatchesFiniteDifferenceIn3D) {
       EXPECT_LT(dot(grad, dir), 0) << "the spiky gradient points inwards";
     }
   }
+}
+
+// The discrete gradient sum_j V_j (f_j - f_i) gradW(r_i - r_j) of the linear field f = x at a
+// particle inside a simple cubic lattice of spacing h / 2 whose particles have the poly6 lattice
+// mass (V = m / rho0): the share of the true gradient (1) each iisph pressure gradient gives.
+real lattice_gradient(const KernelCoeffs& k, const std::function<real(real)>& radial) {
+  const real spacing = k.h / 2;
+  const real V = lattice_particle_mass(1000, spacing, k) / 1000;
+  real sum = 0;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j)
+      for (int l = -2; l <= 2; ++l) {
+        const real x = i * spacing, r = spacing * std::sqrt(real(i * i + j * j + l * l));
+        if (r == 0 || r >= k.h) continue;
+        sum += V * x * radial(r) * (-x / r);  // f_j - f_i = x_j; d/dx of W at r_i - r_j = -x_j
+      }
+  return sum;
+}
+
+TEST(Kernels, TheIisphGradientsAreExactOnTheRestLattice) {
+  const KernelCoeffs k = coeffs();
+  const real spiky = lattice_gradient(k, [&](real r) { return kernels::spiky_grad_radial(r, k); });
+  EXPECT_NEAR(spiky, kSpikyLatticeGradient, 1e-12) << "the constant model.hpp divides by";
+  const real scaled = lattice_gradient(k, [&](real r) { return -k.spiky_lattice * (k.h - r) * (k.h - r); });
+  EXPECT_NEAR(scaled, 1.0, 1e-12) << "the iisph solver's spiky gradient";
+  const real cubic = lattice_gradient(k, [&](real r) { return kernels::cubic_grad_radial(r, k); });
+  EXPECT_NEAR(cubic, 1.0101671, 1e-6) << "the cubic spline's, 1% over";
 }
 
 TEST(Kernels, ViscosityLaplacianMatchesFiniteDifference) {

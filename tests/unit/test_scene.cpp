@@ -186,8 +186,9 @@ TEST(SceneParse, ReadsTheIisphSolversSettings) {
   json j = base_scene();
   EXPECT_EQ(parse(j).model.iisph.stiffness, 0.5) << "the paper's paste's stiffness by default";
   j["simulation"]["iisph"] = {{"stiffness", 1}, {"max_iterations", 20}, {"density_error", 0.001},
-                              {"omega", 0.6},   {"viscosity_iterations", 12}, {"cfl", 0.3}};
+                              {"omega", 0.6},   {"viscosity_iterations", 12}, {"cfl", 0.3}, {"gradient", "cubic"}};
   const Scene sc = parse(j);
+  EXPECT_EQ(sc.model.iisph.gradient, PressureGradient::cubic);
   EXPECT_EQ(sc.model.iisph.stiffness, 1);
   EXPECT_EQ(sc.model.iisph.max_iterations, 20);
   EXPECT_EQ(sc.model.iisph.density_error, 0.001);
@@ -195,6 +196,8 @@ TEST(SceneParse, ReadsTheIisphSolversSettings) {
   EXPECT_EQ(sc.model.iisph.viscosity_iterations, 12);
   EXPECT_EQ(sc.model.iisph.cfl, 0.3);
   EXPECT_EQ(sc.model.iisph.min_iterations, IisphParams{}.min_iterations) << "not given: the default";
+  j["simulation"]["iisph"] = {{"gradient", "spiky"}};
+  EXPECT_EQ(parse(j).model.iisph.gradient, PressureGradient::spiky);
 }
 
 TEST(SceneParse, ReadsGivenSettings) {
@@ -554,6 +557,8 @@ const BrokenCase broken_cases[] = {
     {"iisph omega 0", [](json& j) { j["simulation"]["iisph"] = {{"omega", 0}}; }, "simulation.iisph.omega", "> 0"},
     {"iisph too many iterations", [](json& j) { j["simulation"]["iisph"] = {{"max_iterations", 5000}}; },
      "simulation.iisph.max_iterations", "must be in [2, 1000], got 5000"},
+    {"iisph unknown gradient", [](json& j) { j["simulation"]["iisph"] = {{"gradient", "wendland"}}; },
+     "simulation.iisph.gradient", "give \"spiky\" (the paper's kernel, lattice-scaled) or \"cubic\""},
     {"iisph misspelt", [](json& j) { j["simulation"]["iisph"] = {{"stifness", 1}}; }, "simulation.iisph",
      "stiffness"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},

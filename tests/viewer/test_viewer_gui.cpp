@@ -153,7 +153,9 @@ TEST(ViewerGui, TheCuringLightCuresThePasteColouredByConversion) {
   std::ofstream(dark) << R"({"actions": [{"step": 200, "action": "end"}]})";
   const fs::path png_lit = temp("light.png"), png_dark = temp("dark.png");
   auto args = [](const fs::path& script, const fs::path& png) {
-    return fmt::format("--colour-by conversion --frames 5 --script '{}' --screenshot '{}'", script.string(), png.string());
+    // The paper's step: the script counts its steps (16,000 of 50 us: 0.8 s of light).
+    return fmt::format("--solver paper --colour-by conversion --frames 5 --script '{}' --screenshot '{}'", script.string(),
+                       png.string());
   };
   const Result a = run_viewer(args(lit, png_lit));
   const Result b = run_viewer(args(dark, png_dark));
@@ -240,7 +242,8 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
   REQUIRE_XVFB();
   const fs::path png = temp("emulation.png"), sum = temp("emulation.json");
   fs::remove(png);
-  Result r = run_viewer(fmt::format("--backend cuda-emulation --frames 20 --screenshot '{}' --summary '{}'",
+  // The GPU backends run the paper's step only (the dental scenes' default is the iisph solver).
+  Result r = run_viewer(fmt::format("--solver paper --backend cuda-emulation --frames 20 --screenshot '{}' --summary '{}'",
                                     png.string(), sum.string()));
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   const Image img(png);
@@ -257,7 +260,7 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
       << "a header and a row for every step";
   EXPECT_NE(slurp(report / "report.html").find("id=\"force-plot\""), std::string::npos);
 
-  r = run_viewer(fmt::format("--backend cuda-emulation --device scripted --frames 30 --summary '{}'", sum.string()));
+  r = run_viewer(fmt::format("--solver paper --backend cuda-emulation --device scripted --frames 30 --summary '{}'", sum.string()));
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   j = nlohmann::json::parse(slurp(sum));
   EXPECT_EQ(j["backend"], "cuda-emulation");
@@ -269,7 +272,7 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
 // --backend cuda where it cannot run: exit status 2 and the reason, no window.
 TEST(ViewerGui, TheCudaBackendWithoutAGpuIsAClearError) {
   REQUIRE_XVFB();
-  const Result r = run_viewer("--backend cuda --frames 1");
+  const Result r = run_viewer("--solver paper --backend cuda --frames 1");
   if (r.status == 0) GTEST_SKIP() << "the CUDA backend runs here";
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("error: --backend cuda: "), std::string::npos) << r.err;
