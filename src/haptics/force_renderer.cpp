@@ -7,17 +7,15 @@
 namespace dentsph::haptics {
 
 void ForceRenderer::add(const SimOutput& o, std::int64_t now_ns) {
-  // Each played back as of when the simulation made it (force_interpolator.hpp).
-  const std::int64_t made = o.published_ns > 0 ? o.published_ns : now_ns;
   if (mode_ == ForceMode::direct) {
-    force_.add(o.force_N, now_ns, made);
+    force_.add(o.force_N, now_ns);
     return;
   }
   const double stamp_s = double(o.command_stamp_ns - (started_ ? base_ns_ : now_ns)) * 1e-9;
   if (!started_) {  // the proxy's first position: no ramp from the origin
     base_ns_ = now_ns;
-    proxy_x_.add(o.proxy_position, now_ns, made);
-    stamp_.add({stamp_s, 0, 0}, now_ns, made);
+    proxy_x_.add(o.proxy_position, now_ns);
+    stamp_.add({stamp_s, 0, 0}, now_ns);
     last_x_ = o.proxy_position;
     last_stamp_s_ = stamp_s;
     started_ = true;
@@ -31,9 +29,9 @@ void ForceRenderer::add(const SimOutput& o, std::int64_t now_ns) {
     last_x_ = o.proxy_position;
     last_stamp_s_ = stamp_s;
   }
-  proxy_x_.add(o.proxy_position, now_ns, made);
-  proxy_w_.add(motion_, now_ns, made);
-  stamp_.add({stamp_s, 0, 0}, now_ns, made);
+  proxy_x_.add(o.proxy_position, now_ns);
+  proxy_w_.add(motion_, now_ns);
+  stamp_.add({stamp_s, 0, 0}, now_ns);
 }
 
 Vec3 ForceRenderer::proxy_now(std::int64_t now_ns) const {

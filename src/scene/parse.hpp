@@ -37,8 +37,8 @@ void read_session_names(const Reader& root, Scene& scene);
 // A scene file with a "tooth", "cavity" or "procedure" field is a dental scene: a procedure on a
 // tooth with a cavity, which builds its own particles.
 bool is_dental_scene(const Reader& root);
-// "solver" of a "simulation" object: "paper" or "iisph", `fallback` where absent (scene files: paper;
-// dental scenes: iisph); anything else names the field and the choices.
+// "solver" of a "simulation" object: "paper" or "iisph", `fallback` where absent (scene files and
+// dental scenes: paper); anything else names the field and the choices.
 Solver read_solver(const Reader& simulation, Solver fallback);
 // "iisph" of `simulation`, the iisph solver's settings over `defaults` (stiffness, max_iterations,
 // density_error, omega, viscosity_iterations, cfl, gradient), checked (check_iisph_params) naming the field.

@@ -236,47 +236,6 @@ TEST(ForceInterpolator, NoJumpWhenASampleComesEarlyOrLate) {
   EXPECT_LE(worst, 1e-12);
 }
 
-// Samples made every 1.5 ms (the dental iisph step) but seen on 1 ms ticks arrive 1 and 2 ticks
-// apart in turn; played back as of when they were made, a force rising steadily rises steadily at
-// the haptic rate: no ripple at the 333 Hz beat of the two rates.
-TEST(ForceInterpolator, SamplesSeenOnTicksPlayBackAtTheirOwnPace) {
-  haptics::ForceInterpolator f;
-  const std::int64_t us = 1'000;
-  const double slope = 1.0;  // N per ms
-  std::int64_t next_made = 0;
-  std::vector<double> out;
-  for (std::int64_t tick = 0; tick <= 400 * 1000 * us; tick += 1000 * us) {
-    // Every sample made since the last tick: the loop sees the newest only.
-    std::int64_t made = -1;
-    while (next_made <= tick) made = next_made, next_made += 1500 * us;
-    if (made >= 0) f.add({0, 0, slope * double(made) * 1e-6}, tick, made);
-    out.push_back(f.at(tick).z);
-  }
-  EXPECT_NEAR(f.interval_s(), 1.5e-3, 1e-9);
-  double worst = 0;
-  for (std::size_t k = 100; k + 1 < out.size(); ++k) worst = std::max(worst, std::abs(out[k + 1] - 2 * out[k] + out[k - 1]));
-  EXPECT_LT(worst, 0.01 * slope) << "N per tick^2: a straight line (the playback's slewing within 1%)";
-  EXPECT_NEAR(out[300] - out[299], slope, 0.01 * slope) << "at the samples' own pace";
-}
-
-// The simulation stops for 30 ms: the output holds the last sample and then approaches the next one
-// from there, never jumping, and the playback returns to its delay.
-TEST(ForceInterpolator, HoldsThroughAStallAndResumesWithoutAJump) {
-  haptics::ForceInterpolator f;
-  const std::int64_t ms = 1'000'000;
-  double worst = 0, prev = 0;
-  for (std::int64_t t = 0; t <= 300 * ms; t += ms) {
-    const bool stalled = t > 100 * ms && t < 130 * ms;
-    if (t % (2 * ms) == 0 && !stalled) f.add({0, 0, double(t) / double(ms) * 0.01}, t, t);
-    const double v = f.at(t).z;
-    if (t > 0) worst = std::max(worst, std::abs(v - prev));
-    prev = v;
-  }
-  EXPECT_LE(worst, 0.2) << "N a tick: the 0.3 N the stall held back is caught up over ticks, not at once";
-  EXPECT_NEAR(f.delay_s(), 0.002, 0.0005);
-  EXPECT_NEAR(f.at(300 * ms).z, 3.0 - 0.01 * 1e3 * f.delay_s(), 0.02) << "back at its delay behind the samples";
-}
-
 TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
   for (const double k : {100.0, 1e4, 1e7}) {
     CouplingParams p;

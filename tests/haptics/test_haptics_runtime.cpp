@@ -136,8 +136,7 @@ RealtimeResult expect_passive_press(const Scene& scene) {
 
 TEST(HapticRuntime, VirtualCouplingIsPassiveWhilePressing) { expect_passive_press(press_scene()); }
 
-// The same press on the iisph solver at the dental scenes' iisph step (dental_time_step, 1.5 ms: 1 and 2
-// haptic ticks a step in turn, played back at its pace, force_interpolator.hpp): the proxy
+// The same press on the iisph solver at the dental scenes' iisph step (dental_time_step): the proxy
 // takes the tool force implicitly through the contact's estimated stiffness
 // (virtual_coupling.cpp), which must take energy out, never put it in. The box has two layers of
 // wall (with the scene's one, spaced h / 2, the iisph step let the paste run out through the floor

@@ -158,7 +158,7 @@ void fills_and_cures_the_crown(Solver solver) {
   // The light goes on and off at the steps nearest its events: within a step of each.
   EXPECT_NEAR(s.light_on_s, 60, 3 * dental_time_step(solver) + 1e-9);
   // The paper's step (50 us) needs most of the light's time advanced in large updates at rest; the
-  // iisph solver's 1.5 ms step steps it cheaply (its paste settles more slowly below the rest speed).
+  // iisph solver's 2 ms step steps it cheaply (its paste settles more slowly below the rest speed).
   if (solver == Solver::paper) {
     EXPECT_GT(s.cure_at_rest_s, 40) << "most of the light's time advanced in large updates";
   }

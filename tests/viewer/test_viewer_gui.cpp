@@ -242,7 +242,7 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
   REQUIRE_XVFB();
   const fs::path png = temp("emulation.png"), sum = temp("emulation.json");
   fs::remove(png);
-  // The GPU backends run the paper's step only (the dental scenes' default is the iisph solver).
+  // The GPU backends run the paper's step only.
   Result r = run_viewer(fmt::format("--solver paper --backend cuda-emulation --frames 20 --screenshot '{}' --summary '{}'",
                                     png.string(), sum.string()));
   ASSERT_EQ(r.status, 0) << r.out << r.err;
