@@ -1,6 +1,7 @@
 #include "haptics/sim_loop.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/protocol.hpp"
@@ -8,6 +9,16 @@
 #include "haptics/virtual_coupling.hpp"
 
 namespace dentsph::haptics {
+
+int publish_every(double dt_s, double haptic_rate_hz) {
+  const double ticks = dt_s * haptic_rate_hz;  // haptic periods a step
+  if (!(ticks > 1) || !std::isfinite(ticks)) return 1;
+  for (int k = 1; k <= 8; ++k) {
+    const double n = k * ticks;
+    if (std::abs(n - std::round(n)) < 1e-6 * n) return k;
+  }
+  return 1;
+}
 
 SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
     : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
@@ -17,6 +28,7 @@ SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, 
 void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop) {
   t0_ns_ = t0_ns;
   const real dt = sim_.model().dt;
+  const std::uint64_t every = std::uint64_t(publish_every(dt, opt_.haptic_rate_hz));
   const std::int64_t min_step_ns = opt_.sim_rate_limit_hz > 0 ? std::int64_t(1e9 / opt_.sim_rate_limit_hz) : 0;
   const std::int64_t snapshot_ns = opt_.snapshot_rate_hz > 0 ? std::int64_t(1e9 / opt_.snapshot_rate_hz) : 0;
   std::int64_t next_snapshot = t0_ns, last_step_start = t0_ns - min_step_ns;
@@ -93,17 +105,19 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
     steps.push_back(sample);
     if (!going) break;  // diverged: nothing more is published, the watchdog ramps the force to zero
 
-    // ---- publish ----------------------------------------------------------------------------------
-    SimOutput& out = shared_.output.back();
-    out.force_N = state.tool_wrench.force * force_scale_;
-    out.proxy_position = proxy_started ? proxy.position() : cmd.pose.position;
-    out.proxy_velocity = proxy_started ? proxy.velocity() : Vec3{};
-    out.step = state.steps;
-    out.sim_time = state.time;
-    out.command_stamp_ns = cmd.valid ? cmd.stamp_ns : now;
-    out.published_ns = now;
-    out.valid = true;
-    shared_.output.publish();
+    // ---- publish (on whole haptic ticks: publish_every) ---------------------------------------------
+    if (state.steps % every == 0) {
+      SimOutput& out = shared_.output.back();
+      out.force_N = state.tool_wrench.force * force_scale_;
+      out.proxy_position = proxy_started ? proxy.position() : cmd.pose.position;
+      out.proxy_velocity = proxy_started ? proxy.velocity() : Vec3{};
+      out.step = state.steps;
+      out.sim_time = state.time;
+      out.command_stamp_ns = cmd.valid ? cmd.stamp_ns : now;
+      out.published_ns = now;
+      out.valid = true;
+      shared_.output.publish();
+    }
     if (snapshot_ns > 0 && now >= next_snapshot) {
       publish_snapshot(now);
       next_snapshot = std::max(next_snapshot + snapshot_ns, now);

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "dentsph/haptics.hpp"
+#include "haptics/sim_loop.hpp"
 #include "dentsph/haptics/protocol.hpp"
 #include "haptics/exchange.hpp"
 #include "haptics/force_interpolator.hpp"
@@ -234,6 +235,21 @@ TEST(ForceInterpolator, NoJumpWhenASampleComesEarlyOrLate) {
     if (k > 0) worst = std::max(worst, double(norm(f.at(t) - before)));
   }
   EXPECT_LE(worst, 1e-12);
+}
+
+// A step that is not a whole number of haptic ticks publishes on whole ticks: every second 1.5 ms
+// step at 1 kHz (3 ticks); whole-tick steps, steps under a tick and steps no small multiple of
+// which is whole publish every step.
+TEST(SimLoop, PublishesOnWholeHapticTicks) {
+  EXPECT_EQ(haptics::publish_every(1.5e-3, 1000), 2);
+  EXPECT_EQ(haptics::publish_every(2.5e-3, 1000), 2);
+  EXPECT_EQ(haptics::publish_every(1.25e-3, 1000), 4);
+  EXPECT_EQ(haptics::publish_every(1.5e-3, 2000), 1) << "3 ticks of 0.5 ms";
+  EXPECT_EQ(haptics::publish_every(2e-3, 1000), 1);
+  EXPECT_EQ(haptics::publish_every(1e-3, 1000), 1);
+  EXPECT_EQ(haptics::publish_every(5e-5, 1000), 1) << "the paper's step: many a tick";
+  EXPECT_EQ(haptics::publish_every(1.19e-3, 1000), 1) << "no multiple up to 8 is whole";
+  EXPECT_EQ(haptics::publish_every(std::nan(""), 1000), 1);
 }
 
 TEST(VirtualCoupling, StableAtAnyStiffnessAndBalancingTheToolForce) {
