@@ -154,6 +154,13 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
   std::ofstream(dir / "tab_end.ply") << header << "end_header\v1 0 0\n";
   const std::string tab_end = load_refusal(dir / "tab_end.ply");
   EXPECT_NE(tab_end.find("tab_end.ply: line 9 of its PLY header"), std::string::npos) << tab_end;
+  // An element named by digits run into a word: assimp read the digits as its count and allocated
+  // 100 GB for it (found by fuzz_mesh).
+  std::ofstream(dir / "digit_name.ply") << "ply\nformat ascii 1.0\nelement 99999999999999999999vertex 4\n"
+                                         << header.substr(header.find("property")) << "end_header\n0 0 0\n";
+  const std::string digit_name = load_refusal(dir / "digit_name.ply");
+  EXPECT_NE(digit_name.find("digit_name.ply: line 3 of its PLY header names an element that is not a plain word"),
+            std::string::npos) << digit_name;
   std::ofstream(dir / "odd_name.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float!z\nend_header\n";
   const std::string odd_name = load_refusal(dir / "odd_name.ply");
   EXPECT_NE(odd_name.find("odd_name.ply: line 4 of its PLY header is not \"property TYPE NAME\""), std::string::npos)
