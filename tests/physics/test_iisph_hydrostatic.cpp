@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "dentsph/scene.hpp"
+#include "dentsph/simulation.hpp"
 #include "dentsph/step.hpp"
 #include "solver/iisph.hpp"
 #include "support/builders.hpp"
@@ -148,6 +150,22 @@ TEST(IisphStep, MaterialThatWouldLeaveTheDomainIsHeldAtRest) {
     EXPECT_TRUE(inside(held.state.pos[i], held.model.domain_min, held.model.domain_max)) << i;
     EXPECT_LT(held.state.pos[i].z, held.model.domain_min.z + 0.2 * s) << "held where it would have left";
     EXPECT_EQ(held.state.vel[i], Vec3{}) << i;
+  }
+  // A run's summary counts what is held at its end.
+  {
+    ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{5, 5, 5} * s, dt, {0, 0, -g});
+    p.solver = Solver::iisph;
+    p.hold_outside_domain = true;
+    Scene scene;
+    scene.params = p;
+    scene.model = make_model(p);
+    const real m = lattice_particle_mass(rho0, s, scene.model.kernel);
+    scene.model.materials.add("paste", Material{1.0, 10, rho0, 0});
+    for (Vec3 x : testing::lattice({0, 0, 0}, s, 2, 2, 2))
+      scene.particles.push_back(testing::particle(Role::material, x, m, Material{1.0, 10, rho0, 0}));
+    Simulation sim(scene, SimulationOptions{});
+    for (int k = 0; k < 340; ++k) ASSERT_TRUE(sim.step(Pose{})) << "step " << k << ": " << sim.summary().message;
+    EXPECT_EQ(sim.summary().held_outside_domain, 8u);
   }
   // Without it the drop falls on, at g (no other force acts on it).
   const Column falling = drop(Solver::iisph, false);

@@ -306,6 +306,7 @@ TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
   EXPECT_EQ(read_json(dental / "summary.json").at("stability").at("dt_s"), 2e-3);
   EXPECT_EQ(read_json(dental / "summary.json").at("solver").at("name"), "iisph");
   EXPECT_TRUE(read_json(dental / "summary.json").at("solver").contains("wall_projections"));
+  EXPECT_EQ(read_json(dental / "summary.json").at("solver").at("held_outside_domain"), 0) << "nothing fell off";
   const Result p = dentsph_cli("run --solver paper --steps 2 --threads 1 -q --out " + dental.string());
   ASSERT_EQ(p.code, 0) << p.output;
   EXPECT_EQ(read_json(dental / "summary.json").at("stability").at("dt_s"), 5e-5);

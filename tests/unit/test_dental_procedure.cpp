@@ -19,6 +19,30 @@ const ToothScene& crown() {
   return ts;
 }
 
+// An instrument faster than the iisph dental step allows (4 mm in 20 ms: 0.2 m/s, a velocity CFL
+// limit of 1.2 ms under the 2 ms step) gets that limit, rounded down to 10 us, instead of a refusal;
+// the paper's step keeps its 50 us, and choosing the iisph solver again fits it again.
+TEST(DentalProcedure, AFastInstrumentFitsTheIisphStepUnderItsSpeed) {
+  const std::string fast = R"({"name": "fast", "keyframes": [{"t": 0, "position": [0, 0, 3]},
+                               {"t": 0.02, "position": [0, 0, -1]}, {"t": 0.5, "position": [0, 0, -1]}]})";
+  DentalSceneParams dp;
+  dp.solver = Solver::iisph;
+  Scene sc = dental_procedure(crown(), fast, "fast", dp);
+  const real limit = sc.model.iisph.cfl * sc.model.kernel.h / scene_tool_speed(sc);
+  ASSERT_LT(limit, dental_time_step(Solver::iisph));
+  EXPECT_LE(sc.model.dt, limit);
+  EXPECT_GT(sc.model.dt, limit - 1e-5);
+  EXPECT_NEAR(sc.model.dt / 1e-5, std::round(sc.model.dt / 1e-5), 1e-6) << "a whole number of 10 us";
+  EXPECT_EQ(sc.params.dt, sc.model.dt);
+  select_solver(sc, Solver::paper);
+  EXPECT_EQ(sc.model.dt, dental_time_step(Solver::paper));
+  select_solver(sc, Solver::iisph);
+  EXPECT_LE(sc.model.dt, limit);
+  EXPECT_GT(sc.model.dt, limit - 1e-5);
+  // The built-in procedure's instruments are slow enough: its step is the dental one.
+  EXPECT_EQ(default_dental_procedure(dp).model.dt, dental_time_step(Solver::iisph));
+}
+
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::ostringstream s;
