@@ -96,10 +96,12 @@ void check_run_length(const Scene& sc, const RunOptions& opt) {
 }
 
 // The scene of a scene file, or without one the filling procedure the dental options describe;
-// --solver (when given) chooses its step over the scene's simulation.solver.
-Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const std::string& solver) {
+// --solver (when given) chooses its step over the scene's simulation.solver, and without it a GPU
+// backend takes the paper's step (choose_solver), saying so (also under --quiet: not progress).
+Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const std::string& solver, Backend backend) {
   Scene sc = !file.empty() ? load_scene(file) : dental.procedure_scene();
-  if (!solver.empty()) select_solver(sc, *solver_from_name(solver));
+  const std::string notice = choose_solver(sc, solver, backend != Backend::cpu);
+  if (!notice.empty()) fmt::print("{}\n", notice);
   return sc;
 }
 
@@ -107,7 +109,7 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
             bool quiet, cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
-  Scene sc = scene_of(file, dental, solver);
+  Scene sc = scene_of(file, dental, solver, opt.backend);
   session.apply(sc);
   // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
   if (rt.enabled())
@@ -251,8 +253,9 @@ int main(int argc, char** argv) {
     bench_opt.backend = parse_backend(bench_backend);
     if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
     if (*replay)
-      return cli::replay_recording(scene_of(replay_scene, replay_dental, replay_solver), replay_dir, replay_threads,
-                                   parse_backend(replay_backend), replay_out);
+      return cli::replay_recording(scene_of(replay_scene, replay_dental, replay_solver, parse_backend(replay_backend)),
+                                   replay_dir, replay_threads, parse_backend(replay_backend), replay_out,
+                                   !replay_solver.empty());
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     return cli::failed(e);

@@ -46,8 +46,9 @@ class RealtimeCommand {
 // `dentsph replay RECORDING [SCENE] [--backend B] [--out DIR]`: steps the scene on the recorded
 // tool poses and compares the tool forces with the recorded ones; with `out_dir`, also writes the
 // replay as a run folder with its report. Returns 0 when they agree (bit for bit on the
-// recording's backend, within kBackendParityTolerance on another), 4 otherwise.
-int replay_recording(const Scene& scene, const std::string& recording_dir, int threads, Backend backend,
-                     const std::filesystem::path& out_dir = {});
+// recording's backend, within kBackendParityTolerance on another), 4 otherwise. Unless
+// `solver_named` (--solver), the scene takes the solver the recording was made on (session.json).
+int replay_recording(Scene scene, const std::string& recording_dir, int threads, Backend backend,
+                     const std::filesystem::path& out_dir = {}, bool solver_named = false);
 
 }  // namespace dentsph::cli

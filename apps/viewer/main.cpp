@@ -125,8 +125,9 @@ int main(int argc, char** argv) {
     (void)viewer::colour_by_from_name(vo.colour_by);
     if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
     Scene sc = !scene_file.empty() ? load_scene(scene_file) : dental.filled_scene();
-    if (!solver.empty()) select_solver(sc, *solver_from_name(solver));
     so.backend = parse_backend(backend);
+    if (const std::string notice = choose_solver(sc, solver, so.backend != Backend::cpu); !notice.empty())
+      fmt::print("{}\n", notice);
     const bool with_device = app.count("--device") > 0;
     RealtimeOptions ro;
     std::unique_ptr<Device> dev;

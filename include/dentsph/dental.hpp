@@ -14,8 +14,9 @@
 namespace dentsph {
 
 // The dental scenes' time step for each solver, s: the paper's explicit step 5e-5 (under its
-// acoustic limit, 62 us for the paste and walls below), the iisph solver 2e-3 (one step per two
-// ticks of a 1 kHz haptic loop, with the prepared tooth's wall field; docs/model.md).
+// acoustic limit, 62 us for the paste and walls below), the iisph solver 1.5e-3 (with the prepared
+// tooth's wall field; it fills the cavities as the paper's step does, where 2 ms left FDI 36's two
+// cavities 0.002 behind; a 1 kHz haptic loop gets every second step, 3 ticks apart; docs/model.md).
 real dental_time_step(Solver solver);
 
 // The iisph solver's settings for the dental scenes: the defaults, relaxed by 0.7 (at a 2 ms dental
@@ -24,7 +25,7 @@ real dental_time_step(Solver solver);
 IisphParams dental_iisph_params();
 
 struct DentalSceneParams {
-  Solver solver = Solver::paper;         // which step runs (Model::solver)
+  Solver solver = Solver::iisph;         // which step runs (Model::solver); paper: the reference
   IisphParams iisph = dental_iisph_params();  // the iisph solver's settings
   real dt = 0;                           // s; 0: dental_time_step(solver)
   int material_particles = 1600;         // the cavity's share first, the rest heaped above it

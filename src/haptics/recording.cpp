@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/haptics/recording.hpp"
+#include "dentsph/model.hpp"
 
 namespace dentsph {
 
@@ -128,12 +129,13 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
   {
     // Written by the JSON library that reads it back (strings escaped, numbers to the last bit).
     File f(dir / "session.json");
-    const nlohmann::json session = {{"mode", r.mode},
+    nlohmann::json session = {{"mode", r.mode},
                                     {"haptic_rate_hz", r.haptic_rate_hz},
                                     {"force_scale", r.force_scale},
                                     {"haptic_dropped", r.haptic_dropped},
                                     {"dispense_volume", r.dispense_volume},
                                     {"backend", r.backend}};
+    if (!r.solver.empty()) session["solver"] = r.solver;  // none: not known (replay takes the scene's)
     fmt::print(f.f, "{}\n", session.dump());
   }
 }
@@ -168,8 +170,8 @@ Recording load_recording(const std::filesystem::path& dir) {
   }
   for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, {{true, u53}, {true, u32}}))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
-  // The session's settings, as save_recording writes them (dispense_volume and backend are absent
-  // in older recordings: the scene's default, the CPU).
+  // The session's settings, as save_recording writes them (dispense_volume, backend and solver are
+  // absent in older recordings: the scene's default, the CPU, the scene's solver).
   if (std::ifstream in(dir / "session.json"); in) {
     const std::string file = (dir / "session.json").string();
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
@@ -202,6 +204,13 @@ Recording load_recording(const std::filesystem::path& dir) {
                                              "recording is damaged: record the session again",
                                              file, s["backend"].dump().substr(0, 40)));
       r.backend = s["backend"].get<std::string>();
+    }
+    if (s.contains("solver")) {
+      if (!s["solver"].is_string() || !solver_from_name(s["solver"].get<std::string>()))
+        throw std::runtime_error(fmt::format("{}: solver: expected \"paper\" or \"iisph\", got {}; the recording is "
+                                             "damaged: record the session again",
+                                             file, s["solver"].dump().substr(0, 40)));
+      r.solver = s["solver"].get<std::string>();
     }
   }
   return r;

@@ -130,6 +130,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.force_scale = force_scale;
   res.recording.dispense_volume = increment_volume_or_default(scene, opt.dispense_volume);
   res.recording.backend = backend_name(opt.backend);
+  res.recording.solver = solver_name(scene.model.solver);
   res.recording.haptic_dropped = haptic.recording_dropped();
   res.recording.haptic = haptic.take_recording();
   res.recording.steps = std::move(sim.steps);

@@ -11,7 +11,7 @@
 
 namespace dentsph {
 
-real dental_time_step(Solver solver) { return solver == Solver::iisph ? 2e-3 : 5e-5; }
+real dental_time_step(Solver solver) { return solver == Solver::iisph ? 1.5e-3 : 5e-5; }
 
 IisphParams dental_iisph_params() {
   IisphParams p;

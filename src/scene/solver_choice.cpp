@@ -6,6 +6,11 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
@@ -26,6 +31,21 @@ void select_solver(Scene& scene, Solver solver) {
   attach_walls(scene);
   shape_instruments(scene);
   fit_dental_time_step(scene);
+}
+
+std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backend) {
+  if (!named.empty()) {
+    const std::optional<Solver> s = solver_from_name(named);
+    if (!s) throw std::invalid_argument(fmt::format("--solver {}: unknown solver; choose {}", named, solver_choices));
+    select_solver(scene, *s);
+    return {};
+  }
+  if (!gpu_backend || scene.model.solver == Solver::paper) return {};
+  const Solver was = scene.model.solver;
+  select_solver(scene, Solver::paper);
+  return fmt::format("the GPU backend runs the paper's step (the scene's {} solver has none there): --solver paper, "
+                     "dt = {:.3g} s",
+                     solver_name(was), double(scene.model.dt));
 }
 
 void fit_dental_time_step(Scene& scene) {

@@ -490,6 +490,7 @@ TEST(Recording, SavesAndLoadsExactly) {
   r.force_scale = 1.5e4;
   r.haptic_dropped = 7;
   r.dispense_volume = 1e-9 / 3;
+  r.solver = "iisph";
   const auto dir = std::filesystem::temp_directory_path() / ("dentsph_recording_test_" + std::to_string(::getpid()));
   save_recording(dir, r);
   const Recording q = load_recording(dir);
@@ -498,6 +499,7 @@ TEST(Recording, SavesAndLoadsExactly) {
   EXPECT_EQ(q.force_scale, r.force_scale);
   EXPECT_EQ(q.haptic_dropped, r.haptic_dropped);
   EXPECT_EQ(q.dispense_volume, r.dispense_volume);
+  EXPECT_EQ(q.solver, "iisph") << "the step that ran the session";
   ASSERT_EQ(q.haptic.size(), 5u);
   ASSERT_EQ(q.steps.size(), 5u);
   ASSERT_EQ(q.events.size(), 3u);

@@ -20,7 +20,7 @@ const ToothScene& crown() {
 }
 
 // An instrument faster than the iisph dental step allows (4 mm in 20 ms: 0.2 m/s, a velocity CFL
-// limit of 1.2 ms under the 2 ms step) gets that limit, rounded down to 10 us, instead of a refusal;
+// limit of 1.2 ms under the 1.5 ms step) gets that limit, rounded down to 10 us, instead of a refusal;
 // the paper's step keeps its 50 us, and choosing the iisph solver again fits it again.
 TEST(DentalProcedure, AFastInstrumentFitsTheIisphStepUnderItsSpeed) {
   const std::string fast = R"({"name": "fast", "keyframes": [{"t": 0, "position": [0, 0, 3]},

@@ -71,8 +71,8 @@ TEST(DentalSceneFile, TheSolverChoosesTheStepAndItsTimeStep) {
   Scene iisph = parse(R"({"name": "i", "tooth": {}, "simulation": {"solver": "iisph"}})");
   EXPECT_EQ(iisph.model.solver, Solver::iisph);
   EXPECT_EQ(iisph.model.dt, dental_time_step(Solver::iisph));
-  EXPECT_EQ(dental_time_step(Solver::iisph), 2e-3);
-  EXPECT_EQ(parse(R"({"name": "d", "tooth": {}})").model.solver, Solver::paper) << "a dental scene's default";
+  EXPECT_EQ(dental_time_step(Solver::iisph), 1.5e-3);
+  EXPECT_EQ(parse(R"({"name": "d", "tooth": {}})").model.solver, Solver::iisph) << "a dental scene's default";
   // The instruments are the solver's: the iisph solver's ball burnisher has two layers (tools.hpp).
   const auto tool_count = [](const std::vector<ParticleInit>& ps) {
     return std::count_if(ps.begin(), ps.end(), [](const ParticleInit& p) { return p.role == Role::tool; });

@@ -384,6 +384,15 @@ TEST(Robustness, MessagesAreShortAndTrue) {
   save_recording(bad_session, rec);
   std::ofstream(bad_session / "session.json") << R"({"mode": "coupling", "dispense_volume": -1})";
   EXPECT_THROW((void)load_recording(bad_session), std::runtime_error);
+  // And its solver's name.
+  std::ofstream(bad_session / "session.json") << R"({"mode": "coupling", "solver": "fast"})";
+  try {
+    (void)load_recording(bad_session);
+    ADD_FAILURE() << "accepted solver \"fast\"";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("session.json: solver: expected \"paper\" or \"iisph\", got \"fast\""),
+              std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -66,6 +66,7 @@ struct Recording {
   std::uint64_t haptic_dropped = 0;  // ticks not recorded (capacity full)
   double dispense_volume = 0;  // m^3 of a button increment (session.json; 0: the scene's default)
   std::string backend = "cpu"; // the backend that stepped the session (session.json; older: cpu)
+  std::string solver;          // the step that ran it, "paper" or "iisph" (session.json; older: none)
   std::vector<HapticSample> haptic;
   std::vector<StepSample> steps;
   std::vector<EventSample> events;
