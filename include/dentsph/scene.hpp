@@ -108,8 +108,9 @@ std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backe
 // they have. select_solver calls it (the scene builders make them for the scene's solver).
 void shape_instruments(Scene& scene);
 // A dental scene run by the iisph solver: its Model gets the prepared tooth's wall field
-// (wall_field.hpp: sampled at half the paste's spacing over its boundary particles' box grown by h,
-// in cells large enough for at most about a million corners; clearance a quarter spacing). Other
+// (wall_field.hpp: sampled at half the paste's spacing over its boundary particles' box grown by h
+// and its whole domain, in cells large enough for at most 2 million corners; clearance a quarter
+// spacing). Other
 // scenes and solvers: none. select_solver calls it.
 void attach_walls(Scene& scene);
 // m/s, the fastest any tool particle moves between the scene's keyframes (the first instrument's

@@ -6,7 +6,9 @@
 // gradient to `clearance`, and its velocity into the wall removed.
 //
 // The distance is sampled at the corners of cubic cells and interpolated trilinearly; outside the
-// grid's box there is no wall. Immutable; queries are safe from any number of threads.
+// grid's box there is no wall. Corners farther from the walls than a block of 4 cells' diagonal plus
+// the clearance are interpolated from a grid 4 times coarser (nothing is projected there), so that
+// the cost goes with the walls' area rather than the box's volume. Immutable; queries are safe from any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,7 @@ class WallField {
   bool project(Vec3& pos, Vec3& vel) const;
 
  private:
+  static constexpr int kBlock = 4;  // cells along a block of the coarse-to-fine sampling
   Vec3 origin_;
   real cell_, inv_cell_, clearance_;
   int n_[3];

@@ -31,13 +31,67 @@ WallField::WallField(const std::function<real(const Vec3&)>& distance, Vec3 lo, 
           fmt::format("wall field: more than {} corners for cells of {} m: use larger cells", max_nodes, cell));
   }
   phi_.resize(std::size_t(total));
-  const std::int64_t planes = n_[2];
+  // Coarse to fine: the distance at every kBlock-th corner first (and the last along each axis),
+  // then block by block. The distance changes by at most the distance moved, so a block whose
+  // coarse corners all lie farther than the block's diagonal plus the clearance from the walls (on
+  // one side) holds no point within the clearance: its corners are interpolated from the coarse
+  // ones, on the same side and beyond the clearance, where project() does nothing with them (inside,
+  // that deep, no paste gets: it is held at the clearance on the way). The others are sampled.
+  const auto at = [&](int i, int j, int k) { return lo + Vec3{real(i) * cell, real(j) * cell, real(k) * cell}; };
+  int m[3];  // coarse corners along each axis: fine corners 0, kBlock, 2 kBlock, ..., n - 1
+  for (int a = 0; a < 3; ++a) m[a] = (n_[a] - 1 + kBlock - 1) / kBlock + 1;
+  const auto fine = [&](int a, int c) { return std::min(c * kBlock, n_[a] - 1); };
+  const std::size_t coarse_count = std::size_t(m[0]) * std::size_t(m[1]) * std::size_t(m[2]);
+  std::vector<real> coarse(coarse_count);
 #pragma omp parallel for schedule(dynamic)
-  for (std::int64_t k = 0; k < planes; ++k)
-    for (int j = 0; j < n_[1]; ++j)
-      for (int i = 0; i < n_[0]; ++i)
-        phi_[(std::size_t(k) * n_[1] + j) * n_[0] + i] =
-            float(distance(lo + Vec3{real(i) * cell, real(j) * cell, real(k) * cell}));
+  for (std::int64_t ck = 0; ck < m[2]; ++ck)
+    for (int cj = 0; cj < m[1]; ++cj)
+      for (int ci = 0; ci < m[0]; ++ci)
+        coarse[(std::size_t(ck) * m[1] + cj) * m[0] + ci] = distance(at(fine(0, ci), fine(1, cj), fine(2, int(ck))));
+  const real margin = real(kBlock) * cell * std::sqrt(real(3)) + clearance;
+  const std::int64_t blocks = std::int64_t(std::max(m[0] - 1, 1)) * std::max(m[1] - 1, 1) * std::max(m[2] - 1, 1);
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const int bx = int(b % std::max(m[0] - 1, 1)), by = int((b / std::max(m[0] - 1, 1)) % std::max(m[1] - 1, 1)),
+              bz = int(b / (std::int64_t(std::max(m[0] - 1, 1)) * std::max(m[1] - 1, 1)));
+    const int c0[3] = {bx, by, bz};
+    int c1[3], f0[3], f1[3];
+    for (int a = 0; a < 3; ++a) {
+      c1[a] = std::min(c0[a] + 1, m[a] - 1);
+      f0[a] = fine(a, c0[a]);
+      f1[a] = fine(a, c1[a]);
+    }
+    real v[2][2][2];
+    bool far_out = true, far_in = true;
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) {
+          v[z][y][x] = coarse[(std::size_t(z ? c1[2] : c0[2]) * m[1] + (y ? c1[1] : c0[1])) * m[0] + (x ? c1[0] : c0[0])];
+          far_out = far_out && v[z][y][x] > margin;
+          far_in = far_in && v[z][y][x] < -margin;
+        }
+    // The block's corners: from its low corner up to, but not including, the next block's (the
+    // last block along an axis takes the grid's last corner too).
+    int e[3];
+    for (int a = 0; a < 3; ++a) e[a] = c1[a] == m[a] - 1 ? f1[a] + 1 : f1[a];
+    for (int k = f0[2]; k < e[2]; ++k)
+      for (int j = f0[1]; j < e[1]; ++j)
+        for (int i = f0[0]; i < e[0]; ++i) {
+          real d;
+          if (far_out || far_in) {
+            const int g[3] = {i, j, k};
+            real t[3];
+            for (int a = 0; a < 3; ++a) t[a] = f1[a] > f0[a] ? real(g[a] - f0[a]) / real(f1[a] - f0[a]) : 0;
+            const real x00 = v[0][0][0] + (v[0][0][1] - v[0][0][0]) * t[0], x01 = v[0][1][0] + (v[0][1][1] - v[0][1][0]) * t[0];
+            const real x10 = v[1][0][0] + (v[1][0][1] - v[1][0][0]) * t[0], x11 = v[1][1][0] + (v[1][1][1] - v[1][1][0]) * t[0];
+            const real y0 = x00 + (x01 - x00) * t[1], y1 = x10 + (x11 - x10) * t[1];
+            d = y0 + (y1 - y0) * t[2];
+          } else {
+            d = distance(at(i, j, k));
+          }
+          phi_[(std::size_t(k) * n_[1] + j) * n_[0] + i] = float(d);
+        }
+  }
 }
 
 bool WallField::sample(const Vec3& p, real& distance, Vec3& gradient) const {

@@ -20,7 +20,7 @@ namespace dentsph {
 
 namespace {
 constexpr real inf = std::numeric_limits<real>::infinity();
-constexpr real kMaxWallNodes = 1e6;
+constexpr real kMaxWallNodes = 2e6;
 }  // namespace
 
 void select_solver(Scene& scene, Solver solver) {
@@ -111,13 +111,24 @@ void attach_walls(Scene& scene) {
     }
   if (!(lo.x <= hi.x)) return;  // no walls
   const real h = scene.model.kernel.h, s = scene.material_spacing;
-  const Vec3 pad{h, h, h}, span = hi - lo + pad * 2;
+  const Vec3 pad{h, h, h};
+  // Over the lining's box grown by h and the whole domain, where paste may be: overfill spreads
+  // over the tooth beyond its lining, where no boundary particle holds it out.
+  lo = lo - pad;
+  hi = hi + pad;
+  if (scene.model.domain_min.x < scene.model.domain_max.x) {
+    lo = {std::min(lo.x, scene.model.domain_min.x), std::min(lo.y, scene.model.domain_min.y),
+          std::min(lo.z, scene.model.domain_min.z)};
+    hi = {std::max(hi.x, scene.model.domain_max.x), std::max(hi.y, scene.model.domain_max.y),
+          std::max(hi.z, scene.model.domain_max.z)};
+  }
+  const Vec3 span = hi - lo;
   // Cells of half a spacing, larger where the box would need more than kMaxWallNodes corners (a
   // scene far larger than a tooth's: the field's cost stays that of a large tooth's).
   const real cell = std::max<real>(0.5 * s, std::cbrt(span.x * span.y * span.z / kMaxWallNodes));
   const PreparedTooth tooth = *scene.tooth;
   scene.model.walls = std::make_shared<const WallField>([&tooth](const Vec3& p) { return tooth.distance(p).distance; },
-                                                        lo - pad, hi + pad, cell, 0.25 * s);
+                                                        lo, hi, cell, 0.25 * s);
 }
 
 real scene_tool_speed(const Scene& scene) {

@@ -6,6 +6,7 @@
 // it at work: nothing leaks at the iisph solver's dental step.)
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -23,6 +24,42 @@ namespace {
 WallField floor_field(real clearance = 0.075e-3) {
   return WallField([](const Vec3& p) { return p.z - 1e-3; }, Vec3{0, 0, 0}, Vec3{4e-3, 4e-3, 4e-3}, 0.15e-3,
                    clearance);
+}
+
+// Sampled coarse to fine, the field holds the exact distance at every corner within the clearance
+// of the wall (of a sphere of 2 mm here), and beyond it the right side and more than the clearance,
+// so that projections act exactly as over a field sampled everywhere; the distance is called for a
+// share of the corners only.
+TEST(WallField, CoarseToFineIsExactNearTheWalls) {
+  const real radius = 2e-3, cell = 0.15e-3, clearance = 0.075e-3;
+  std::atomic<std::int64_t> calls{0};
+  const auto sphere = [&](const Vec3& p) {
+    ++calls;
+    return norm(p) - radius;
+  };
+  const Vec3 lo{-4e-3, -4e-3, -4e-3}, hi{4.1e-3, 4.1e-3, 4.1e-3};  // a last block shorter than the others
+  const WallField f(sphere, lo, hi, cell, clearance);
+  const int n = int(std::ceil((hi.x - lo.x) / cell)) + 1;
+  ASSERT_EQ(f.nodes(), std::int64_t(n) * n * n);
+  EXPECT_LT(calls.load(), f.nodes() / 2) << "most corners interpolated";
+  int exact = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Vec3 p = lo + Vec3{i * cell, j * cell, k * cell};
+        const real truth = norm(p) - radius;
+        real d;
+        Vec3 g;
+        ASSERT_TRUE(f.sample(p, d, g));
+        if (std::abs(truth) <= clearance) {
+          ASSERT_NEAR(d, truth, 1e-9) << i << " " << j << " " << k;
+          ++exact;
+        } else {
+          ASSERT_EQ(d > 0, truth > 0) << i << " " << j << " " << k;
+          ASSERT_GT(std::abs(d), clearance) << i << " " << j << " " << k;
+        }
+      }
+  EXPECT_GT(exact, 1000);  // the shell within the clearance
 }
 
 TEST(WallField, InterpolatesAPlaneExactly) {
