@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -60,6 +61,7 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
   constexpr std::size_t kMaxHeaderLines = 10000;
   double declared = 0;  // bytes the elements need at the least: one per property of each
   double properties = 0, count = 0;
+  bool ascii = false;
   auto close_element = [&] { declared += count * std::max(1.0, properties); };
   std::string line;
   // Assimp 5.2 looped for ever on headers it half understood ("ehement%vertex 4", "end_header"
@@ -94,12 +96,29 @@ void check_ply_header(const std::filesystem::path& file, const std::string& name
       const bool list = w.size() == 4 && w[0] == "list" && type(w[1]) && type(w[2]) && plain(w[3]);
       if (!scalar && !list) refuse_line(n, "is not \"property TYPE NAME\" nor \"property list TYPE TYPE NAME\"");
     }
+    if (word == "format") {
+      std::string f;
+      words >> f;
+      ascii = f == "ascii";
+    }
     if (word == "end_header") {
       close_element();
       if (declared > double(size))
         throw MeshError(fmt::format("{}: its PLY header declares elements of at least {:.3g} bytes, but the file holds "
                                     "{}; the file is truncated or damaged: export it again",
                                     name, declared, size));
+      // An ASCII body is numbers: assimp's reader was seen to corrupt the heap on a session of
+      // damaged ones (one with NUL bytes in its body; docs/fuzzing.md).
+      if (ascii) {
+        std::size_t body_line = n + 3;
+        for (char c; in.get(c);) {
+          if (c == '\n') ++body_line;
+          if (!std::strchr("0123456789+-.eE \t\r\n", c) || c == '\0')
+            throw MeshError(fmt::format("{}: line {} of its ASCII PLY body holds a byte that is not part of a number; "
+                                        "the file is damaged: export it again",
+                                        name, body_line));
+        }
+      }
       return;
     }
     if (word == "element") {
