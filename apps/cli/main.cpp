@@ -253,9 +253,9 @@ int main(int argc, char** argv) {
     bench_opt.backend = parse_backend(bench_backend);
     if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
     if (*replay)
-      return cli::replay_recording(scene_of(replay_scene, replay_dental, replay_solver, parse_backend(replay_backend)),
-                                   replay_dir, replay_threads, parse_backend(replay_backend), replay_out,
-                                   !replay_solver.empty());
+      // The step is chosen by replay_recording: --solver, or else the recording's.
+      return cli::replay_recording(scene_of(replay_scene, replay_dental, "", Backend::cpu), replay_dir, replay_threads,
+                                   parse_backend(replay_backend), replay_out, replay_solver);
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     return cli::failed(e);

@@ -140,10 +140,11 @@ int RealtimeCommand::run(const Scene& scene, const RunOptions& offline, bool qui
 }
 
 int replay_recording(Scene scene, const std::string& dir, int threads, Backend backend,
-                     const std::filesystem::path& out_dir, bool solver_named) {
+                     const std::filesystem::path& out_dir, const std::string& solver) {
   const Recording r = load_recording(dir);
-  if (!solver_named && !r.solver.empty() && r.solver != solver_name(scene.model.solver))
-    select_solver(scene, *solver_from_name(r.solver));  // the recording's step (load_recording checked the name)
+  if (const std::string notice = choose_solver(scene, solver.empty() ? r.solver : solver, backend != Backend::cpu);
+      !notice.empty())
+    fmt::print("{}\n", notice);
   const std::vector<Vec3> f = out_dir.empty() ? replay_steps(scene, r, threads, backend)
                                               : report::replay_to_folder(scene, r, threads, out_dir, backend);
   const ReplayComparison c = compare_replay(f, r, kBackendParityTolerance);

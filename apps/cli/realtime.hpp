@@ -46,9 +46,10 @@ class RealtimeCommand {
 // `dentsph replay RECORDING [SCENE] [--backend B] [--out DIR]`: steps the scene on the recorded
 // tool poses and compares the tool forces with the recorded ones; with `out_dir`, also writes the
 // replay as a run folder with its report. Returns 0 when they agree (bit for bit on the
-// recording's backend, within kBackendParityTolerance on another), 4 otherwise. Unless
-// `solver_named` (--solver), the scene takes the solver the recording was made on (session.json).
+// recording's backend, within kBackendParityTolerance on another), 4 otherwise. The step is
+// `solver` (--solver), or else the one the recording names (session.json), or else the scene's, as
+// choose_solver takes it for `backend`.
 int replay_recording(Scene scene, const std::string& recording_dir, int threads, Backend backend,
-                     const std::filesystem::path& out_dir = {}, bool solver_named = false);
+                     const std::filesystem::path& out_dir = {}, const std::string& solver = {});
 
 }  // namespace dentsph::cli

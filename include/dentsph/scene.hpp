@@ -99,9 +99,10 @@ struct Scene {
 // simulation.solver) and rebuilds its Model; a dental scene takes the solver's dental time step,
 // and the instruments made by name are made again as the solver runs them (shape_instruments).
 void select_solver(Scene& scene, Solver solver);
-// The command line's choice: the solver it names (`named`, empty: none) over the scene's; without
-// one, a run on a GPU backend (which has the paper's step only) takes the paper's step, and the
-// line returned says so (empty otherwise). A named iisph solver on a GPU is refused by make_stepper.
+// The command line's choice: the solver it names (`named`, empty: none; a replay passes its
+// recording's) over the scene's; without one, a run on a GPU backend (which has the paper's step
+// only) takes the paper's step, and the line returned says so (empty otherwise). A named iisph
+// solver on a GPU is refused by make_stepper.
 std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backend);
 // Makes the scene's named instruments (its first one, Scene::instrument, and those its switch_tool
 // events take up) as scene.model.solver runs them (tool_by_name), with the masses and materials

@@ -37,6 +37,13 @@ DENTSPH_HD inline bool is_finite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
 // Whether p lies in the box [lo, hi] (faces included; false for NaN).
+// Component-wise minimum and maximum (plain comparisons: inlined in the tooth's distance queries).
+DENTSPH_HD constexpr Vec3 vmin(const Vec3& a, const Vec3& b) {
+  return {b.x < a.x ? b.x : a.x, b.y < a.y ? b.y : a.y, b.z < a.z ? b.z : a.z};
+}
+DENTSPH_HD constexpr Vec3 vmax(const Vec3& a, const Vec3& b) {
+  return {a.x < b.x ? b.x : a.x, a.y < b.y ? b.y : a.y, a.z < b.z ? b.z : a.z};
+}
 DENTSPH_HD constexpr bool inside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
   return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
 }

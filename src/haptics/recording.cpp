@@ -130,11 +130,11 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
     // Written by the JSON library that reads it back (strings escaped, numbers to the last bit).
     File f(dir / "session.json");
     nlohmann::json session = {{"mode", r.mode},
-                                    {"haptic_rate_hz", r.haptic_rate_hz},
-                                    {"force_scale", r.force_scale},
-                                    {"haptic_dropped", r.haptic_dropped},
-                                    {"dispense_volume", r.dispense_volume},
-                                    {"backend", r.backend}};
+                              {"haptic_rate_hz", r.haptic_rate_hz},
+                              {"force_scale", r.force_scale},
+                              {"haptic_dropped", r.haptic_dropped},
+                              {"dispense_volume", r.dispense_volume},
+                              {"backend", r.backend}};
     if (!r.solver.empty()) session["solver"] = r.solver;  // none: not known (replay takes the scene's)
     fmt::print(f.f, "{}\n", session.dump());
   }

@@ -49,15 +49,14 @@ WallField::WallField(const std::function<real(const Vec3&)>& distance, Vec3 lo, 
       for (int ci = 0; ci < m[0]; ++ci)
         coarse[(std::size_t(ck) * m[1] + cj) * m[0] + ci] = distance(at(fine(0, ci), fine(1, cj), fine(2, int(ck))));
   const real margin = real(kBlock) * cell * std::sqrt(real(3)) + clearance;
-  const std::int64_t blocks = std::int64_t(std::max(m[0] - 1, 1)) * std::max(m[1] - 1, 1) * std::max(m[2] - 1, 1);
+  const int nb[3] = {m[0] - 1, m[1] - 1, m[2] - 1};  // blocks along each axis (n >= 2 corners: m >= 2)
+  const std::int64_t blocks = std::int64_t(nb[0]) * nb[1] * nb[2];
 #pragma omp parallel for schedule(dynamic)
   for (std::int64_t b = 0; b < blocks; ++b) {
-    const int bx = int(b % std::max(m[0] - 1, 1)), by = int((b / std::max(m[0] - 1, 1)) % std::max(m[1] - 1, 1)),
-              bz = int(b / (std::int64_t(std::max(m[0] - 1, 1)) * std::max(m[1] - 1, 1)));
-    const int c0[3] = {bx, by, bz};
+    const int c0[3] = {int(b % nb[0]), int((b / nb[0]) % nb[1]), int(b / (std::int64_t(nb[0]) * nb[1]))};
     int c1[3], f0[3], f1[3];
     for (int a = 0; a < 3; ++a) {
-      c1[a] = std::min(c0[a] + 1, m[a] - 1);
+      c1[a] = c0[a] + 1;
       f0[a] = fine(a, c0[a]);
       f1[a] = fine(a, c1[a]);
     }
@@ -81,7 +80,7 @@ WallField::WallField(const std::function<real(const Vec3&)>& distance, Vec3 lo, 
           if (far_out || far_in) {
             const int g[3] = {i, j, k};
             real t[3];
-            for (int a = 0; a < 3; ++a) t[a] = f1[a] > f0[a] ? real(g[a] - f0[a]) / real(f1[a] - f0[a]) : 0;
+            for (int a = 0; a < 3; ++a) t[a] = real(g[a] - f0[a]) / real(f1[a] - f0[a]);
             const real x00 = v[0][0][0] + (v[0][0][1] - v[0][0][0]) * t[0], x01 = v[0][1][0] + (v[0][1][1] - v[0][1][0]) * t[0];
             const real x10 = v[1][0][0] + (v[1][0][1] - v[1][0][0]) * t[0], x11 = v[1][1][0] + (v[1][1][1] - v[1][1][0]) * t[0];
             const real y0 = x00 + (x01 - x00) * t[1], y1 = x10 + (x11 - x10) * t[1];

@@ -37,7 +37,7 @@ std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backe
   if (!named.empty()) {
     const std::optional<Solver> s = solver_from_name(named);
     if (!s) throw std::invalid_argument(fmt::format("--solver {}: unknown solver; choose {}", named, solver_choices));
-    select_solver(scene, *s);
+    if (*s != scene.model.solver) select_solver(scene, *s);  // the scene's own already made for it
     return {};
   }
   if (!gpu_backend || scene.model.solver == Solver::paper) return {};
@@ -106,8 +106,8 @@ void attach_walls(Scene& scene) {
   Vec3 lo{inf, inf, inf}, hi = -lo;
   for (const ParticleInit& p : scene.particles)
     if (p.role == Role::boundary) {
-      lo = {std::min(lo.x, p.pos.x), std::min(lo.y, p.pos.y), std::min(lo.z, p.pos.z)};
-      hi = {std::max(hi.x, p.pos.x), std::max(hi.y, p.pos.y), std::max(hi.z, p.pos.z)};
+      lo = vmin(lo, p.pos);
+      hi = vmax(hi, p.pos);
     }
   if (!(lo.x <= hi.x)) return;  // no walls
   const real h = scene.model.kernel.h, s = scene.material_spacing;
@@ -117,10 +117,8 @@ void attach_walls(Scene& scene) {
   lo = lo - pad;
   hi = hi + pad;
   if (scene.model.domain_min.x < scene.model.domain_max.x) {
-    lo = {std::min(lo.x, scene.model.domain_min.x), std::min(lo.y, scene.model.domain_min.y),
-          std::min(lo.z, scene.model.domain_min.z)};
-    hi = {std::max(hi.x, scene.model.domain_max.x), std::max(hi.y, scene.model.domain_max.y),
-          std::max(hi.z, scene.model.domain_max.z)};
+    lo = vmin(lo, scene.model.domain_min);
+    hi = vmax(hi, scene.model.domain_max);
   }
   const Vec3 span = hi - lo;
   // Cells of half a spacing, larger where the box would need more than kMaxWallNodes corners (a

@@ -97,8 +97,8 @@ BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& 
   for (int k = 0; k < 8; ++k) {
     const Vec3 c = f.to_local(
         {k & 1 ? cw.max.x : cw.min.x, k & 2 ? cw.max.y : cw.min.y, k & 4 ? cw.max.z : cw.min.z});
-    local.min = tooth::vmin(local.min, c);
-    local.max = tooth::vmax(local.max, c);
+    local.min = vmin(local.min, c);
+    local.max = vmax(local.max, c);
   }
   const real grow = margin + (params.layers + 1) * s;
   // Coarse cells of edge s centred on s (i, j, k), each holding refine^3 points of the fine

@@ -45,8 +45,8 @@ Bounds local_bounds(const TriMesh& mesh, const ToothFrame& f) {
   Bounds b{{inf, inf, inf}, {-inf, -inf, -inf}};
   for (const Vec3& v : mesh.vertices) {
     const Vec3 l = f.to_local(v);
-    b.min = tooth::vmin(b.min, l);
-    b.max = tooth::vmax(b.max, l);
+    b.min = vmin(b.min, l);
+    b.max = vmax(b.max, l);
   }
   return b;
 }
@@ -136,8 +136,8 @@ struct VolumeIntegrator {
       const real inside = std::clamp(0.5 - g / side, 0.0, 1.0);
       if (inside <= 0) return;
       volume += inside * side * side * side;
-      hit.min = tooth::vmin(hit.min, c - Vec3{half, half, half});
-      hit.max = tooth::vmax(hit.max, c + Vec3{half, half, half});
+      hit.min = vmin(hit.min, c - Vec3{half, half, half});
+      hit.max = vmax(hit.max, c + Vec3{half, half, half});
       return;
     }
     const real q = half / 2;
@@ -313,8 +313,8 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
 
   // Volume of the tooth removed, by octree cells of root size 8 finest cells.
   Bounds cb = impl->shape.bounds();
-  cb.min = tooth::vmax(cb.min, lb.min);
-  cb.max = tooth::vmin(cb.max, lb.max);
+  cb.min = vmax(cb.min, lb.min);
+  cb.max = vmin(cb.max, lb.max);
   VolumeIntegrator vi{impl->shape, tooth, f};
   constexpr int levels = 3;
   const real root = volume_cell * (1 << levels);
@@ -335,8 +335,8 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
     const Vec3 c =
         f.to_world({k & 1 ? vi.hit.max.x : vi.hit.min.x, k & 2 ? vi.hit.max.y : vi.hit.min.y,
                     k & 4 ? vi.hit.max.z : vi.hit.min.z});
-    w.min = tooth::vmin(w.min, c);
-    w.max = tooth::vmax(w.max, c);
+    w.min = vmin(w.min, c);
+    w.max = vmax(w.max, c);
   }
   impl->cavity_world = w;
   return PreparedTooth(std::move(impl));

@@ -20,12 +20,6 @@ inline Vec3 normalized(const Vec3& v) {
 // compiler from inlining them, and they sit in the innermost loop of every distance query.
 inline real min2(real a, real b) { return b < a ? b : a; }
 inline real max2(real a, real b) { return a < b ? b : a; }
-inline Vec3 vmin(const Vec3& a, const Vec3& b) {
-  return {min2(a.x, b.x), min2(a.y, b.y), min2(a.z, b.z)};
-}
-inline Vec3 vmax(const Vec3& a, const Vec3& b) {
-  return {max2(a.x, b.x), max2(a.y, b.y), max2(a.z, b.z)};
-}
 
 // Where on a triangle the nearest point lies: which feature's pseudo-normal gives the sign.
 enum class Feature : std::uint8_t { vertex0, vertex1, vertex2, edge01, edge12, edge20, face };

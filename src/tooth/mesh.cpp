@@ -12,8 +12,8 @@ Bounds TriMesh::bounds() const {
   constexpr real inf = std::numeric_limits<real>::infinity();
   Bounds b{{inf, inf, inf}, {-inf, -inf, -inf}};
   for (const Vec3& v : vertices) {
-    b.min = tooth::vmin(b.min, v);
-    b.max = tooth::vmax(b.max, v);
+    b.min = vmin(b.min, v);
+    b.max = vmax(b.max, v);
   }
   return b;
 }
