@@ -40,8 +40,8 @@ void RealtimeCommand::add_device_options(CLI::App& run, CLI::Option* rt) {
   need(run.add_option("--haptic-rate", haptic_rate_, "Haptic loop rate (Hz)")->check(CLI::Range(500.0, 4000.0))->capture_default_str());
   need(run.add_option("--force-scale", force_scale_, "Device N per simulated N (default: the scene's force_scale)")
            ->check(CLI::PositiveNumber));
-  need(run.add_option("--profile", profile_, "Device force limits: falcon (9 N), omega (12 N), touch (3.3 N)")
-           ->check(CLI::IsMember({"falcon", "omega", "touch"}))
+  need(run.add_option("--profile", profile_, "Device force limits and contact stiffness: falcon (9 N, 3000 N/m), omega (12 N, 5000 N/m), touch (3.3 N, 1000 N/m), sigma7 (20 N, 0.4 N m torque)")
+           ->check(CLI::IsMember({"falcon", "omega", "touch", "sigma7"}))
            ->capture_default_str());
   need(run.add_option("--port", udp_.port, "UDP port of the bridge (--device udp)")->capture_default_str());
   need(run.add_option("--address", udp_.address, "IPv4 address the bridge listens on (0.0.0.0: every interface)")->capture_default_str());

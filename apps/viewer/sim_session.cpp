@@ -31,6 +31,8 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
     assessor_.emplace(*scene_.tooth, ap);
   }
   opt_.dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
+  contact_field_ = scene_contact_field(scene_);
+  contact_band_ = scene_rigid_band(scene_);
   paused_ = opt_.start_paused;
   reset();
   publish(*sim_, true, 0);
@@ -46,6 +48,8 @@ void SimSession::reset() {
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
   diverged_ = false;
   force_log_.clear();
+  contact_.reset(sim_->state().tool_pose_applied.position);
+  contact_rigid_count_ = contact_tool_count_ = ~std::size_t(0);  // the field and shape made again
   steps_.store(0, std::memory_order_release);
 }
 
@@ -102,6 +106,25 @@ bool SimSession::latest(Snapshot& out) const {
   if (published_.version <= out.version && out.version != 0) return false;
   out = published_;
   return true;
+}
+
+Vec3 SimSession::held_by_contact(const Pose& pose) {
+  if (!contact_field_.has_tooth() && !contact_field_.has_grid()) return pose.position;
+  const State& st = sim_->state();
+  if (st.steps % kContactCheckSteps == 0 || contact_rigid_count_ == ~std::size_t(0)) {
+    std::size_t tools = 0;
+    for (std::uint32_t i = 0; i < st.size(); ++i) tools += st.role[i] == Role::tool;
+    rigid_particles(st, contact_band_, contact_rigid_);
+    if (contact_rigid_.size() != contact_rigid_count_) {
+      contact_field_.set_particles(contact_rigid_);
+      contact_rigid_count_ = contact_rigid_.size();
+    }
+    if (tools != contact_tool_count_) {
+      contact_shape_ = instrument_contact_shape(scene_, st);
+      contact_tool_count_ = tools;
+    }
+  }
+  return contact_.update(contact_field_, contact_shape_, pose.position, pose.orientation, {}).proxy;
 }
 
 Vec3 SimSession::tool_tip_goal() const {
@@ -325,6 +348,7 @@ void SimSession::run() {
       const real len = norm(d);
       Pose pose = applied;
       pose.position = len > max_move ? applied.position + d * (max_move / len) : goal;
+      pose.position = held_by_contact(pose);
       const real t_forces = sim.state().time;
       const bool going = sim.step(pose);
       force_log_.push_back({t_forces, sim.state().tool_wrench});

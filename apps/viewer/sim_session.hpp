@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "dentsph/assess.hpp"
+#include "dentsph/contact.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/simulation.hpp"
@@ -144,6 +145,9 @@ class SimSession {
   void publish(Simulation& sim, bool with_assessment, double steps_per_second);
   void reset();  // the session's own Simulation from the scene again, with the paste as edited
   Vec3 tool_tip_goal() const;
+  // The mouse's tool held out of the tooth, the band and set paste (contact.hpp): the field
+  // follows the paste as it sets (checked every kContactCheckSteps steps), the shape the tool.
+  Vec3 held_by_contact(const Pose& pose);
 
   Scene scene_;
   SessionOptions opt_;
@@ -175,6 +179,12 @@ class SimSession {
   std::atomic<bool> rt_stop_{false};
   std::optional<RealtimeResult> realtime_result_;
   std::vector<ForceSample> force_log_;
+  ContactField contact_field_;
+  std::vector<Vec3> contact_band_, contact_rigid_;
+  ContactShape contact_shape_;
+  HardContact contact_;
+  std::size_t contact_rigid_count_ = 0, contact_tool_count_ = 0;
+  static constexpr std::uint64_t kContactCheckSteps = 20;
   std::string run_error_;
   std::uint64_t live_ticks0_ = 0;
   std::chrono::steady_clock::time_point live_t0_, last_publish_, last_assess_, rate_t0_;

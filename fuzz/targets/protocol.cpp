@@ -74,7 +74,7 @@ int protocol(const std::uint8_t* data, std::size_t size) {
       if (device->read(now, sample)) {
         check(is_finite(sample.pose.position) && norm(sample.pose.position) <= o.workspace_radius_m);
       }
-      device->write(now, ForceCommand{{0.5, 0, 0}, 0, 0});
+      device->write(now, ForceCommand{{0.5, 0, 0}, {}, 0, 0});
     }
   }
   ::usleep(200);  // loopback delivery

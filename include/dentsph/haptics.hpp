@@ -190,6 +190,9 @@ struct HapticReport {
   std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
   std::uint64_t non_finite_poses = 0;     // device poses refused (the previous pose is kept)
   std::uint64_t sessions = 0;             // device sessions started (DeviceSample::session)
+  std::uint64_t contact_ticks = 0;        // ticks the instrument touched the tooth, band or set paste
+  std::uint64_t contact_rebuilds = 0;     // the contact field rebuilt (paste set, instrument switched)
+  double contact_build_max_ms = 0;        // the longest rebuild (off the haptic thread)
   std::uint64_t dispense_presses = 0;     // presses of button 1 counted (handed to the simulation)
   std::uint64_t dispense_presses_refused = 0;  // presses over limits::max_dispense_presses_per_s
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions

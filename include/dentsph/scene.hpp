@@ -114,6 +114,11 @@ void shape_instruments(Scene& scene);
 // spacing). Other
 // scenes and solvers: none. select_solver calls it.
 void attach_walls(Scene& scene);
+// The prepared tooth's wall field as attach_walls makes it (whatever the solver; null for a scene
+// without a tooth or boundary particles): the iisph solver's walls and the hard contact's tooth
+// (contact.hpp), the latter over the whole tooth (`whole_tooth`: the instrument meets the crown
+// anywhere, not only around the cavity where paste may be).
+std::shared_ptr<const WallField> tooth_wall_field(const Scene& scene, bool whole_tooth = false);
 // m/s, the fastest any tool particle moves between the scene's keyframes (the first instrument's
 // and those a switch_tool event takes up): what the velocity CFL limit of the iisph solver is
 // checked against before a run.

@@ -13,11 +13,18 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "dentsph/vec3.hpp"
 
 namespace dentsph {
+
+// The trilinear interpolation of distances sampled on the corners of cubic cells (`n` corners along
+// each axis, x fastest, the first at `origin`, 1 / cell = `inv_cell`) at p, and its gradient
+// (unnormalised); false outside the grid (or p not a number). WallField's and ContactField's.
+bool sample_grid(std::span<const float> phi, const int n[3], const Vec3& origin, real inv_cell, const Vec3& p,
+                 real& distance, Vec3& gradient);
 
 class WallField {
  public:

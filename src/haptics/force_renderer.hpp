@@ -8,8 +8,13 @@
 // along its motion per second of the device's clock over the last outputs (by at most kMaxLead),
 // so that a proxy moving with the hand in air is not
 // felt as a drag of stiffness x speed x latency (0.075 N at 62.5 mm/s and 3 ms on 400 N/m). A
-// proxy held by the paste has no velocity to carry. The result still passes the watchdog and the
-// limiter.
+// proxy held by the paste has no velocity to carry. Where the newest output was a free move (no
+// paste within reach of the instrument's path: the proxy went where the hand is) the coupling
+// renders nothing, so that a quick move through air drags nothing; on entering paste from such a
+// move the proxy's motion is not carried forward (it has just stopped going with the hand) and the
+// coupling's force ramps in over kEntryRamp, so that the latency of the outputs (the hand a few
+// millimetres on at 0.5 m/s) is not one step of force. The result still passes the
+// watchdog and the limiter.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +38,11 @@ class ForceRenderer {
     force_ = proxy_x_ = proxy_w_ = stamp_ = ForceInterpolator{};
     motion_ = {};
     started_ = false;
+    free_ = false;
+    entered_ns_ = -1;
   }
+  // The newest output was a free move (SimOutput::free): the coupling renders nothing.
+  bool free() const { return free_; }
   // The proxy (coupling) or the device (direct) position now.
   Vec3 tool_position(const Vec3& x, std::int64_t now_ns) const {
     return mode_ == ForceMode::coupling && started_ ? proxy_x_.at(now_ns) : x;
@@ -53,6 +62,9 @@ class ForceRenderer {
   double last_stamp_s_ = 0;
   std::int64_t base_ns_ = 0;
   bool started_ = false;
+  bool free_ = false;
+  std::int64_t entered_ns_ = -1;  // when the outputs stopped being free moves (paste entered)
+  static constexpr double kEntryRamp = 0.01;  // s: the coupling's force ramps in over this on entering paste
 };
 
 }  // namespace dentsph::haptics

@@ -22,6 +22,7 @@ HapticLoop::HapticLoop(Device& device, const RealtimeOptions& o, RuntimeShared& 
       renderer_(o.mode, o.coupling),
       watchdog_(o.watchdog),
       limiter_(o.profile),
+      contact_(o.profile.contact, o.workspace.scale),
       record_(std::size_t(std::max(0.0, o.record_capacity_s) * o.haptic_rate_hz)) {
   rep_.target_rate_hz = o.haptic_rate_hz;
 }
@@ -105,6 +106,27 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   if (pose_age > opt_.watchdog.pose_timeout_s) velocity_ = {};  // a quiet device is not moving
   const Vec3 x = sample_.pose.position;
 
+  // ---- hard contact: the instrument held out of the tooth, the band and set paste -------------
+  // Its proxy is where the instrument may be (device frame): the simulation's tool follows it
+  // instead of the device, and the hand feels the contact's spring to it.
+  shared_.contact.update();
+  const ContactWorld& world = shared_.contact.front();
+  Vec3 held = x, held_velocity = velocity_;
+  ContactResult contact;
+  if (sample_.valid) {
+    contact = contact_.update(world.field, world.shape, opt_.workspace.to_scene(x), sample_.pose.orientation, velocity_);
+    held = opt_.workspace.to_device(contact.proxy);
+    if (contact.touching) {
+      held_velocity = {};  // against a surface the proxy moves along it at most: held as at rest
+      if (contact.sliding) held_velocity = velocity_ - contact.normal * dot(velocity_, contact.normal);
+    }
+    if (!is_finite(held) || !is_finite(contact.force_N) || !is_finite(contact.torque_N_m)) {
+      held = x, held_velocity = velocity_, contact = {};
+      ++rep_.non_finite_rejected;
+    }
+  }
+  if (contact.touching) ++rep_.contact_ticks;
+
   // ---- newest simulation output ------------------------------------------------------------------
   if (shared_.output.update()) {
     const SimOutput& o = shared_.output.front();
@@ -113,11 +135,13 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     if (o.valid && (!have_sim_ || o.step != last_step_) && o.command_stamp_ns >= session_start_ns_) {
       SimOutput clean = o;
       if (!is_finite(o.force_N) || !is_finite(o.proxy_position) || !is_finite(o.proxy_velocity)) {
-        clean.force_N = clean.proxy_velocity = {};
-        clean.proxy_position = sample_.pose.position;  // no coupling force
+        clean.force_N = clean.proxy_velocity = clean.torque_N_m = {};
+        clean.proxy_position = held;  // no coupling force
         ++rep_.non_finite_rejected;
       }
+      if (!is_finite(clean.torque_N_m)) clean.torque_N_m = {}, ++rep_.non_finite_rejected;
       renderer_.add(clean, now);
+      sim_torque_ = clean.torque_N_m;
       have_sim_ = true;
       last_step_ = o.step;
       sim_published_ns_ = o.published_ns;
@@ -127,10 +151,24 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const double sim_age = have_sim_ ? double(now - sim_published_ns_) * 1e-9 : -1;
 
   // ---- force: renderer, watchdog, limiter -------------------------------------------------------
-  const Vec3 target = renderer_.render(x, velocity_, now);
+  // The paste's force (through the coupling from the held proxy, or directly) and the contact's.
+  const Vec3 target = renderer_.render(held, held_velocity, now) + contact.force_N;
   const double gain = watchdog_.update(sim_age, pose_age, dt);
   const Vec3 before = limiter_.last();
   const ForceLimiter::Result lim = limiter_.apply(target * gain, dt);
+  // Torque for a device that renders it: the paste's and the contact's, within the profile's limit
+  // and moving by at most a tenth of it a tick; none for a 3-DoF device.
+  Vec3 torque;
+  if (opt_.profile.max_torque_N_m > 0) {
+    torque = (sim_torque_ + contact.torque_N_m) * gain;
+    const double cap = opt_.profile.max_torque_N_m, mag = norm(torque);
+    if (!std::isfinite(mag)) torque = {};
+    else if (mag > cap) torque *= cap / mag;
+    const Vec3 step = torque - torque_;
+    const double step_cap = 0.1 * cap, step_mag = norm(step);
+    if (step_mag > step_cap) torque = torque_ + step * (step_cap / step_mag);
+  }
+  torque_ = torque;
   std::uint32_t status = 0;
   if (watchdog_.sim_stale()) status |= proto::kSimStale, ++rep_.sim_stale_ticks;
   if (watchdog_.pose_stale()) status |= proto::kPoseStale, ++rep_.pose_stale_ticks;
@@ -145,17 +183,17 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     force_ages_.add(age);
     age_us = std::uint32_t(std::min(age, 4e9));
   }
-  device_.write(now, ForceCommand{lim.force, status, age_us});
+  device_.write(now, ForceCommand{lim.force, torque, status, age_us});
   if (opt_.live) publish_live(now, lim.force, pose_age, sim_age, gain, status);
   rep_.max_force_N = std::max(rep_.max_force_N, norm(lim.force));
   rep_.max_force_step_N = std::max(rep_.max_force_step_N, norm(lim.force - before));
 
   // ---- tool command for the simulation ----------------------------------------------------------
-  const Vec3 tool = renderer_.tool_position(x, now);
+  const Vec3 tool = renderer_.tool_position(held, now);
   if (sample_.valid) {
     ToolCommand& c = shared_.command.back();
-    c.pose = sample_.pose;
-    c.velocity = velocity_;
+    c.pose = {held, sample_.pose.orientation};
+    c.velocity = held_velocity;
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
     c.dispense_presses = dispense_presses_;
@@ -174,6 +212,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     r.force = lim.force;
     r.target = target;
     r.proxy_position = tool;
+    r.contact_proxy = held;
+    r.contact_force = contact.force_N;
+    r.torque = torque;
     r.gain = gain;
     r.status = status;
     r.pose_sequence = sample_.sequence;
@@ -189,6 +230,8 @@ void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
   sample_.buttons = fresh.buttons;  // a button held as the session starts is not a press
   watchdog_.restart();
   renderer_.restart();
+  contact_.reset(opt_.workspace.to_scene(fresh.pose.position));
+  sim_torque_ = torque_ = {};
   have_sim_ = false;
   session_start_ns_ = now;
   SessionStart& s = shared_.sessions.back();

@@ -9,6 +9,7 @@
 
 #include "dentsph/limits.hpp"
 
+#include "dentsph/contact.hpp"
 #include "dentsph/haptics.hpp"
 #include "haptics/force_limiter.hpp"
 #include "haptics/force_renderer.hpp"
@@ -45,6 +46,7 @@ class HapticLoop {
   ForceRenderer renderer_;
   Watchdog watchdog_;
   ForceLimiter limiter_;
+  HardContact contact_;  // the tooth, band and set paste, at this loop's rate
   DurationHistogram periods_, force_ages_;
   std::vector<HapticSample> record_;
   std::size_t recorded_ = 0;
@@ -63,6 +65,8 @@ class HapticLoop {
   bool have_sim_ = false;
   std::uint64_t last_step_ = 0;
   std::int64_t sim_published_ns_ = 0, sim_command_stamp_ns_ = 0;
+  Vec3 torque_;      // the last torque sent
+  Vec3 sim_torque_;  // the newest simulation output's
   HapticReport rep_;
   double last_period_us_ = 0, recent_max_us_ = 0;  // for HapticLive
   std::int64_t recent_start_ns_ = 0;

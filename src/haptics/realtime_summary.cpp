@@ -64,7 +64,14 @@ std::string realtime_json(const RealtimeResult& r) {
                  {"max_force_step_N", h.max_force_step_N},
                  {"profile", {{"name", h.profile.name},
                               {"max_force_N", h.profile.max_force_N},
-                              {"max_force_rate_N_per_s", h.profile.max_force_rate_N_per_s}}},
+                              {"max_force_rate_N_per_s", h.profile.max_force_rate_N_per_s},
+                              {"max_torque_N_m", h.profile.max_torque_N_m},
+                              {"contact_stiffness_N_per_m", h.profile.contact.stiffness_N_per_m},
+                              {"contact_damping_N_s_per_m", h.profile.contact.damping_N_s_per_m},
+                              {"contact_friction", h.profile.contact.friction}}},
+                 {"hard_contact", {{"ticks", h.contact_ticks},
+                                   {"rebuilds", h.contact_rebuilds},
+                                   {"build_max_ms", h.contact_build_max_ms}}},
                  {"mode", r.recording.mode},
                  {"force_scale", r.recording.force_scale},
                  {"limits", {{"magnitude_limited_ticks", h.magnitude_limited_ticks},
@@ -116,6 +123,8 @@ std::string realtime_report(const RealtimeResult& r) {
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
       "force in air (no tool force for {:.0f} ms): mean {:.3f} N, p95 {:.3f} N over {} ticks; in contact: mean {:.3f} N, "
       "p95 {:.3f} N over {} ticks\n"
+      "hard contact (tooth, band, set paste; {:.0f} N/m, friction {:.2f}): {} ticks touching, field rebuilt {} times "
+      "(longest {:.1f} ms)\n"
       "{}"
       "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
       "dispensed by the button ({} presses over {} a second refused)\n"
@@ -125,7 +134,8 @@ std::string realtime_report(const RealtimeResult& r) {
       h.force_age_p99_us, h.max_force_N, h.max_force_step_N, h.magnitude_limited_ticks, h.rate_limited_ticks,
       h.watchdog_trips, h.zero_gain_ticks, h.free_air.window_s * 1e3, h.free_air.free_mean_N, h.free_air.free_p95_N,
       h.free_air.free_ticks, h.free_air.contact_mean_N, h.free_air.contact_p95_N, h.free_air.contact_ticks,
-      spectrum_line(h.force_spectrum), r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
+      h.profile.contact.stiffness_N_per_m, h.profile.contact.friction, h.contact_ticks, h.contact_rebuilds,
+      h.contact_build_max_ms, spectrum_line(h.force_spectrum), r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
       r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, h.dispense_presses_refused,
       limits::max_dispense_presses_per_s, r.consumer.frames, r.consumer.rate_hz);
 }

@@ -21,6 +21,7 @@
 #include "dentsph/limits.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/consumer_loop.hpp"
+#include "haptics/contact_loop.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "haptics/sim_loop.hpp"
 #include "io/preview.hpp"
@@ -72,13 +73,21 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   RealtimeResult res;
   haptics::Snapshot empty;
   empty.positions.resize(std::size_t(core.state().size()) * 2 + 1024);  // room for dispensed increments
-  haptics::RuntimeShared shared(empty);
+  // The hard contact's field (the tooth, the band, set paste) and the instrument's shape, built
+  // before the threads start; rebuilt by the contact loop when paste sets.
+  haptics::ContactWorld world;
+  world.field = scene_contact_field(scene);
+  world.shape = instrument_contact_shape(scene, core.state());
+  haptics::RigidInput rigid;
+  rigid.particles.reserve(core.state().size() * 2 + 1024);
+  haptics::RuntimeShared shared(empty, world, rigid);
   haptics::HapticLoop haptic(device, opt, shared);
   // The simulation's virtual coupling hears of a new device session from the haptic loop.
   RealtimeOptions sim_opt = opt;
   sim_opt.coupling.sessions = &shared.sessions;
-  haptics::SimLoop sim(core, sim_opt, force_scale, shared);
+  haptics::SimLoop sim(core, sim_opt, force_scale, shared, scene_rigid_band(scene));
   haptics::ConsumerLoop consumer(opt, shared);
+  haptics::ContactLoop contact(shared, world);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
   std::thread ht([&] { haptic.run(t0); });
@@ -90,6 +99,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
     res.haptic.realtime_priority = pthread_setschedparam(ht.native_handle(), SCHED_FIFO, &sp) == 0;
   }
   std::thread ct([&] { consumer.run(t0); });
+  std::thread kt([&] { contact.run(); });
   // The simulation (this thread) ahead of ordinary work too, but without real-time priority: it
   // runs flat out when behind, and must not take a core from everything else. Restored after.
   const int tid = int(gettid());
@@ -114,6 +124,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   }
   ht.join();
   ct.join();
+  kt.join();
   if (reniced) setpriority(PRIO_PROCESS, id_t(tid), old_nice);
   const double wall = double(haptics::now_ns() - t0) * 1e-9;
 
@@ -121,6 +132,8 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.haptic = haptic.report();
   res.haptic.realtime_priority = priority;
   res.haptic.profile = opt.profile;
+  res.haptic.contact_rebuilds = contact.rebuilds();
+  res.haptic.contact_build_max_ms = contact.build_max_ms();
   res.sim = sim.report();
   res.consumer = consumer.report();
   res.device_name = device.name();

@@ -21,11 +21,14 @@ struct Snapshot {
 };
 
 struct RuntimeShared {
-  explicit RuntimeShared(const Snapshot& empty_snapshot) : snapshots(empty_snapshot) {}
+  RuntimeShared(const Snapshot& empty_snapshot, const ContactWorld& world, const RigidInput& rigid)
+      : snapshots(empty_snapshot), contact(world), rigid(rigid) {}
   TripleBuffer<ToolCommand> command;  // haptic -> simulation
   TripleBuffer<SimOutput> output;     // simulation -> haptic
   TripleBuffer<Snapshot> snapshots;   // simulation -> consumer
   TripleBuffer<SessionStart> sessions;  // haptic -> simulation's virtual coupling
+  TripleBuffer<ContactWorld> contact;   // contact loop -> haptic: the rigid surfaces and the instrument
+  TripleBuffer<RigidInput> rigid;       // simulation -> contact loop: what is rigid, the instrument
   std::atomic<bool> stop{false};
   std::atomic<bool> device_finished{false};
 };

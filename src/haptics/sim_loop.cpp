@@ -6,6 +6,7 @@
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/protocol.hpp"
 #include "haptics/clock.hpp"
+#include "haptics/free_path.hpp"
 #include "haptics/virtual_coupling.hpp"
 
 namespace dentsph::haptics {
@@ -20,9 +21,37 @@ int publish_every(double dt_s, double haptic_rate_hz) {
   return 1;
 }
 
-SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared)
-    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6) {
+SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared,
+                 std::vector<Vec3> band)
+    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6), band_(std::move(band)) {
   steps.reserve(1 << 16);
+}
+
+void SimLoop::publish_rigid(std::int64_t now) {
+  if (now - rigid_checked_ns_ < kRigidCheckNs) return;
+  rigid_checked_ns_ = now;
+  // A signature of the set paste's places and the instrument's particles: it changes when paste
+  // sets or shrinks, or the instrument is switched.
+  const State& s = sim_.state();
+  double sig = 0;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    const std::uint32_t id = s.id[i];
+    if (s.role[i] == Role::tool) sig += 7 * s.anchor[i].x + 11 * s.anchor[i].y + 13 * s.anchor[i].z + 1;
+    else if (s.role[i] == Role::boundary && id < s.cure.rigid.size() && s.cure.rigid[id])
+      sig += s.pos[i].x + 3 * s.pos[i].y + 5 * s.pos[i].z + 17;
+  }
+  if (sig == rigid_signature_ && rigid_version_ > 0) return;
+  rigid_signature_ = sig;
+  RigidInput& in = shared_.rigid.back();
+  rigid_particles(s, band_, in.particles);
+  in.tool.clear();
+  for (std::uint32_t i = 0; i < s.size(); ++i)
+    if (s.role[i] == Role::tool) in.tool.push_back(s.anchor[i]);
+  const Scene& sc = sim_.scene();
+  in.tool_spacing = sc.instrument_spacing > 0 ? sc.instrument_spacing : sc.material_spacing;
+  if (!(in.tool_spacing > 0)) in.tool_spacing = 0.5 * sim_.model().kernel.h;
+  in.version = ++rigid_version_;
+  shared_.rigid.publish();
 }
 
 void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop) {
@@ -81,13 +110,26 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
     }
     sim_.apply_due_events([&](std::size_t i) { events.push_back({state.steps, std::uint32_t(i)}); });
     Pose pose = state.tool_pose;  // without a device pose yet, the tool stays where it is
+    bool free = false;
     if (cmd.valid) {
       Vec3 tool = cmd.pose.position;
       if (opt_.mode == ForceMode::coupling) {
         // The proxy: pulled by the coupling to the device, pushed by the tool force of the last
         // step, over this step's dt.
         if (!proxy_started) proxy.reset(tool), proxy_started = true;
-        proxy.step(cmd.pose.position, cmd.velocity, state.tool_wrench.force * force_scale_, dt);
+        // A free move: no paste within the kernel's reach of the instrument's path from the proxy
+        // to the hand, and the proxy goes there at once; otherwise it goes freely as far as the
+        // path is clear, and on from there under the coupling and the step's speed limit.
+        const Vec3 at = proxy.position();
+        const real share = free_share(state, {opt_.workspace.to_scene(at), state.tool_pose.orientation},
+                                      {opt_.workspace.to_scene(tool), cmd.pose.orientation}, sim_.model().kernel.h, tools_);
+        free = share >= 1;
+        if (free) {
+          proxy.place(tool, cmd.velocity);
+        } else {
+          if (share > 0) proxy.place(at + (tool - at) * share, cmd.velocity);
+          proxy.step(cmd.pose.position, cmd.velocity, state.tool_wrench.force * force_scale_, dt);
+        }
         tool = proxy.position();
       }
       pose = {opt_.workspace.to_scene(tool), cmd.pose.orientation};
@@ -109,6 +151,8 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
     if (state.steps % every == 0) {
       SimOutput& out = shared_.output.back();
       out.force_N = state.tool_wrench.force * force_scale_;
+      out.torque_N_m = state.tool_wrench.torque * (force_scale_ / opt_.workspace.scale);
+      out.free = free;
       out.proxy_position = proxy_started ? proxy.position() : cmd.pose.position;
       out.proxy_velocity = proxy_started ? proxy.velocity() : Vec3{};
       out.step = state.steps;
@@ -118,6 +162,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       out.valid = true;
       shared_.output.publish();
     }
+    publish_rigid(now);
     if (snapshot_ns > 0 && now >= next_snapshot) {
       publish_snapshot(now);
       next_snapshot = std::max(next_snapshot + snapshot_ns, now);

@@ -26,7 +26,9 @@ int publish_every(double dt_s, double haptic_rate_hz);
 
 class SimLoop {
  public:
-  SimLoop(Simulation& sim, const RealtimeOptions& options, double force_scale, RuntimeShared& shared);
+  // `band`: the scene's matrix band (scene_rigid_band), rigid with the set paste.
+  SimLoop(Simulation& sim, const RealtimeOptions& options, double force_scale, RuntimeShared& shared,
+          std::vector<Vec3> band = {});
   // Runs on the calling thread from t0_ns until shared.stop is set or should_stop(now) says so
   // (then it sets shared.stop), or the simulation diverges.
   void run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& should_stop);
@@ -37,6 +39,9 @@ class SimLoop {
 
  private:
   void publish_snapshot(std::int64_t now_ns);
+  // Sends the contact loop what is rigid and the instrument when they changed (at most every
+  // kRigidCheckNs of wall time).
+  void publish_rigid(std::int64_t now_ns);
 
   Simulation& sim_;
   RealtimeOptions opt_;
@@ -45,6 +50,12 @@ class SimLoop {
   DurationHistogram step_times_;
   SimReport rep_;
   std::int64_t t0_ns_ = 0, end_ns_ = 0;
+  std::vector<Vec3> band_;
+  std::vector<std::uint32_t> tools_;  // free_share's scratch
+  double rigid_signature_ = 0;
+  std::uint64_t rigid_version_ = 0;
+  std::int64_t rigid_checked_ns_ = 0;
+  static constexpr std::int64_t kRigidCheckNs = 10'000'000;
 };
 
 }  // namespace dentsph::haptics

@@ -17,6 +17,15 @@ VirtualCoupling::VirtualCoupling(const CouplingParams& p) : p_(p) {
         "virtual coupling: stiffness and proxy mass must be positive, damping and drag non-negative, all finite");
 }
 
+void VirtualCoupling::place(const Vec3& position, const Vec3& velocity) {
+  if (!is_finite(position) || !is_finite(velocity)) return;
+  x_ = position;
+  v_ = velocity;
+  const double speed = norm(v_);
+  if (p_.max_speed_m_per_s > 0 && speed > p_.max_speed_m_per_s) v_ *= p_.max_speed_m_per_s / speed;
+  sampled_ = false;
+}
+
 void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
   if (p_.sessions && p_.sessions->update() && p_.sessions->front().session != session_) {
     session_ = p_.sessions->front().session;

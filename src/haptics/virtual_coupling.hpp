@@ -33,6 +33,10 @@ class VirtualCoupling {
  public:
   explicit VirtualCoupling(const CouplingParams& p);
   void reset(const Vec3& position) { x_ = position, v_ = {}, sampled_ = false, k_tool_ = 0; }
+  // Puts the proxy at `position` moving at `velocity` (at most the speed limit): a free move,
+  // where nothing within reach of the instrument's path holds it back (sim_loop.cpp). The tool
+  // force's stiffness is sampled afresh from there.
+  void place(const Vec3& position, const Vec3& velocity);
   // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
   // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state. A new
   // device session announced on CouplingParams::sessions first puts the proxy where that session's

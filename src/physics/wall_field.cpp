@@ -94,20 +94,25 @@ WallField::WallField(const std::function<real(const Vec3&)>& distance, Vec3 lo, 
 }
 
 bool WallField::sample(const Vec3& p, real& distance, Vec3& gradient) const {
-  const real g[3] = {(p.x - origin_.x) * inv_cell_, (p.y - origin_.y) * inv_cell_, (p.z - origin_.z) * inv_cell_};
+  return sample_grid(phi_, n_, origin_, inv_cell_, p, distance, gradient);
+}
+
+bool sample_grid(std::span<const float> phi, const int n[3], const Vec3& origin, real inv_cell, const Vec3& p,
+                 real& distance, Vec3& gradient) {
+  const real g[3] = {(p.x - origin.x) * inv_cell, (p.y - origin.y) * inv_cell, (p.z - origin.z) * inv_cell};
   int c[3];
   real f[3];
   for (int a = 0; a < 3; ++a) {
-    if (!(g[a] >= 0) || !(g[a] <= real(n_[a] - 1))) return false;  // outside, or not a number
-    c[a] = std::min(int(g[a]), n_[a] - 2);
+    if (!(g[a] >= 0) || !(g[a] <= real(n[a] - 1))) return false;  // outside, or not a number
+    c[a] = std::min(int(g[a]), n[a] - 2);
     f[a] = g[a] - real(c[a]);
   }
-  const std::size_t sx = 1, sy = std::size_t(n_[0]), sz = sy * std::size_t(n_[1]);
+  const std::size_t sx = 1, sy = std::size_t(n[0]), sz = sy * std::size_t(n[1]);
   const std::size_t base = std::size_t(c[2]) * sz + std::size_t(c[1]) * sy + std::size_t(c[0]);
   real v[2][2][2];
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) v[k][j][i] = real(phi_[base + k * sz + j * sy + i * sx]);
+      for (int i = 0; i < 2; ++i) v[k][j][i] = real(phi[base + k * sz + j * sy + i * sx]);
   // Trilinear: along x, then y, then z; the gradient from the same corners.
   real x0[2][2], dx[2][2];
   for (int k = 0; k < 2; ++k)
@@ -118,9 +123,9 @@ bool WallField::sample(const Vec3& p, real& distance, Vec3& gradient) const {
   const real y0 = x0[0][0] + f[1] * (x0[0][1] - x0[0][0]), y1 = x0[1][0] + f[1] * (x0[1][1] - x0[1][0]);
   const real gx0 = dx[0][0] + f[1] * (dx[0][1] - dx[0][0]), gx1 = dx[1][0] + f[1] * (dx[1][1] - dx[1][0]);
   distance = y0 + f[2] * (y1 - y0);
-  gradient.x = (gx0 + f[2] * (gx1 - gx0)) * inv_cell_;
-  gradient.y = ((x0[0][1] - x0[0][0]) + f[2] * ((x0[1][1] - x0[1][0]) - (x0[0][1] - x0[0][0]))) * inv_cell_;
-  gradient.z = (y1 - y0) * inv_cell_;
+  gradient.x = (gx0 + f[2] * (gx1 - gx0)) * inv_cell;
+  gradient.y = ((x0[0][1] - x0[0][0]) + f[2] * ((x0[1][1] - x0[1][0]) - (x0[0][1] - x0[0][0]))) * inv_cell;
+  gradient.z = (y1 - y0) * inv_cell;
   return true;
 }
 

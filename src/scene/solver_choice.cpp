@@ -98,18 +98,22 @@ void shape_instruments(Scene& scene) {
 }
 
 void attach_walls(Scene& scene) {
-  if (scene.model.solver != Solver::iisph || !scene.tooth || !(scene.material_spacing > 0)) {
+  if (scene.model.solver != Solver::iisph) {
     scene.model.walls.reset();
     return;
   }
-  if (scene.model.walls) return;
+  if (!scene.model.walls) scene.model.walls = tooth_wall_field(scene);
+}
+
+std::shared_ptr<const WallField> tooth_wall_field(const Scene& scene, bool whole_tooth) {
+  if (!scene.tooth || !(scene.material_spacing > 0)) return nullptr;
   Vec3 lo{inf, inf, inf}, hi = -lo;
   for (const ParticleInit& p : scene.particles)
     if (p.role == Role::boundary) {
       lo = vmin(lo, p.pos);
       hi = vmax(hi, p.pos);
     }
-  if (!(lo.x <= hi.x)) return;  // no walls
+  if (!(lo.x <= hi.x)) return nullptr;  // no walls
   const real h = scene.model.kernel.h, s = scene.material_spacing;
   const Vec3 pad{h, h, h};
   // Over the lining's box grown by h and the whole domain, where paste may be: overfill spreads
@@ -120,13 +124,18 @@ void attach_walls(Scene& scene) {
     lo = vmin(lo, scene.model.domain_min);
     hi = vmax(hi, scene.model.domain_max);
   }
+  if (whole_tooth) {  // the whole crown and a margin the instrument's ball reaches
+    const Bounds b = scene.tooth->tooth().bounds();
+    lo = vmin(lo, b.min - pad * 2);
+    hi = vmax(hi, b.max + pad * 2);
+  }
   const Vec3 span = hi - lo;
   // Cells of half a spacing, larger where the box would need more than kMaxWallNodes corners (a
   // scene far larger than a tooth's: the field's cost stays that of a large tooth's).
   const real cell = std::max<real>(0.5 * s, std::cbrt(span.x * span.y * span.z / kMaxWallNodes));
   const PreparedTooth tooth = *scene.tooth;
-  scene.model.walls = std::make_shared<const WallField>([&tooth](const Vec3& p) { return tooth.distance(p).distance; },
-                                                        lo, hi, cell, 0.25 * s);
+  return std::make_shared<const WallField>([&tooth](const Vec3& p) { return tooth.distance(p).distance; }, lo, hi,
+                                           cell, 0.25 * s);
 }
 
 real scene_tool_speed(const Scene& scene) {

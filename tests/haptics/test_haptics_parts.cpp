@@ -171,9 +171,17 @@ TEST(ForceLimiter, NeverSendsNonFiniteOrTooLargeOrTooSudden) {
   for (int k = 0; k < 20; ++k) lim.apply({3, 4, 0}, dt);
   EXPECT_EQ(lim.apply({3, 4, 0}, dt).force, (Vec3{3, 4, 0}));
   EXPECT_TRUE(lim.apply({nan, 0, 0}, dt).non_finite);
-  EXPECT_THROW(haptics::ForceLimiter(DeviceProfile{"bad", -1, 10}), std::invalid_argument);
+  DeviceProfile bad = falcon;
+  bad.max_force_N = -1;
+  EXPECT_THROW(haptics::ForceLimiter{bad}, std::invalid_argument);
   EXPECT_THROW(device_profile("phantom"), std::invalid_argument);
   EXPECT_EQ(device_profile("omega").max_force_N, 12.0);
+  // The hard contact's settings: CHAI3D's for the Falcon and the omega, torque on the sigma.7 only.
+  EXPECT_EQ(falcon.contact.stiffness_N_per_m, 3000);
+  EXPECT_EQ(falcon.contact.damping_N_s_per_m, 20);
+  EXPECT_EQ(device_profile("omega").contact.stiffness_N_per_m, 5000);
+  EXPECT_EQ(falcon.max_torque_N_m, 0);
+  EXPECT_GT(device_profile("sigma7").max_torque_N_m, 0);
 }
 
 TEST(Watchdog, RampsDownOnAFaultAndUpAfterRecovery) {
@@ -403,7 +411,7 @@ TEST(HapticLoop, ScreensNonFiniteSimulationOutput) {
     RealtimeOptions o;
     o.mode = mode;
     o.record_capacity_s = 40;  // a loaded host may stretch the two phases well past their 600 ms
-    haptics::RuntimeShared shared{haptics::Snapshot{}};
+    haptics::RuntimeShared shared{haptics::Snapshot{}, haptics::ContactWorld{}, haptics::RigidInput{}};
     HoldDevice device;
     haptics::HapticLoop loop(device, o, shared);
     std::thread haptic([&] { loop.run(haptics::now_ns()); });

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "dentsph/contact.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/vec3.hpp"
 
@@ -16,15 +17,20 @@ namespace dentsph {
 
 struct Scene;
 
-// What a device can render safely.
+// What a device can render safely, and how hard its hard contact is.
 struct DeviceProfile {
   std::string name = "falcon";
   double max_force_N = 9.0;               // magnitude limit
   double max_force_rate_N_per_s = 1000;   // limit on |dF/dt| (1 N per tick at 1 kHz)
+  double max_torque_N_m = 0;              // 0: the device renders no torque (3-DoF output)
+  ContactParams contact;                  // the hard contact's spring, damper and friction
 };
 // "falcon" (Novint Falcon: 9 N), "omega" (Force Dimension omega.x: 12 N), "touch" (3D Systems
-// Touch: 3.3 N). Throws std::invalid_argument naming the known profiles otherwise.
+// Touch: 3.3 N), "sigma7" (Force Dimension sigma.7: 20 N and 0.4 N m of torque). Throws
+// std::invalid_argument naming the known profiles otherwise.
 DeviceProfile device_profile(const std::string& name);
+// The profiles' names, for the command line.
+const char* device_profile_names();
 
 // The device's workspace in the scene: scene position = origin + scale * device position
 // (device frame in m, axes aligned with the scene's). Forces need no map: the runtime's force
@@ -53,6 +59,8 @@ struct DeviceSample {
 
 struct ForceCommand {
   Vec3 force_N;                // finite, within the profile's limits
+  Vec3 torque_N_m;             // about the tool's origin; finite, within the profile's torque limit (zero
+                               // for a device without torque output)
   std::uint32_t status = 0;    // haptic_protocol::ForceStatus bits
   std::uint32_t force_age_us = 0;
 };

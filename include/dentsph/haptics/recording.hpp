@@ -28,6 +28,9 @@ struct HapticSample {
   Vec3 force;                  // N, sent to the device (after limits and watchdog)
   Vec3 target;                 // N, the renderer's force before gain and limits
   Vec3 proxy_position;         // m, device frame (virtual coupling; the device's in direct mode)
+  // The hard contact (contact.hpp): its proxy (m, device frame; the device's position in air) and
+  // force (N, before gain and limits), and the torque sent (N m). Kept in memory, not in haptic.csv.
+  Vec3 contact_proxy, contact_force, torque;
   double gain = 0;             // watchdog gain in [0, 1]
   std::uint32_t status = 0;    // haptic_protocol::ForceStatus bits
   std::uint32_t pose_sequence = 0;

