@@ -49,7 +49,7 @@ void SimSession::reset() {
   diverged_ = false;
   force_log_.clear();
   contact_.reset(sim_->state().tool_pose_applied.position);
-  contact_rigid_count_ = contact_tool_count_ = ~std::size_t(0);  // the field and shape made again
+  contact_stale_ = true;
   steps_.store(0, std::memory_order_release);
 }
 
@@ -62,6 +62,7 @@ void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions opti
   // One increment for the D key and the device's button, the one the recording replays.
   rt_options_.dispense_volume = opt_.dispense_volume;
   rt_options_.backend = opt_.backend;
+  rt_options_.contact_field = std::make_shared<const ContactField>(contact_field_);  // made once, for the mouse
   force_scale_ = rt_options_.force_scale.value_or(scene_.force_scale);
 }
 
@@ -111,17 +112,14 @@ bool SimSession::latest(Snapshot& out) const {
 Vec3 SimSession::held_by_contact(const Pose& pose) {
   if (!contact_field_.has_tooth() && !contact_field_.has_grid()) return pose.position;
   const State& st = sim_->state();
-  if (st.steps % kContactCheckSteps == 0 || contact_rigid_count_ == ~std::size_t(0)) {
-    std::size_t tools = 0;
-    for (std::uint32_t i = 0; i < st.size(); ++i) tools += st.role[i] == Role::tool;
-    rigid_particles(st, contact_band_, contact_rigid_);
-    if (contact_rigid_.size() != contact_rigid_count_) {
+  if (contact_stale_ || st.steps % kContactCheckSteps == 0) {
+    const double sig = contact_signature(st);
+    if (contact_stale_ || sig != contact_signature_) {
+      rigid_particles(st, contact_band_, contact_rigid_);
       contact_field_.set_particles(contact_rigid_);
-      contact_rigid_count_ = contact_rigid_.size();
-    }
-    if (tools != contact_tool_count_) {
       contact_shape_ = instrument_contact_shape(scene_, st);
-      contact_tool_count_ = tools;
+      contact_signature_ = sig;
+      contact_stale_ = false;
     }
   }
   return contact_.update(contact_field_, contact_shape_, pose.position, pose.orientation, {}).proxy;

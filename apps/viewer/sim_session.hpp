@@ -183,7 +183,8 @@ class SimSession {
   std::vector<Vec3> contact_band_, contact_rigid_;
   ContactShape contact_shape_;
   HardContact contact_;
-  std::size_t contact_rigid_count_ = 0, contact_tool_count_ = 0;
+  double contact_signature_ = 0;
+  bool contact_stale_ = true;  // the field and shape to be made again (a reset)
   static constexpr std::uint64_t kContactCheckSteps = 20;
   std::string run_error_;
   std::uint64_t live_ticks0_ = 0;

@@ -56,11 +56,21 @@ struct ContactShape {
 // `shank_radius` (m; 0: no shank), a quarter of their radius apart.
 ContactShape instrument_contact_shape(std::span<const Vec3> points, real spacing, real shank_length = 12e-3,
                                       real shank_radius = 0.35e-3);
-// The shape of the instrument `state` holds now (its tool particles' anchors), at the scene's
-// instrument spacing (the material spacing where the scene has none).
+// The spacing of `scene`'s instrument particles: its instrument spacing, else its material
+// spacing, else half the kernel's support.
+real instrument_contact_spacing(const Scene& scene);
+// The tool frame places of the instrument `state` holds now (its tool particles' anchors), into
+// `out` (cleared first).
+void tool_anchors(const State& state, std::vector<Vec3>& out);
+// The shape of the instrument `state` holds now, at instrument_contact_spacing.
 ContactShape instrument_contact_shape(const Scene& scene, const State& state);
+// What the contact's field and shape depend on in `state`, in one number: it changes when paste
+// sets or shrinks, or the instrument is switched (a weighted sum of the set paste's places and the
+// instrument's anchors).
+double contact_signature(const State& state);
 
-// The signed distance to everything rigid, in the scene frame (m; negative inside). Copies share
+// The signed distance to everything rigid, in the scene frame (m; negative inside). The tooth's
+// field must hold the whole tooth (tooth_wall_field(scene, true)). Copies share
 // the tooth's field and copy the particles' grid (no allocation when copied onto a field of the
 // same grid: what the runtime's exchange relies on).
 class ContactField {
@@ -83,7 +93,9 @@ class ContactField {
     Vec3 normal;           // unit, out of that surface (zero where it has no direction)
     bool tooth = false;    // the nearest surface is the tooth's (else particles')
   };
-  // The distance at p; `tooth` and `particles` choose which surfaces count.
+  // The distance at p; `tooth` and `particles` choose which surfaces count. Outside a grid's box
+  // that part's distance is the distance to its box (every surface it holds lies inside it), so
+  // the result is never more than the true distance: what the hard contact's broad phase needs.
   Sample sample(const Vec3& p, bool tooth = true, bool particles = true) const;
   bool has_tooth() const { return bool(tooth_); }
   bool has_grid() const { return !phi_.empty(); }
@@ -91,7 +103,7 @@ class ContactField {
 
  private:
   std::shared_ptr<const WallField> tooth_;
-  Vec3 origin_;
+  Vec3 origin_, hi_;  // the particles' grid's box
   real cell_ = 0, inv_cell_ = 0, radius_ = 0, far_ = 0;
   int n_[3] = {0, 0, 0};
   std::size_t particles_ = 0;
@@ -123,8 +135,8 @@ struct ContactResult {
 
 class HardContact {
  public:
-  // `scale`: scene m per device m (WorkspaceMap::scale); `max_spheres`: the most spheres a shape
-  // may have without allocation.
+  // `scale`: scene m per device m (WorkspaceMap::scale); `max_spheres`: the room reserved for a
+  // shape's spheres (update() allocates nothing; spheres beyond it are left out).
   explicit HardContact(const ContactParams& params = {}, double scale = 1, std::size_t max_spheres = 4096);
   // Puts the proxy at `position` (scene m) with nothing touched.
   void reset(const Vec3& position);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -117,6 +118,9 @@ struct RealtimeOptions {
   std::function<void(std::span<const Vec3> positions, double sim_time)> on_snapshot;
   // When set, the haptic loop keeps it current (a viewer's live panel).
   HapticLive* live = nullptr;
+  // The hard contact's field when the caller has made it (the viewer, for its mouse): built from
+  // the scene otherwise (scene_contact_field: the whole tooth's distance, 0.3 to 0.6 s).
+  std::shared_ptr<const ContactField> contact_field;
   // Called on the simulation thread before every step, after the procedure's events, never on the
   // haptic thread: a viewer applies its edits (dispense, switch tool) through the Simulation and
   // takes its snapshots here (Simulation::synced). It must not take long. It appends to `recorded`

@@ -47,5 +47,9 @@ DENTSPH_HD constexpr Vec3 vmax(const Vec3& a, const Vec3& b) {
 DENTSPH_HD constexpr bool inside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
   return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
 }
+// The distance from p to the box [lo, hi] (0 inside it).
+DENTSPH_HD inline real box_distance(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  return norm(vmax(vmax(lo - p, p - hi), Vec3{}));
+}
 
 }  // namespace dentsph

@@ -38,6 +38,9 @@ class WallField {
   // The interpolated signed distance at p and its gradient (unnormalised); false outside the grid.
   bool sample(const Vec3& p, real& distance, Vec3& gradient) const;
   real clearance() const { return clearance_; }
+  // The grid's box: outside it, sample() knows nothing.
+  Vec3 lo() const { return origin_; }
+  Vec3 hi() const { return origin_ + Vec3{real(n_[0] - 1), real(n_[1] - 1), real(n_[2] - 1)} * cell_; }
   std::int64_t nodes() const { return std::int64_t(phi_.size()); }
 
   // Moves `pos` out to the clearance and removes the velocity into the wall when `pos` is closer to

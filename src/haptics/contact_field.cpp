@@ -47,12 +47,37 @@ ContactShape instrument_contact_shape(std::span<const Vec3> points, real spacing
   return shape;
 }
 
+real instrument_contact_spacing(const Scene& scene) {
+  if (scene.instrument_spacing > 0) return scene.instrument_spacing;
+  return scene.material_spacing > 0 ? scene.material_spacing : 0.5 * scene.model.kernel.h;
+}
+
+void tool_anchors(const State& state, std::vector<Vec3>& out) {
+  out.clear();
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (state.role[i] == Role::tool) out.push_back(state.anchor[i]);
+}
+
 ContactShape instrument_contact_shape(const Scene& scene, const State& state) {
   std::vector<Vec3> points;
-  for (std::uint32_t i = 0; i < state.size(); ++i)
-    if (state.role[i] == Role::tool) points.push_back(state.anchor[i]);
-  const real spacing = scene.instrument_spacing > 0 ? scene.instrument_spacing : scene.material_spacing;
-  return instrument_contact_shape(points, spacing > 0 ? spacing : scene.model.kernel.h * 0.5);
+  tool_anchors(state, points);
+  return instrument_contact_shape(points, instrument_contact_spacing(scene));
+}
+
+namespace {
+bool set_paste(const State& s, std::uint32_t i) {
+  const std::uint32_t id = s.id[i];
+  return s.role[i] == Role::boundary && id < s.cure.rigid.size() && s.cure.rigid[id];
+}
+}  // namespace
+
+double contact_signature(const State& s) {
+  double sig = 0;
+  for (std::uint32_t i = 0; i < s.size(); ++i) {
+    if (s.role[i] == Role::tool) sig += 7 * s.anchor[i].x + 11 * s.anchor[i].y + 13 * s.anchor[i].z + 1;
+    else if (set_paste(s, i)) sig += s.pos[i].x + 3 * s.pos[i].y + 5 * s.pos[i].z + 17;
+  }
+  return sig;
 }
 
 ContactField::ContactField(std::shared_ptr<const WallField> tooth, Vec3 lo, Vec3 hi, real cell, real particle_radius)
@@ -70,6 +95,7 @@ ContactField::ContactField(std::shared_ptr<const WallField> tooth, Vec3 lo, Vec3
     total *= n_[a];
     if (total > kMaxCorners) throw std::invalid_argument("contact field: too many corners; use larger cells");
   }
+  hi_ = origin_ + Vec3{real(n_[0] - 1), real(n_[1] - 1), real(n_[2] - 1)} * cell_;
   far_ = (kSupportRadii - 1) * radius_;  // no particle within the support: the surface is farther than this
   phi_.assign(std::size_t(total), float(far_));
 }
@@ -149,15 +175,20 @@ ContactField::Sample ContactField::sample(const Vec3& p, bool tooth, bool partic
   Sample s;
   real d;
   Vec3 g;
-  if (tooth && tooth_ && tooth_->sample(p, d, g)) {
-    s.distance = d;
-    s.normal = g;
-    s.tooth = true;
+  // Each part: sampled in its grid, else the distance to its box, a lower bound.
+  const auto take = [&](real distance, const Vec3& gradient, bool is_tooth) {
+    if (!(distance < s.distance)) return;
+    s.distance = distance;
+    s.normal = gradient;
+    s.tooth = is_tooth;
+  };
+  if (tooth && tooth_) {
+    if (tooth_->sample(p, d, g)) take(d, g, true);
+    else take(box_distance(p, tooth_->lo(), tooth_->hi()), {}, true);
   }
-  if (particles && !phi_.empty() && sample_grid(phi_, n_, origin_, inv_cell_, p, d, g) && d < s.distance) {
-    s.distance = d;
-    s.normal = g;
-    s.tooth = false;
+  if (particles && !phi_.empty()) {
+    if (sample_grid(phi_, n_, origin_, inv_cell_, p, d, g)) take(d, g, false);
+    else take(box_distance(p, origin_, hi_), {}, false);
   }
   const real len = norm(s.normal);
   s.normal = len > 0 ? s.normal / len : Vec3{};
@@ -198,11 +229,8 @@ ContactField scene_contact_field(const Scene& scene) {
 
 void rigid_particles(const State& state, std::span<const Vec3> band, std::vector<Vec3>& out) {
   out.assign(band.begin(), band.end());
-  const CureState& c = state.cure;
-  for (std::uint32_t i = 0; i < state.size(); ++i) {
-    const std::uint32_t id = state.id[i];
-    if (state.role[i] == Role::boundary && id < c.rigid.size() && c.rigid[id]) out.push_back(state.pos[i]);
-  }
+  for (std::uint32_t i = 0; i < state.size(); ++i)
+    if (set_paste(state, i)) out.push_back(state.pos[i]);
 }
 
 }  // namespace dentsph

@@ -14,7 +14,6 @@ void ContactLoop::run() {
       const std::int64_t t0 = now_ns();
       world_.field.set_particles(in.particles);
       world_.shape = instrument_contact_shape(in.tool, in.tool_spacing);
-      world_.version = in.version;
       shared_.contact.back() = world_;
       shared_.contact.publish();
       ++rebuilds_;

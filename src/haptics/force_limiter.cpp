@@ -12,6 +12,14 @@ Vec3 clamp_magnitude(const Vec3& f, double max_N) {
   return n > max_N ? f * (max_N / n) : f;
 }
 
+DeviceProfile torque_profile(const DeviceProfile& p) {
+  DeviceProfile t = p;
+  t.name = p.name + " (torque)";
+  t.max_force_N = p.max_torque_N_m;
+  t.max_force_rate_N_per_s = 100 * p.max_torque_N_m;
+  return t;
+}
+
 ForceLimiter::ForceLimiter(const DeviceProfile& p) : max_force_(p.max_force_N), max_rate_(p.max_force_rate_N_per_s) {
   if (!(max_force_ > 0) || !std::isfinite(max_force_) || !(max_rate_ > 0) || !std::isfinite(max_rate_))
     throw std::invalid_argument("device profile '" + p.name +

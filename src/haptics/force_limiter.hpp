@@ -25,6 +25,11 @@ class ForceLimiter {
   Vec3 last_;
 };
 
+// The profile whose "force" is the device's torque (N m): its limit, and 100 times the limit a
+// second of change (a tenth a tick at 1 kHz); for a ForceLimiter of the torque. Only for a profile
+// with max_torque_N_m > 0.
+DeviceProfile torque_profile(const DeviceProfile& profile);
+
 // The force with its magnitude capped at max_N (direction kept); zero when not finite.
 Vec3 clamp_magnitude(const Vec3& f, double max_N);
 

@@ -9,7 +9,7 @@
 // so that a proxy moving with the hand in air is not
 // felt as a drag of stiffness x speed x latency (0.075 N at 62.5 mm/s and 3 ms on 400 N/m). A
 // proxy held by the paste has no velocity to carry. Where the newest output was a free move (no
-// paste within reach of the instrument's path: the proxy went where the hand is) the coupling
+// paste or wall particle within reach of the instrument's path: the proxy went where the hand is) the coupling
 // renders nothing, so that a quick move through air drags nothing; on entering paste from such a
 // move the proxy's motion is not carried forward (it has just stopped going with the hand) and the
 // coupling's force ramps in over kEntryRamp, so that the latency of the outputs (the hand a few

@@ -23,9 +23,9 @@ real free_share(const State& s, const Pose& from, const Pose& to, real reach, st
   hi = hi + pad;
   real share = 1;
   for (std::uint32_t j = 0; j < s.size(); ++j) {
-    if (s.role[j] != Role::material) continue;
+    if (s.role[j] == Role::tool) continue;  // paste and walls alike: the tool feels both
     const Vec3& x = s.pos[j];
-    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z)) continue;
+    if (!inside(x, lo, hi)) continue;
     for (std::uint32_t i : tools) {
       // |e + t d|^2 = reach^2 for the first t in [0, share).
       const Vec3 a = from.apply(s.anchor[i]), d = to.apply(s.anchor[i]) - a, e = a - x;

@@ -25,6 +25,7 @@ HapticLoop::HapticLoop(Device& device, const RealtimeOptions& o, RuntimeShared& 
       contact_(o.profile.contact, o.workspace.scale),
       record_(std::size_t(std::max(0.0, o.record_capacity_s) * o.haptic_rate_hz)) {
   rep_.target_rate_hz = o.haptic_rate_hz;
+  if (o.profile.max_torque_N_m > 0) torque_limiter_.emplace(torque_profile(o.profile));
 }
 
 void HapticLoop::run(std::int64_t t0_ns) {
@@ -134,12 +135,12 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     // previous hand: not rendered.
     if (o.valid && (!have_sim_ || o.step != last_step_) && o.command_stamp_ns >= session_start_ns_) {
       SimOutput clean = o;
-      if (!is_finite(o.force_N) || !is_finite(o.proxy_position) || !is_finite(o.proxy_velocity)) {
+      if (!is_finite(o.force_N) || !is_finite(o.torque_N_m) || !is_finite(o.proxy_position) ||
+          !is_finite(o.proxy_velocity)) {
         clean.force_N = clean.proxy_velocity = clean.torque_N_m = {};
         clean.proxy_position = held;  // no coupling force
         ++rep_.non_finite_rejected;
       }
-      if (!is_finite(clean.torque_N_m)) clean.torque_N_m = {}, ++rep_.non_finite_rejected;
       renderer_.add(clean, now);
       sim_torque_ = clean.torque_N_m;
       have_sim_ = true;
@@ -148,7 +149,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
       sim_command_stamp_ns_ = o.command_stamp_ns;
     }
   }
-  const double sim_age = have_sim_ ? double(now - sim_published_ns_) * 1e-9 : -1;
+  // An output published after this tick began (while the tick ran: the hard contact takes tens of
+  // microseconds) is fresh, not of negative age, which the watchdog would take for no output.
+  const double sim_age = have_sim_ ? std::max(0.0, double(now - sim_published_ns_) * 1e-9) : -1;
 
   // ---- force: renderer, watchdog, limiter -------------------------------------------------------
   // The paste's force (through the coupling from the held proxy, or directly) and the contact's.
@@ -156,19 +159,10 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const double gain = watchdog_.update(sim_age, pose_age, dt);
   const Vec3 before = limiter_.last();
   const ForceLimiter::Result lim = limiter_.apply(target * gain, dt);
-  // Torque for a device that renders it: the paste's and the contact's, within the profile's limit
-  // and moving by at most a tenth of it a tick; none for a 3-DoF device.
-  Vec3 torque;
-  if (opt_.profile.max_torque_N_m > 0) {
-    torque = (sim_torque_ + contact.torque_N_m) * gain;
-    const double cap = opt_.profile.max_torque_N_m, mag = norm(torque);
-    if (!std::isfinite(mag)) torque = {};
-    else if (mag > cap) torque *= cap / mag;
-    const Vec3 step = torque - torque_;
-    const double step_cap = 0.1 * cap, step_mag = norm(step);
-    if (step_mag > step_cap) torque = torque_ + step * (step_cap / step_mag);
-  }
-  torque_ = torque;
+  // Torque for a device that renders it: the paste's and the contact's, through the same limits
+  // (torque_profile); none for a 3-DoF device.
+  const Vec3 torque =
+      torque_limiter_ ? torque_limiter_->apply((sim_torque_ + contact.torque_N_m) * gain, dt).force : Vec3{};
   std::uint32_t status = 0;
   if (watchdog_.sim_stale()) status |= proto::kSimStale, ++rep_.sim_stale_ticks;
   if (watchdog_.pose_stale()) status |= proto::kPoseStale, ++rep_.pose_stale_ticks;
@@ -194,6 +188,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     ToolCommand& c = shared_.command.back();
     c.pose = {held, sample_.pose.orientation};
     c.velocity = held_velocity;
+    c.contact_normal = contact.touching ? contact.normal : Vec3{};
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
     c.dispense_presses = dispense_presses_;
@@ -231,7 +226,8 @@ void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
   watchdog_.restart();
   renderer_.restart();
   contact_.reset(opt_.workspace.to_scene(fresh.pose.position));
-  sim_torque_ = torque_ = {};
+  sim_torque_ = {};
+  if (torque_limiter_) torque_limiter_->reset();
   have_sim_ = false;
   session_start_ns_ = now;
   SessionStart& s = shared_.sessions.back();

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "dentsph/limits.hpp"
@@ -47,6 +48,7 @@ class HapticLoop {
   Watchdog watchdog_;
   ForceLimiter limiter_;
   HardContact contact_;  // the tooth, band and set paste, at this loop's rate
+  std::optional<ForceLimiter> torque_limiter_;  // a device that renders torque
   DurationHistogram periods_, force_ages_;
   std::vector<HapticSample> record_;
   std::size_t recorded_ = 0;
@@ -65,7 +67,6 @@ class HapticLoop {
   bool have_sim_ = false;
   std::uint64_t last_step_ = 0;
   std::int64_t sim_published_ns_ = 0, sim_command_stamp_ns_ = 0;
-  Vec3 torque_;      // the last torque sent
   Vec3 sim_torque_;  // the newest simulation output's
   HapticReport rep_;
   double last_period_us_ = 0, recent_max_us_ = 0;  // for HapticLive

@@ -113,13 +113,16 @@ const ContactResult& HardContact::update(const ContactField& field, const Contac
   const real tolerance = 0.25 * min_radius_;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 p = from + offset_[i];
-    const real ct = field.sample(p, true, false).distance - radius_[i];
-    const real cp = field.sample(p, false, true).distance - radius_[i];
+    const ContactField::Sample st = field.sample(p, true, false), sp = field.sample(p, false, true);
+    const real ct = st.distance - radius_[i], cp = sp.distance - radius_[i];
     if (std::min(ct, cp) < move + min_radius_) active_.push_back(std::uint32_t(i));
-    in_tooth = in_tooth || ct < -tolerance;
-    in_particles = in_particles || cp < -tolerance;
-    out_tooth = out_tooth && ct >= 0;
-    out_particles = out_particles && cp >= 0;
+    // Only a sampled distance (one with a normal) says the sphere is inside: outside a grid the
+    // field is a lower bound (the distance to the grid's box), not a penetration.
+    const bool sampled_t = st.normal != Vec3{}, sampled_p = sp.normal != Vec3{};
+    in_tooth = in_tooth || (sampled_t && ct < -tolerance);
+    in_particles = in_particles || (sampled_p && cp < -tolerance);
+    out_tooth = out_tooth && (ct >= 0 || !sampled_t);
+    out_particles = out_particles && (cp >= 0 || !sampled_p);
   }
   ignore_tooth_ = ignore_tooth_ ? !out_tooth : in_tooth;
   ignore_particles_ = ignore_particles_ ? !out_particles : in_particles;

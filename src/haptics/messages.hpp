@@ -16,6 +16,9 @@ struct ToolCommand {
   Pose pose;                  // the device's pose, its position held out of rigid surfaces (the hard
                               // contact's proxy, HardContact): where the instrument may go
   Vec3 velocity;              // m/s, filtered estimate
+  // The hard contact touches a rigid surface at `pose` with this outward normal (zero in air):
+  // the coupling's proxy is kept on its outer side (sim_loop.cpp).
+  Vec3 contact_normal;
   std::int64_t stamp_ns = 0;  // runtime clock when the haptic loop published it
   std::uint32_t sequence = 0; // device pose sequence it came from
   std::uint64_t dispense_presses = 0;  // presses of button 1 since the start (kButtonDispense)
@@ -35,7 +38,7 @@ struct SimOutput {
   Vec3 force_N;                    // device N: force_scale * simulated tool force
   Vec3 torque_N_m;                 // device N m: the same for the torque about the tool's origin
   Vec3 proxy_position, proxy_velocity;  // virtual coupling: the proxy (device frame)
-  // Virtual coupling: no paste was within reach of the instrument's move this step, and the proxy
+  // Virtual coupling: no paste or wall particle was within reach of the instrument's move this step, and the proxy
   // went where the hand is (free move): the coupling renders no force.
   bool free = false;
   std::uint64_t step = 0;          // State::steps after the step
@@ -55,14 +58,12 @@ struct RigidInput {
   std::vector<Vec3> particles;
   std::vector<Vec3> tool;
   real tool_spacing = 0;
-  std::uint64_t version = 0;
 };
 
 // Contact loop -> haptic loop: the field and the instrument's shape the hard contact uses.
 struct ContactWorld {
   ContactField field;
   ContactShape shape;
-  std::uint64_t version = 0;
 };
 
 }  // namespace dentsph::haptics

@@ -76,7 +76,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   // The hard contact's field (the tooth, the band, set paste) and the instrument's shape, built
   // before the threads start; rebuilt by the contact loop when paste sets.
   haptics::ContactWorld world;
-  world.field = scene_contact_field(scene);
+  world.field = opt.contact_field ? *opt.contact_field : scene_contact_field(scene);
   world.shape = instrument_contact_shape(scene, core.state());
   haptics::RigidInput rigid;
   rigid.particles.reserve(core.state().size() * 2 + 1024);

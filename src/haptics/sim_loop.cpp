@@ -30,27 +30,15 @@ SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, 
 void SimLoop::publish_rigid(std::int64_t now) {
   if (now - rigid_checked_ns_ < kRigidCheckNs) return;
   rigid_checked_ns_ = now;
-  // A signature of the set paste's places and the instrument's particles: it changes when paste
-  // sets or shrinks, or the instrument is switched.
   const State& s = sim_.state();
-  double sig = 0;
-  for (std::uint32_t i = 0; i < s.size(); ++i) {
-    const std::uint32_t id = s.id[i];
-    if (s.role[i] == Role::tool) sig += 7 * s.anchor[i].x + 11 * s.anchor[i].y + 13 * s.anchor[i].z + 1;
-    else if (s.role[i] == Role::boundary && id < s.cure.rigid.size() && s.cure.rigid[id])
-      sig += s.pos[i].x + 3 * s.pos[i].y + 5 * s.pos[i].z + 17;
-  }
-  if (sig == rigid_signature_ && rigid_version_ > 0) return;
+  const double sig = contact_signature(s);
+  if (sig == rigid_signature_ && rigid_sent_) return;
   rigid_signature_ = sig;
   RigidInput& in = shared_.rigid.back();
   rigid_particles(s, band_, in.particles);
-  in.tool.clear();
-  for (std::uint32_t i = 0; i < s.size(); ++i)
-    if (s.role[i] == Role::tool) in.tool.push_back(s.anchor[i]);
-  const Scene& sc = sim_.scene();
-  in.tool_spacing = sc.instrument_spacing > 0 ? sc.instrument_spacing : sc.material_spacing;
-  if (!(in.tool_spacing > 0)) in.tool_spacing = 0.5 * sim_.model().kernel.h;
-  in.version = ++rigid_version_;
+  tool_anchors(s, in.tool);
+  in.tool_spacing = instrument_contact_spacing(sim_.scene());
+  rigid_sent_ = true;
   shared_.rigid.publish();
 }
 
@@ -67,6 +55,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   CouplingParams coupling = opt_.coupling;
   coupling.max_speed_m_per_s = sim_.model().iisph.cfl * sim_.model().kernel.h / dt / opt_.workspace.scale;
   VirtualCoupling proxy(coupling);
+  const real reach = std::max(sim_.model().kernel.h, sim_.model().adhesion.B);  // the tool's farthest pair
   bool proxy_started = false;
   std::uint64_t presses_handled = 0, light_presses_handled = 0;
   const real dispense_volume = increment_volume_or_default(sim_.scene(), opt_.dispense_volume);
@@ -117,18 +106,22 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
         // The proxy: pulled by the coupling to the device, pushed by the tool force of the last
         // step, over this step's dt.
         if (!proxy_started) proxy.reset(tool), proxy_started = true;
-        // A free move: no paste within the kernel's reach of the instrument's path from the proxy
-        // to the hand, and the proxy goes there at once; otherwise it goes freely as far as the
-        // path is clear, and on from there under the coupling and the step's speed limit.
+        // A free move: no paste or wall particle within reach of the instrument's path from the proxy to the hand
+        // (the kernel's support, or the adhesion's where a bond reaches farther), and the proxy
+        // goes there at once; otherwise it goes freely as far as the path is clear, and on from
+        // there under the coupling and the step's speed limit.
         const Vec3 at = proxy.position();
         const real share = free_share(state, {opt_.workspace.to_scene(at), state.tool_pose.orientation},
-                                      {opt_.workspace.to_scene(tool), cmd.pose.orientation}, sim_.model().kernel.h, tools_);
+                                      {opt_.workspace.to_scene(tool), cmd.pose.orientation}, reach, tools_);
         free = share >= 1;
         if (free) {
           proxy.place(tool, cmd.velocity);
         } else {
           if (share > 0) proxy.place(at + (tool - at) * share, cmd.velocity);
           proxy.step(cmd.pose.position, cmd.velocity, state.tool_wrench.force * force_scale_, dt);
+          // The hard contact's surface holds the simulated tool too: the coupling's swing does
+          // not carry it into the tooth or set paste.
+          if (cmd.contact_normal != Vec3{}) proxy.keep_outside(cmd.pose.position, cmd.contact_normal);
         }
         tool = proxy.position();
       }

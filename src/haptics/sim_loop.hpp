@@ -53,7 +53,7 @@ class SimLoop {
   std::vector<Vec3> band_;
   std::vector<std::uint32_t> tools_;  // free_share's scratch
   double rigid_signature_ = 0;
-  std::uint64_t rigid_version_ = 0;
+  bool rigid_sent_ = false;
   std::int64_t rigid_checked_ns_ = 0;
   static constexpr std::int64_t kRigidCheckNs = 10'000'000;
 };

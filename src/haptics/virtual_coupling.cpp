@@ -26,6 +26,14 @@ void VirtualCoupling::place(const Vec3& position, const Vec3& velocity) {
   sampled_ = false;
 }
 
+void VirtualCoupling::keep_outside(const Vec3& point, const Vec3& normal) {
+  const double into = dot(x_ - point, normal);
+  if (!(into < 0)) return;
+  x_ -= normal * into;
+  const double vn = dot(v_, normal);
+  if (vn < 0) v_ -= normal * vn;
+}
+
 void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
   if (p_.sessions && p_.sessions->update() && p_.sessions->front().session != session_) {
     session_ = p_.sessions->front().session;

@@ -37,6 +37,9 @@ class VirtualCoupling {
   // where nothing within reach of the instrument's path holds it back (sim_loop.cpp). The tool
   // force's stiffness is sampled afresh from there.
   void place(const Vec3& position, const Vec3& velocity);
+  // Keeps the proxy on the outer side of the plane through `point` with unit `normal` (a rigid
+  // surface the hand's instrument rests on): moved back onto it, its velocity into it removed.
+  void keep_outside(const Vec3& point, const Vec3& normal);
   // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
   // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state. A new
   // device session announced on CouplingParams::sessions first puts the proxy where that session's

@@ -71,7 +71,7 @@ struct PressRun {
 // `release`) goes back out the way it came. The surface is `exact` (the tooth's distance) or, where
 // that is farther, the field's particles.
 inline PressRun press(HardContact& c, const ContactField& field, const ContactShape& shape, const Vec3& start,
-                      const Vec3& dir, real depth, real speed, const DeviceProfile& profile, bool release = true,
+                      const Vec3& dir, real depth, real speed, bool release = true,
                       const PreparedTooth* exact = nullptr) {
   PressRun run;
   const double dt = 1e-3;
@@ -108,13 +108,14 @@ inline PressRun press(HardContact& c, const ContactField& field, const ContactSh
     if (exact && fs.tooth) {
       const SurfacePoint sp = exact->distance(p);
       d = sp.distance, normal = sp.normal;
+    } else if (normal == Vec3{}) {
+      continue;  // outside the field's grids: a lower bound, no surface here
     }
     if (d - s.radius < run.clearance) run.clearance = d - s.radius, run.surface_normal = normal;
   }
   if (release) {
     for (int k = 0; k < in + 100; ++k) run.released = tick(n * speed, false);
   }
-  (void)profile;
   return run;
 }
 

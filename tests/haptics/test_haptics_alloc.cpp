@@ -9,7 +9,9 @@
 #include <thread>
 
 #include "client_process.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/haptics.hpp"
+#include "path_device.hpp"
 #include "press_scene.hpp"
 
 // ThreadSanitizer's runtime defines operator new itself: there the count is not taken.
@@ -114,6 +116,29 @@ TEST(HapticLoop, AllocatesNothingWhileItRuns) {
     EXPECT_EQ(live.ticks.load(), r.haptic.timing.ticks) << "the live figures were kept every tick";
     EXPECT_EQ(g_allocations.load(), 0u) << force_mode_name(mode);
   }
+}
+
+// The same with the hand pressing the built-in crown's empty cavity floor: the hard contact's
+// field, proxy and friction run every tick and allocate nothing either.
+TEST(HapticLoop, AllocatesNothingPressingTheTooth) {
+#ifdef DENTSPH_NO_NEW_COUNT
+  GTEST_SKIP() << "ThreadSanitizer replaces operator new; counted in the other builds";
+#endif
+  Scene scene = default_dental_procedure();
+  scene.events.clear();
+  const ToothFrame& f = scene.tooth->frame();
+  const Vec3 from = f.to_world({0.5e-3, 0, 0.5e-3}), to = f.to_world({0.5e-3, 0, -3.5e-3});
+  RealtimeOptions o;
+  o.force_scale = dental_force_scale;
+  o.record_capacity_s = 5;
+  HapticLive live;
+  o.live = &live;
+  Watched device(std::make_unique<testing::PathDevice>(
+      [=](double t) { return from + (to - from) * std::clamp(t / 0.5, 0.0, 1.0); }, 0.8));
+  const RealtimeResult r = run_realtime(scene, device, o);
+  g_watched = std::thread::id{};
+  EXPECT_GT(r.haptic.contact_ticks, 100u) << "the instrument met the floor";
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 // The same with the UDP bridge, the reference client playing the device from another process:

@@ -12,6 +12,7 @@
 #include "dentsph/contact.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/tools.hpp"
+#include "haptics/force_limiter.hpp"
 
 namespace dentsph {
 namespace {
@@ -77,7 +78,7 @@ TEST_P(HardContactPress, ForceIsStiffnessTimesPenetrationAlongTheNormal) {
   HardContact contact(profile.contact);
   const Vec3 start = f.to_world(GetParam().start_local);
   // Where the ball first touches, going down the axis, and the surface's normal there.
-  testing::PressRun run = testing::press(contact, field, b.shape, start, -f.z, 1e-3, 0.02, profile, true,
+  testing::PressRun run = testing::press(contact, field, b.shape, start, -f.z, 1e-3, 0.02, true,
                                          GetParam().set_paste ? nullptr : &b.tooth());
   ASSERT_TRUE(run.touched) << "the ball reached no surface";
   const ContactResult& r = run.held;
@@ -100,7 +101,8 @@ TEST_P(HardContactPress, ForceIsStiffnessTimesPenetrationAlongTheNormal) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Surfaces, HardContactPress,
-                         ::testing::Values(PressCase{"cavity floor", {0.5e-3, 0, 0.5e-3}, false},
+                         ::testing::Values(PressCase{"enamel beside the cavity", {0, 2.6e-3, 6e-3}, false},
+                                           PressCase{"cavity floor", {0.5e-3, 0, 0.5e-3}, false},
                                            PressCase{"set paste", {0, 0, 0.5e-3}, true}),
                          [](const auto& info) {
                            std::string n = info.param.name;
@@ -113,7 +115,7 @@ TEST(HardContact, SlidingAlongTheFloorMeetsCoulombFriction) {
   const ToothFrame& f = b.tooth().frame();
   const DeviceProfile profile = device_profile("falcon");
   HardContact contact(profile.contact);
-  testing::PressRun run = testing::press(contact, b.field, b.shape, f.to_world({-0.5e-3, 0, 0.5e-3}), -f.z, 0.5e-3, 0.02, profile,
+  testing::PressRun run = testing::press(contact, b.field, b.shape, f.to_world({-0.5e-3, 0, 0.5e-3}), -f.z, 0.5e-3, 0.02,
                                          /*release=*/false);
   ASSERT_TRUE(run.held.touching);
   // Slide 1 mm along the frame's x at 10 mm/s, pressed: once sliding, the force along the floor is
@@ -171,7 +173,7 @@ TEST(HardContact, AnInstrumentInsideSetPasteIsNotThrownOut) {
   EXPECT_EQ(norm(r.proxy - inside), 0);
 }
 
-TEST(HardContact, AllocatesNothingAndStaysFiniteOnBadInput) {
+TEST(HardContact, StaysFiniteOnBadInputAndRefusesBadSettings) {
   const ContactBench& b = ContactBench::get();
   HardContact contact(device_profile("falcon").contact);
   const double nan = std::nan("");
@@ -181,6 +183,30 @@ TEST(HardContact, AllocatesNothingAndStaysFiniteOnBadInput) {
   ContactParams bad;
   bad.stiffness_N_per_m = -1;
   EXPECT_THROW(HardContact{bad}, std::invalid_argument);
+}
+
+// Far from the tooth's and the particles' grids the field is the distance to their boxes: never
+// more than the true distance, so the contact's broad phase does not call a sphere free that a
+// long instrument's shank brings to the tooth.
+TEST(ContactField, OutsideItsGridsIsALowerBound) {
+  const ContactBench& b = ContactBench::get();
+  const ToothFrame& f = b.tooth().frame();
+  for (const Vec3 local : {Vec3{0, 0, 12e-3}, Vec3{20e-3, 0, 0}, Vec3{0, -15e-3, 5e-3}}) {
+    const Vec3 p = f.to_world(local);
+    const real d = b.field.sample(p).distance;
+    EXPECT_LE(d, b.tooth().distance(p).distance + 1e-9);
+    EXPECT_GT(d, 0);
+  }
+}
+
+TEST(HardContact, TorqueIsLimitedLikeTheForce) {
+  // A device that renders torque gets it through a ForceLimiter of torque_profile: the sigma.7's
+  // 0.4 N m, changing by at most 0.04 N m a millisecond.
+  haptics::ForceLimiter lim(haptics::torque_profile(device_profile("sigma7")));
+  EXPECT_NEAR(norm(lim.apply({0, 0, 0.03}, 1e-3).force), 0.03, 1e-12);
+  EXPECT_NEAR(norm(lim.apply({0, 0, 5}, 1e-3).force), 0.07, 1e-12) << "rate";
+  for (int k = 0; k < 20; ++k) lim.apply({0, 0, 5}, 1e-3);
+  EXPECT_NEAR(norm(lim.apply({0, 0, 5}, 1e-3).force), 0.4, 1e-12) << "magnitude";
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "camera.hpp"
 #include "colour_map.hpp"
+#include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
@@ -163,6 +164,28 @@ TEST(SimSession, ScheduledCommandsApplyAtTheirStepsSoRunsRepeat) {
   EXPECT_GT(count(a, Role::material), 48u);  // the increment arrived
   EXPECT_EQ(a.xyz, b.xyz);                   // the same simulation, whatever the timing
   EXPECT_NEAR(a.tool_pose.position.z, 0.06 - 55 * 1e-4 * 0.02, 1e-9);  // followed at 0.02 m/s for 55 steps
+}
+
+// The mouse's instrument stops on the tooth: its target 2 mm below the empty cavity's floor, the
+// tool goes down to the floor and no deeper (the hard contact's proxy, contact.hpp).
+TEST(SimSession, TheMousesInstrumentStopsOnTheTooth) {
+  Scene scene = default_dental_procedure();
+  scene.events.clear();
+  const ToothFrame f = scene.tooth->frame();
+  const PreparedTooth tooth = *scene.tooth;
+  SessionOptions o;
+  o.tool_speed = 0.1;
+  SimSession session(std::move(scene), o);
+  Command move{Command::Kind::tool_target};
+  move.target = f.to_world({0.5e-3, 0, -4e-3});
+  session.post_at(1, move);
+  session.start();
+  const Snapshot s = wait_for(session, [](const Snapshot& x) { return x.steps >= 300; });
+  session.stop();
+  const Vec3 tip = s.tool_pose.position;
+  EXPECT_GT(tooth.distance(tip).distance, 0) << "the tip is outside the tooth";
+  EXPECT_GT(f.to_local(tip).z, -2.0e-3) << "above the floor";
+  EXPECT_LT(f.to_local(tip).z, -1.5e-3) << "it went down to the floor";
 }
 
 // The curing light (the L key, a script's light_on): on over the paste, the paste under it cures,
