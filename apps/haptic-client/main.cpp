@@ -48,7 +48,11 @@ struct Options {
   double rate_hz = 1000, duration_s = 3;
   std::string motion = "press";  // press | hold | circle | still
   double depth_m = 0.03, period_s = 1.0;
+  std::vector<double> axis{0, 0, -1};  // direction of press and hold (normalised)
+  std::vector<double> orientation{1, 0, 0, 0};  // the instrument's, a quaternion w x y z (normalised)
   double limit_N = 9.0;
+  bool torque = false;             // a 6-DoF device: ask for wrench packets (kCapabilityTorque)
+  double torque_limit_N_m = 0.4;
   double drop = 0, duplicate = 0, reorder = 0, truncate = 0, garbage = 0;
   double pause_at_s = -1, pause_for_s = 0;
   std::vector<double> press_button_at_s;  // button 1 (dispense) down for press_button_for_s from each
@@ -68,10 +72,12 @@ struct Options {
 // The device's position at time t (m, device frame): the motion a hand would make.
 std::array<double, 3> motion(const Options& o, double t) {
   const double w = 2 * std::numbers::pi / o.period_s;
-  if (o.motion == "press") return {0, 0, -o.depth_m * 0.5 * (1 - std::cos(w * t))};
+  const double n = std::hypot(o.axis[0], o.axis[1], o.axis[2]);
+  auto along = [&](double d) { return std::array<double, 3>{o.axis[0] * d / n, o.axis[1] * d / n, o.axis[2] * d / n}; };
+  if (o.motion == "press") return along(o.depth_m * 0.5 * (1 - std::cos(w * t)));
   if (o.motion == "hold") {
     const double s = std::min(1.0, t / (0.3 * o.period_s));
-    return {0, 0, -o.depth_m * s * s * (3 - 2 * s)};
+    return along(o.depth_m * s * s * (3 - 2 * s));
   }
   if (o.motion == "circle") return {0.5 * o.depth_m * std::cos(w * t), 0.5 * o.depth_m * std::sin(w * t), -o.depth_m};
   return {0, 0, 0};
@@ -80,6 +86,9 @@ std::array<double, 3> motion(const Options& o, double t) {
 struct Stats {
   std::uint64_t poses_sent = 0, dropped = 0, duplicated = 0, reordered = 0, truncated = 0, garbage = 0;
   std::uint64_t forces = 0, heartbeats = 0, malformed = 0, non_finite = 0, over_limit = 0;
+  std::uint64_t wrenches = 0, torque_over_limit = 0;
+  double max_torque_N_m = 0;
+  std::array<double, 3> last_force{}, last_torque{};
   std::uint64_t ack_ahead = 0, ack_backwards = 0, echo_mismatch = 0;
   double max_force_N = 0;
   std::vector<double> lags, rtts_us;
@@ -105,7 +114,22 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--depth", o.depth_m, "Depth of the motion (m, device frame)")->capture_default_str();
   app.add_option("--period", o.period_s, "Period of the motion (s)")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--axis", o.axis, "Direction of press and hold (device frame, any length)")
+      ->expected(3)
+      ->each([](const std::string& v) {
+        if (!std::isfinite(std::stod(v))) throw CLI::ValidationError("--axis", "not a finite number: " + v);
+      })
+      ->capture_default_str();
+  app.add_option("--orientation", o.orientation, "The instrument's orientation, a quaternion w x y z (any length)")
+      ->expected(4)
+      ->each([](const std::string& v) {
+        if (!std::isfinite(std::stod(v))) throw CLI::ValidationError("--orientation", "not a finite number: " + v);
+      })
+      ->capture_default_str();
   app.add_option("--limit", o.limit_N, "The device's force limit (N): larger forces are reported")->capture_default_str();
+  app.add_flag("--torque", o.torque, "Play a device that renders torque: ask for wrench packets (force and torque)");
+  app.add_option("--torque-limit", o.torque_limit_N_m, "The device's torque limit (N m): larger torques are reported")
+      ->capture_default_str();
   app.add_option("--drop", o.drop, "Probability that a pose is not sent")->check(CLI::Range(0.0, 1.0));
   app.add_option("--duplicate", o.duplicate, "Probability that a pose is sent twice")->check(CLI::Range(0.0, 1.0));
   app.add_option("--reorder", o.reorder, "Probability that a pose is sent after the next one")->check(CLI::Range(0.0, 1.0));
@@ -142,6 +166,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // a refused command line exits 2, as every refusal (CLI11's codes are 100 and up)
   }
+
+  if (!(std::hypot(o.axis[0], o.axis[1], o.axis[2]) > 0)) {
+    fmt::print(stderr, "error: --axis must not be zero\n");
+    return 2;
+  }
+  const double q_norm = std::sqrt(o.orientation[0] * o.orientation[0] + o.orientation[1] * o.orientation[1] +
+                                  o.orientation[2] * o.orientation[2] + o.orientation[3] * o.orientation[3]);
+  if (!(q_norm > 0)) {
+    fmt::print(stderr, "error: --orientation must not be zero\n");
+    return 2;
+  }
+  for (double& v : o.orientation) v /= q_norm;
 
   // Like a device SDK's servo thread: real-time priority where allowed (root or CAP_SYS_NICE).
   sched_param sp{};
@@ -203,9 +239,17 @@ int main(int argc, char** argv) {
         if (proto::sequence_newer(f.pose_sequence, seq)) continue;  // answers a pose of the session before
         ++forces_after_restart;
       }
-      const double mag = std::sqrt(f.force[0] * f.force[0] + f.force[1] * f.force[1] + f.force[2] * f.force[2]);
+      const double mag = std::hypot(f.force[0], f.force[1], f.force[2]);
       st.max_force_N = std::max(st.max_force_N, mag);
       if (mag > o.limit_N) ++st.over_limit;
+      if (h.type == proto::Type::wrench) {
+        ++st.wrenches;
+        const double tau = std::hypot(f.torque[0], f.torque[1], f.torque[2]);
+        st.max_torque_N_m = std::max(st.max_torque_N_m, tau);
+        if (tau > o.torque_limit_N_m) ++st.torque_over_limit;
+      }
+      std::copy(std::begin(f.force), std::end(f.force), st.last_force.begin());
+      std::copy(std::begin(f.torque), std::end(f.torque), st.last_torque.begin());
       // The force answers a pose: one we sent (not ahead of us), never an older one than before.
       if (proto::sequence_newer(f.pose_sequence, seq)) ++st.ack_ahead;
       if (have_ack && proto::sequence_newer(last_ack, f.pose_sequence)) ++st.ack_backwards;
@@ -285,6 +329,8 @@ int main(int argc, char** argv) {
     proto::PosePacket p;
     p.header.sequence = ++seq;
     p.header.timestamp_ns = now_ns();
+    if (o.torque) p.capabilities = proto::kCapabilityTorque;
+    for (int a = 0; a < 4; ++a) p.orientation[a] = o.orientation[std::size_t(a)];
     sent_stamp[seq & 0xffff] = p.header.timestamp_ns;
     const auto x = motion(o, t);
     for (int a = 0; a < 3; ++a) p.position[a] = o.scale * x[std::size_t(a)];
@@ -349,7 +395,10 @@ int main(int argc, char** argv) {
                       {"ack_lag_max", st.lags.empty() ? 0.0 : *std::max_element(st.lags.begin(), st.lags.end())},
                       {"rtt_p50_us", quantile(st.rtts_us, 0.5)}, {"rtt_p99_us", quantile(st.rtts_us, 0.99)},
                       {"hellos_sent", hellos}, {"heartbeats_sent", heartbeats_sent}, {"restarts", restarts},
-                      {"spikes", spikes}, {"forces_after_restart", forces_after_restart}};
+                      {"spikes", spikes}, {"forces_after_restart", forces_after_restart},
+                      {"wrenches_received", st.wrenches}, {"max_torque_N_m", st.max_torque_N_m},
+                      {"torques_over_limit", st.torque_over_limit}, {"last_force_N", st.last_force},
+                      {"last_torque_N_m", st.last_torque}};
   if (o.report.empty())
     fmt::print("{}\n", j.dump(2));
   else

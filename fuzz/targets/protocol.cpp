@@ -1,4 +1,4 @@
-// Fuzz target: the haptic bridge's datagrams. Each is decoded as a pose, a force and a header (a
+// Fuzz target: the haptic bridge's datagrams. Each is decoded as a pose, a force or wrench and a header (a
 // decoded one must encode back to the same bytes' meaning), then all are sent over loopback to a
 // UDP device whose read and write the haptic loop's calls exercise: no crash, and every pose it
 // hands on finite and within its workspace.
@@ -38,11 +38,21 @@ void decode_all_ways(std::span<const std::uint8_t> d) {
     proto::PosePacket q;
     check(proto::decode(std::span<const std::uint8_t>(out.data(), proto::encode(p, out)), q) == proto::DecodeError::none);
     for (int i = 0; i < 3; ++i) check(q.position[i] == p.position[i]);
-    check(q.header.sequence == p.header.sequence && q.buttons == p.buttons);
+    check(q.header.sequence == p.header.sequence && q.buttons == p.buttons && q.capabilities == p.capabilities);
   }
   proto::ForcePacket f;
-  if (proto::decode(d, f) == proto::DecodeError::none)
+  if (proto::decode(d, f) == proto::DecodeError::none) {
     for (double v : f.force) check(std::isfinite(v));
+    for (double v : f.torque) check(std::isfinite(v));
+    // A wrench packet encodes back to itself; a force packet's torque reads zero.
+    const bool wrench = f.header.type == proto::Type::wrench;
+    std::array<std::uint8_t, proto::kMaxPacketBytes> out{};
+    proto::ForcePacket g;
+    check(proto::decode(std::span<const std::uint8_t>(out.data(), proto::encode(f, out, wrench)), g) ==
+          proto::DecodeError::none);
+    for (int i = 0; i < 3; ++i) check(g.force[i] == f.force[i] && g.torque[i] == f.torque[i]);
+    if (!wrench) check(f.torque[0] == 0 && f.torque[1] == 0 && f.torque[2] == 0);
+  }
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ std::size_t expected_size(Type t) {
   switch (t) {
     case Type::pose: return kPoseBytes;
     case Type::force: return kForceBytes;
+    case Type::wrench: return kWrenchBytes;
     case Type::heartbeat:
     case Type::bye:
     case Type::hello: return kHeaderBytes;
@@ -91,19 +92,21 @@ std::size_t encode(const PosePacket& p, std::span<std::uint8_t> out) {
   for (double v : p.position) w.f64(v);
   for (double v : p.orientation) w.f64(v);
   w.uint<std::uint32_t>(p.buttons);
-  w.uint<std::uint32_t>(0);
+  w.uint<std::uint32_t>(p.capabilities);
   return kPoseBytes;
 }
 
-std::size_t encode(const ForcePacket& p, std::span<std::uint8_t> out) {
-  Writer w = begin(p.header, Type::force, kForceBytes, out);
+std::size_t encode(const ForcePacket& p, std::span<std::uint8_t> out, bool torque) {
+  Writer w = begin(p.header, torque ? Type::wrench : Type::force, torque ? kWrenchBytes : kForceBytes, out);
   for (double v : p.force) w.f64(v);
   w.uint<std::uint32_t>(p.pose_sequence);
   w.uint<std::uint32_t>(p.status);
   w.uint<std::uint64_t>(p.pose_timestamp_ns);
   w.uint<std::uint32_t>(p.force_age_us);
   w.uint<std::uint32_t>(p.reserved);
-  return kForceBytes;
+  if (!torque) return kForceBytes;
+  for (double v : p.torque) w.f64(v);
+  return kWrenchBytes;
 }
 
 DecodeError decode_header(std::span<const std::uint8_t> in, Header& h) {
@@ -112,7 +115,7 @@ DecodeError decode_header(std::span<const std::uint8_t> in, Header& h) {
   ReaderLE r{in.data() + 4};
   if (r.uint<std::uint8_t>() != kVersion) return DecodeError::bad_version;
   const std::uint8_t type = r.uint<std::uint8_t>();
-  if (type < std::uint8_t(Type::pose) || type > std::uint8_t(Type::hello)) return DecodeError::bad_type;
+  if (type < std::uint8_t(Type::pose) || type > std::uint8_t(Type::wrench)) return DecodeError::bad_type;
   h.type = Type(type);
   h.payload_bytes = r.uint<std::uint16_t>();
   h.sequence = r.uint<std::uint32_t>();
@@ -130,6 +133,7 @@ DecodeError decode(std::span<const std::uint8_t> in, PosePacket& p) {
   for (double& v : p.position) v = r.f64();
   for (double& v : p.orientation) v = r.f64();
   p.buttons = r.uint<std::uint32_t>();
+  p.capabilities = r.uint<std::uint32_t>();
   double q2 = 0;
   for (double v : p.position)
     if (!std::isfinite(v)) return DecodeError::non_finite;
@@ -143,7 +147,7 @@ DecodeError decode(std::span<const std::uint8_t> in, PosePacket& p) {
 
 DecodeError decode(std::span<const std::uint8_t> in, ForcePacket& p) {
   if (const DecodeError e = decode_header(in, p.header); e != DecodeError::none) return e;
-  if (p.header.type != Type::force) return DecodeError::bad_type;
+  if (p.header.type != Type::force && p.header.type != Type::wrench) return DecodeError::bad_type;
   ReaderLE r{in.data() + kHeaderBytes};
   for (double& v : p.force) v = r.f64();
   p.pose_sequence = r.uint<std::uint32_t>();
@@ -151,7 +155,10 @@ DecodeError decode(std::span<const std::uint8_t> in, ForcePacket& p) {
   p.pose_timestamp_ns = r.uint<std::uint64_t>();
   p.force_age_us = r.uint<std::uint32_t>();
   p.reserved = r.uint<std::uint32_t>();
+  for (double& v : p.torque) v = p.header.type == Type::wrench ? r.f64() : 0.0;
   for (double v : p.force)
+    if (!std::isfinite(v)) return DecodeError::non_finite;
+  for (double v : p.torque)
     if (!std::isfinite(v)) return DecodeError::non_finite;
   return DecodeError::none;
 }

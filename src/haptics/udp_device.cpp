@@ -34,9 +34,9 @@ struct UdpCounters {
   std::uint64_t datagrams = 0, poses = 0, duplicates = 0, reordered = 0, gaps = 0, too_old = 0;
   std::uint64_t malformed = 0, foreign = 0, heartbeats_received = 0, byes = 0, sessions = 0, timeouts = 0;
   std::uint64_t hellos = 0, restarts = 0, outside_workspace = 0, too_fast = 0;
-  std::uint64_t forces_sent = 0, heartbeats_sent = 0, send_errors = 0, receive_errors = 0;
+  std::uint64_t forces_sent = 0, wrenches_sent = 0, heartbeats_sent = 0, send_errors = 0, receive_errors = 0;
   std::array<std::uint64_t, 7> malformed_by_reason{};
-  double max_force_sent_N = 0;
+  double max_force_sent_N = 0, max_torque_sent_N_m = 0;
 };
 
 class UdpDeviceImpl final : public Device {
@@ -102,9 +102,12 @@ class UdpDeviceImpl final : public Device {
       p.pose_timestamp_ns = answer_timestamp_;
       p.status = cmd.status;
       p.force_age_us = cmd.force_age_us;
-      if (send(proto::encode(p, out_))) {
+      p.torque[0] = cmd.torque_N_m.x, p.torque[1] = cmd.torque_N_m.y, p.torque[2] = cmd.torque_N_m.z;
+      if (send(proto::encode(p, out_, torque_client_))) {
         ++c_.forces_sent;
+        if (torque_client_) ++c_.wrenches_sent;
         if (f2 > c_.max_force_sent_N * c_.max_force_sent_N) c_.max_force_sent_N = std::sqrt(f2);
+        c_.max_torque_sent_N_m = std::max(c_.max_torque_sent_N_m, norm(cmd.torque_N_m));
       }
       answer_pending_ = false;
       last_sent_ns_ = now_ns;
@@ -129,12 +132,14 @@ class UdpDeviceImpl final : public Device {
         "\"too_old\": {}, \"implausible\": {}, \"implausible_by_reason\": {{\"outside the workspace\": {}, "
         "\"faster than a hand\": {}}}, \"malformed\": {}, \"malformed_by_reason\": {{{}}}, \"foreign\": {}, "
         "\"heartbeats_received\": {}, \"hellos\": {}, \"byes\": {}, \"sessions\": {}, \"restarts\": {}, "
-        "\"timeouts\": {}, \"forces_sent\": {}, \"heartbeats_sent\": {}, \"send_errors\": {}, "
-        "\"receive_errors\": {}, \"max_force_sent_N\": {:.17g}}}",
+        "\"timeouts\": {}, \"forces_sent\": {}, \"wrenches_sent\": {}, \"heartbeats_sent\": {}, "
+        "\"send_errors\": {}, \"receive_errors\": {}, \"max_force_sent_N\": {:.17g}, "
+        "\"max_torque_sent_N_m\": {:.17g}}}",
         port_, c_.datagrams, c_.poses, c_.duplicates, c_.reordered, lost, c_.too_old,
         c_.outside_workspace + c_.too_fast, c_.outside_workspace, c_.too_fast, c_.malformed, reasons, c_.foreign,
         c_.heartbeats_received, c_.hellos, c_.byes, c_.sessions, c_.restarts, c_.timeouts, c_.forces_sent,
-        c_.heartbeats_sent, c_.send_errors, c_.receive_errors, c_.max_force_sent_N);
+        c_.wrenches_sent, c_.heartbeats_sent, c_.send_errors, c_.receive_errors, c_.max_force_sent_N,
+        c_.max_torque_sent_N_m);
   }
 
  private:
@@ -148,6 +153,7 @@ class UdpDeviceImpl final : public Device {
     session_ = true;
     client_ = from;
     have_pose_ = false;
+    torque_client_ = false;  // until its poses say so
     seen_mask_ = 0;
     old_streak_ = 0;
     ++session_number_;
@@ -160,7 +166,8 @@ class UdpDeviceImpl final : public Device {
     proto::DecodeError e = proto::decode_header(d, h);
     proto::PosePacket pose;
     if (e == proto::DecodeError::none && h.type == proto::Type::pose) e = proto::decode(d, pose);
-    if (e == proto::DecodeError::none && h.type == proto::Type::force) e = proto::DecodeError::bad_type;  // not ours
+    if (e == proto::DecodeError::none && (h.type == proto::Type::force || h.type == proto::Type::wrench))
+      e = proto::DecodeError::bad_type;  // not ours
     if (e != proto::DecodeError::none) {
       ++c_.malformed;
       ++c_.malformed_by_reason[std::size_t(e)];
@@ -274,6 +281,7 @@ class UdpDeviceImpl final : public Device {
     s.device_time_s = double(p.header.timestamp_ns) * 1e-9;
     s.sequence = q;
     s.buttons = p.buttons;
+    torque_client_ = (p.capabilities & proto::kCapabilityTorque) != 0;
     s.session = session_number_;
     s.valid = true;
     answer_pending_ = true;
@@ -295,7 +303,7 @@ class UdpDeviceImpl final : public Device {
   std::uint16_t port_ = 0;
   std::array<std::uint8_t, 2048> buf_{};
   std::array<std::uint8_t, proto::kMaxPacketBytes> out_{};
-  bool session_ = false, have_pose_ = false, have_accepted_ = false, have_received_ = false, answer_pending_ = false;
+  bool session_ = false, torque_client_ = false, have_pose_ = false, have_accepted_ = false, have_received_ = false, answer_pending_ = false;
   sockaddr_in client_{};
   std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0, accepted_ns_ = 0, received_ns_ = 0;
   std::uint32_t newest_sequence_ = 0, out_sequence_ = 0, answer_sequence_ = 0, old_last_ = 0, session_number_ = 0;

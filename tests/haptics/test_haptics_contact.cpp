@@ -7,7 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 
+#include <fmt/format.h>
+
+#include "client_process.hpp"
 #include "contact_support.hpp"
 #include "path_device.hpp"
 #include "dentsph/dental.hpp"
@@ -100,6 +104,116 @@ TEST_P(HardContactRuntime, TheToothStopsTheInstrumentAndIsFelt) {
 INSTANTIATE_TEST_SUITE_P(Surfaces, HardContactRuntime,
                          ::testing::Values(ToothPress{"enamel", {0, 2.6e-3, 6e-3}}, ToothPress{"floor", {0.5e-3, 0, 0.5e-3}}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// The same press played by the reference client over UDP, as a device would: the hand 1 mm into
+// the enamel beside the cavity feels k times its distance behind the proxy, along the surface's
+// normal; the client receives that force.
+TEST(HardContactUdp, TheReferenceClientFeelsTheEnamel) {
+  const testing::ContactBench& b = testing::ContactBench::get();
+  const ToothFrame& f = b.tooth().frame();
+  const DeviceProfile profile = device_profile("falcon");
+  HardContact probe(profile.contact);
+  const Vec3 start = f.to_world({0, 2.6e-3, 6e-3});
+  const testing::PressRun plan = testing::press(probe, b.field, b.shape, start, -f.z, 1e-3, 0.02, false, &b.tooth());
+  ASSERT_TRUE(plan.touched);
+  // The client's device origin is `start`; it goes to the hold point in 0.45 s (a smooth step) and stays.
+  const Vec3 to = plan.device - start;
+  RealtimeOptions o = contact_options();
+  o.workspace.origin = start;
+  o.duration_s = 2.5;
+  std::uint16_t port = 0;
+  auto device = make_udp_device({"127.0.0.1", 0}, &port);
+  testing::ClientProcess client(port,
+                                {"--wait", "30", "--duration", "1.2", "--motion", "hold", "--period", "1.5", "--depth",
+                                 fmt::format("{:.9g}", norm(to)), "--axis", fmt::format("{:.9g}", to.x),
+                                 fmt::format("{:.9g}", to.y), fmt::format("{:.9g}", to.z)},
+                                "enamel");
+  ASSERT_TRUE(client.started());
+  const RealtimeResult r = run_realtime(empty_cavity_scene(), *device, o);
+  const nlohmann::json c = client.wait();
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  testing::expect_safe(r, profile);
+  int held = 0;
+  Vec3 last_force;
+  for (const HapticSample& s : r.recording.haptic) {
+    if (norm(s.device_position - to) > 1e-6 || s.gain < 1) continue;  // not yet there (device frame), or the watchdog acting
+    ++held;
+    const double behind = norm(s.contact_proxy - s.device_position);
+    EXPECT_NEAR(behind, 1e-3, 0.1e-3) << "at " << s.t << " s";
+    EXPECT_NEAR(norm(s.force), profile.contact.stiffness_N_per_m * behind, 0.1 * profile.contact.stiffness_N_per_m * behind)
+        << "at " << s.t << " s";
+    EXPECT_LT(testing::angle_deg(s.force, plan.surface_normal), 5.0) << "at " << s.t << " s";
+    last_force = s.force;
+  }
+  EXPECT_GT(held, 300);
+  // What the client received last is what the hand was held with.
+  const Vec3 received{c["last_force_N"][0].get<double>(), c["last_force_N"][1].get<double>(), c["last_force_N"][2].get<double>()};
+  EXPECT_NEAR(norm(received), profile.contact.stiffness_N_per_m * 1e-3, 0.1 * profile.contact.stiffness_N_per_m * 1e-3);
+  EXPECT_LT(testing::angle_deg(received, plan.surface_normal), 5.0);
+  EXPECT_EQ(c["forces_over_limit"].get<int>(), 0);
+  EXPECT_EQ(c["wrenches_received"].get<int>(), 0) << "a 3-DoF client gets force packets";
+}
+
+// A 6-DoF client (--torque) gets wrench packets: with the sigma.7's profile, the instrument lying
+// across the tooth and pressed onto it, the shank meets the crown millimetres from the handle
+// point and the client feels the torque of that lever (within the profile's limit); a client of a
+// profile without torque output gets wrench packets whose torque is zero.
+TEST(HardContactUdp, ASixDofClientFeelsTheShanksTorque) {
+  const testing::ContactBench& b = testing::ContactBench::get();
+  const ToothFrame& f = b.tooth().frame();
+  const Quat lying = Quat::from_axis_angle(f.x, 90 * std::numbers::pi / 180);  // as TheShankMeetsTheTooth
+  const Vec3 start = f.to_world({0, 0, 4e-3});
+  for (const char* name : {"sigma7", "falcon"}) {
+    SCOPED_TRACE(name);
+    const DeviceProfile profile = device_profile(name);
+    // Where the shank touches going down, and 0.5 mm beyond.
+    HardContact probe(profile.contact);
+    probe.reset(start);
+    Vec3 x = start;
+    ContactResult touch;
+    for (int k = 0; k < 600 && !touch.touching; ++k) {
+      x -= f.z * 1e-5;
+      touch = probe.update(b.field, b.shape, x, lying, {});
+    }
+    ASSERT_TRUE(touch.touching);
+    const Vec3 to = x - f.z * 0.5e-3 - start;
+    RealtimeOptions o = contact_options();
+    o.profile = profile;
+    o.workspace.origin = start;
+    o.duration_s = 2.5;
+    std::uint16_t port = 0;
+    auto device = make_udp_device({"127.0.0.1", 0}, &port);
+    testing::ClientProcess client(
+        port,
+        {"--wait", "30", "--duration", "1.2", "--motion", "hold", "--period", "1.5", "--torque", "--depth",
+         fmt::format("{:.9g}", norm(to)), "--axis", fmt::format("{:.9g}", to.x), fmt::format("{:.9g}", to.y),
+         fmt::format("{:.9g}", to.z), "--orientation", fmt::format("{:.17g}", lying.w), fmt::format("{:.17g}", lying.x),
+         fmt::format("{:.17g}", lying.y), fmt::format("{:.17g}", lying.z), "--limit",
+         fmt::format("{}", profile.max_force_N)},
+        std::string("torque_") + name);
+    ASSERT_TRUE(client.started());
+    const RealtimeResult r = run_realtime(empty_cavity_scene(), *device, o);
+    const nlohmann::json c = client.wait();
+    ASSERT_FALSE(c.is_null()) << "the client failed";
+    testing::expect_safe(r, profile);
+    const nlohmann::json d = testing::realtime_sections(r)["device"];
+    EXPECT_GT(c["wrenches_received"].get<int>(), 500);
+    EXPECT_EQ(c["wrenches_received"], c["forces_received"]) << "every answer a wrench";
+    EXPECT_EQ(d["wrenches_sent"], d["forces_sent"]);
+    EXPECT_EQ(c["torques_over_limit"].get<int>(), 0);
+    const Vec3 force{c["last_force_N"][0].get<double>(), c["last_force_N"][1].get<double>(), c["last_force_N"][2].get<double>()};
+    const Vec3 torque{c["last_torque_N_m"][0].get<double>(), c["last_torque_N_m"][1].get<double>(),
+                      c["last_torque_N_m"][2].get<double>()};
+    EXPECT_GT(norm(force), 0.5 * profile.contact.stiffness_N_per_m * 0.5e-3) << "the shank pressed on the crown";
+    if (profile.max_torque_N_m > 0) {
+      EXPECT_GT(norm(torque) / norm(force), 2e-3) << "a lever of the shank's, not the ball's";
+      EXPECT_LE(norm(torque), profile.max_torque_N_m * (1 + 1e-9));
+      EXPECT_GT(c["max_torque_N_m"].get<double>(), 0);
+    } else {
+      EXPECT_EQ(c["max_torque_N_m"].get<double>(), 0) << "a device without torque output gets none";
+    }
+  }
+}
 
 // A quick move through air: the hand 3 mm above the paste heaped in the cavity moves 10 cm and holds
 // still. The coupling's proxy goes with it (nothing within reach of its path): what the hand feels

@@ -115,6 +115,28 @@ TEST(Protocol, PoseAndForceRoundTripExactly) {
   EXPECT_EQ(g.status, std::uint32_t(proto::kSimStale));
   EXPECT_EQ(g.pose_timestamp_ns, 42u);
   EXPECT_EQ(g.force_age_us, 1234u);
+  for (double v : g.torque) EXPECT_EQ(v, 0);  // a force packet carries no torque
+
+  // A wrench: the force packet's bytes, then the torque; its type says which.
+  f.torque[0] = 0.25, f.torque[1] = -0.125, f.torque[2] = 0.375;
+  ASSERT_EQ(proto::encode(f, buf, true), proto::kWrenchBytes);
+  EXPECT_EQ(buf[5], std::uint8_t(proto::Type::wrench));
+  ASSERT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kWrenchBytes), g), proto::DecodeError::none);
+  EXPECT_EQ(g.header.type, proto::Type::wrench);
+  EXPECT_EQ(g.force[2], 8.999);
+  EXPECT_EQ(g.torque[0], 0.25);
+  EXPECT_EQ(g.torque[1], -0.125);
+  EXPECT_EQ(g.torque[2], 0.375);
+  EXPECT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kForceBytes), g), proto::DecodeError::bad_length);
+  f.torque[1] = std::numeric_limits<double>::quiet_NaN();
+  proto::encode(f, buf, true);
+  EXPECT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kWrenchBytes), g), proto::DecodeError::non_finite);
+
+  // A pose's capabilities (the bytes a version-1.0 pose left zero).
+  p.capabilities = proto::kCapabilityTorque;
+  proto::encode(p, buf);
+  ASSERT_EQ(proto::decode(std::span<const std::uint8_t>(buf.data(), proto::kPoseBytes), q), proto::DecodeError::none);
+  EXPECT_EQ(q.capabilities, proto::kCapabilityTorque);
 }
 
 TEST(Protocol, RefusesEveryKindOfBadDatagram) {
