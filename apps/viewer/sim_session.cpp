@@ -32,7 +32,7 @@ SimSession::SimSession(Scene scene, SessionOptions options) : scene_(std::move(s
   }
   opt_.dispense_volume = increment_volume_or_default(scene_, opt_.dispense_volume);
   contact_field_ = scene_contact_field(scene_);
-  contact_band_ = scene_rigid_band(scene_);
+  contact_rigid_ = RigidWatch(scene_rigid_band(scene_));
   paused_ = opt_.start_paused;
   reset();
   publish(*sim_, true, 0);
@@ -49,6 +49,7 @@ void SimSession::reset() {
   diverged_ = false;
   force_log_.clear();
   contact_.reset(sim_->state().tool_pose_applied.position);
+  contact_rigid_.forget();
   contact_stale_ = true;
   steps_.store(0, std::memory_order_release);
 }
@@ -112,16 +113,11 @@ bool SimSession::latest(Snapshot& out) const {
 Vec3 SimSession::held_by_contact(const Pose& pose) {
   if (!contact_field_.has_tooth() && !contact_field_.has_grid()) return pose.position;
   const State& st = sim_->state();
-  if (contact_stale_ || st.steps % kContactCheckSteps == 0) {
-    const double sig = contact_signature(st);
-    if (contact_stale_ || sig != contact_signature_) {
-      rigid_particles(st, contact_band_, contact_rigid_);
-      contact_field_.set_particles(contact_rigid_);
-      contact_shape_ = instrument_contact_shape(scene_, st);
-      contact_signature_ = sig;
-      contact_stale_ = false;
-    }
+  if ((contact_stale_ || st.steps % kContactCheckSteps == 0) && contact_rigid_.changed(st)) {
+    contact_field_.set_particles(contact_rigid_.particles());
+    contact_shape_ = instrument_contact_shape(contact_rigid_.tool(), instrument_contact_spacing(scene_));
   }
+  contact_stale_ = false;
   return contact_.update(contact_field_, contact_shape_, pose.position, pose.orientation, {}).proxy;
 }
 

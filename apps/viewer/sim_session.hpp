@@ -180,11 +180,10 @@ class SimSession {
   std::optional<RealtimeResult> realtime_result_;
   std::vector<ForceSample> force_log_;
   ContactField contact_field_;
-  std::vector<Vec3> contact_band_, contact_rigid_;
+  RigidWatch contact_rigid_;  // what contact_field_ and contact_shape_ were built from
   ContactShape contact_shape_;
   HardContact contact_;
-  double contact_signature_ = 0;
-  bool contact_stale_ = true;  // the field and shape to be made again (a reset)
+  bool contact_stale_ = true;  // to be checked at once (a reset)
   static constexpr std::uint64_t kContactCheckSteps = 20;
   std::string run_error_;
   std::uint64_t live_ticks0_ = 0;

@@ -64,10 +64,6 @@ real instrument_contact_spacing(const Scene& scene);
 void tool_anchors(const State& state, std::vector<Vec3>& out);
 // The shape of the instrument `state` holds now, at instrument_contact_spacing.
 ContactShape instrument_contact_shape(const Scene& scene, const State& state);
-// What the contact's field and shape depend on in `state`, in one number: it changes when paste
-// sets or shrinks, or the instrument is switched (a weighted sum of the set paste's places and the
-// instrument's anchors).
-double contact_signature(const State& state);
 
 // The signed distance to everything rigid, in the scene frame (m; negative inside). The tooth's
 // field must hold the whole tooth (tooth_wall_field(scene, true)). Copies share
@@ -121,6 +117,31 @@ ContactField scene_contact_field(const Scene& scene);
 void rigid_particles(const State& state, std::span<const Vec3> band, std::vector<Vec3>& out);
 // The scene's matrix band: boundary particles farther than a quarter spacing outside its tooth.
 std::vector<Vec3> scene_rigid_band(const Scene& scene);
+
+// What the contact's field and shape are built from, watched: a state's rigid particles (the
+// band and set paste) and its instrument's anchors, as last built. changed() says whether paste
+// set or came loose, set paste moved more than `tolerance` (m) from where the field has it (its
+// shrinkage), or the instrument was switched; then it keeps the new ones. The first call says
+// true. Its buffers are reused: no allocation once they have grown.
+class RigidWatch {
+ public:
+  // `band`: scene_rigid_band's particles.
+  explicit RigidWatch(std::vector<Vec3> band = {}, real tolerance = kDefaultTolerance);
+  bool changed(const State& state);
+  const std::vector<Vec3>& particles() const { return particles_; }  // rigid_particles' order
+  const std::vector<Vec3>& tool() const { return tool_; }            // tool_anchors'
+  void forget() { first_ = true; }  // the next changed() says true (a state reset)
+
+  static constexpr real kDefaultTolerance = 0.02e-3;  // m: a tenth of the contact's projection step
+
+ private:
+  std::vector<Vec3> band_, particles_, tool_;
+  std::vector<Vec3> built_;  // by paste id: where the field has each set particle (NaN: not set)
+  std::size_t set_count_ = 0;
+  double tool_signature_ = 0;
+  real tolerance2_;
+  bool first_ = true;
+};
 
 // The proxy's state after a tick.
 struct ContactResult {

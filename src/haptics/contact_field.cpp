@@ -71,13 +71,34 @@ bool set_paste(const State& s, std::uint32_t i) {
 }
 }  // namespace
 
-double contact_signature(const State& s) {
-  double sig = 0;
+RigidWatch::RigidWatch(std::vector<Vec3> band, real tolerance)
+    : band_(std::move(band)), tolerance2_(tolerance * tolerance) {}
+
+bool RigidWatch::changed(const State& s) {
+  // The anchors change only when the instrument is switched: an exact sum tells them apart.
+  double tool_signature = 0;
+  std::size_t set_count = 0;
+  bool moved = first_;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
-    if (s.role[i] == Role::tool) sig += 7 * s.anchor[i].x + 11 * s.anchor[i].y + 13 * s.anchor[i].z + 1;
-    else if (set_paste(s, i)) sig += s.pos[i].x + 3 * s.pos[i].y + 5 * s.pos[i].z + 17;
+    if (s.role[i] == Role::tool) {
+      tool_signature += 7 * s.anchor[i].x + 11 * s.anchor[i].y + 13 * s.anchor[i].z + 1;
+    } else if (set_paste(s, i)) {
+      ++set_count;
+      const std::uint32_t id = s.id[i];
+      moved = moved || id >= built_.size() || !(norm2(s.pos[i] - built_[id]) <= tolerance2_);
+    }
   }
-  return sig;
+  if (!moved && set_count == set_count_ && tool_signature == tool_signature_) return false;
+  constexpr real nan = std::numeric_limits<real>::quiet_NaN();
+  built_.assign(s.cure.rigid.size(), Vec3{nan, nan, nan});
+  for (std::uint32_t i = 0; i < s.size(); ++i)
+    if (set_paste(s, i)) built_[s.id[i]] = s.pos[i];
+  rigid_particles(s, band_, particles_);
+  tool_anchors(s, tool_);
+  set_count_ = set_count;
+  tool_signature_ = tool_signature;
+  first_ = false;
+  return true;
 }
 
 ContactField::ContactField(std::shared_ptr<const WallField> tooth, Vec3 lo, Vec3 hi, real cell, real particle_radius)

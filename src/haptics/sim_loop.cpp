@@ -23,22 +23,18 @@ int publish_every(double dt_s, double haptic_rate_hz) {
 
 SimLoop::SimLoop(Simulation& sim, const RealtimeOptions& o, double force_scale, RuntimeShared& shared,
                  std::vector<Vec3> band)
-    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6), band_(std::move(band)) {
+    : sim_(sim), opt_(o), force_scale_(force_scale), shared_(shared), step_times_(1e6), rigid_(std::move(band)) {
   steps.reserve(1 << 16);
 }
 
 void SimLoop::publish_rigid(std::int64_t now) {
   if (now - rigid_checked_ns_ < kRigidCheckNs) return;
   rigid_checked_ns_ = now;
-  const State& s = sim_.state();
-  const double sig = contact_signature(s);
-  if (sig == rigid_signature_ && rigid_sent_) return;
-  rigid_signature_ = sig;
+  if (!rigid_.changed(sim_.state())) return;
   RigidInput& in = shared_.rigid.back();
-  rigid_particles(s, band_, in.particles);
-  tool_anchors(s, in.tool);
+  in.particles = rigid_.particles();
+  in.tool = rigid_.tool();
   in.tool_spacing = instrument_contact_spacing(sim_.scene());
-  rigid_sent_ = true;
   shared_.rigid.publish();
 }
 

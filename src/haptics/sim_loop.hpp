@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "dentsph/contact.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/simulation.hpp"
 #include "haptics/shared.hpp"
@@ -39,8 +40,8 @@ class SimLoop {
 
  private:
   void publish_snapshot(std::int64_t now_ns);
-  // Sends the contact loop what is rigid and the instrument when they changed (at most every
-  // kRigidCheckNs of wall time).
+  // Sends the contact loop what is rigid and the instrument when they changed (RigidWatch; checked
+  // every kRigidCheckNs of wall time).
   void publish_rigid(std::int64_t now_ns);
 
   Simulation& sim_;
@@ -50,10 +51,8 @@ class SimLoop {
   DurationHistogram step_times_;
   SimReport rep_;
   std::int64_t t0_ns_ = 0, end_ns_ = 0;
-  std::vector<Vec3> band_;
+  RigidWatch rigid_;                  // what the contact loop last got
   std::vector<std::uint32_t> tools_;  // free_share's scratch
-  double rigid_signature_ = 0;
-  bool rigid_sent_ = false;
   std::int64_t rigid_checked_ns_ = 0;
   static constexpr std::int64_t kRigidCheckNs = 10'000'000;
 };

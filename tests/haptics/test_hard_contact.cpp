@@ -188,6 +188,46 @@ TEST(HardContact, StaysFiniteOnBadInputAndRefusesBadSettings) {
 // Far from the tooth's and the particles' grids the field is the distance to their boxes: never
 // more than the true distance, so the contact's broad phase does not call a sphere free that a
 // long instrument's shank brings to the tooth.
+// The contact loop rebuilds the field only when what it was built from changed: paste that set,
+// set paste that shrank by more than the watch's tolerance (0.02 mm) from where the field has it,
+// or another instrument. A step's reordering of the particles, and shrinkage below the tolerance,
+// are no change.
+TEST(RigidWatch, SaysWhenTheFieldIsOutOfDate) {
+  State s;
+  const std::vector<Vec3> band{{1e-3, 0, 0}, {1.2e-3, 0, 0}};
+  // ids 0..3: two boundary particles that may set, one moving paste particle, one tool particle.
+  s.id = {0, 1, 2, 3};
+  s.role = {Role::boundary, Role::boundary, Role::material, Role::tool};
+  s.pos = {{0, 0, 0}, {0.2e-3, 0, 0}, {0.4e-3, 0, 0}, {0, 0, 1e-3}};
+  s.anchor = {{}, {}, {}, {0, 0, 1e-3}};
+  s.cure.rigid = {1, 0, 0, 0};
+  RigidWatch w(band);
+  ASSERT_TRUE(w.changed(s)) << "the first call builds";
+  EXPECT_EQ(w.particles().size(), 3u) << "the band and the one set particle";
+  EXPECT_EQ(w.tool().size(), 1u);
+  EXPECT_FALSE(w.changed(s));
+  // Shrinkage: 0.015 mm is below the tolerance; another 0.015 mm (0.03 from where the field has
+  // it) is not.
+  s.pos[0].z -= 0.015e-3;
+  EXPECT_FALSE(w.changed(s));
+  s.pos[0].z -= 0.015e-3;
+  ASSERT_TRUE(w.changed(s));
+  EXPECT_NEAR(w.particles()[2].z, -0.03e-3, 1e-12);
+  EXPECT_FALSE(w.changed(s));
+  // The step reorders its particles: nothing changed.
+  std::swap(s.id[0], s.id[1]), std::swap(s.pos[0], s.pos[1]), std::swap(s.role[0], s.role[1]);
+  EXPECT_FALSE(w.changed(s));
+  // Paste sets; then another instrument.
+  s.cure.rigid[1] = 1;
+  ASSERT_TRUE(w.changed(s));
+  EXPECT_EQ(w.particles().size(), 4u);
+  s.anchor[3].z = 2e-3;
+  EXPECT_TRUE(w.changed(s));
+  EXPECT_FALSE(w.changed(s));
+  w.forget();
+  EXPECT_TRUE(w.changed(s)) << "after a reset";
+}
+
 TEST(ContactField, OutsideItsGridsIsALowerBound) {
   const ContactBench& b = ContactBench::get();
   const ToothFrame& f = b.tooth().frame();
