@@ -44,6 +44,13 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"backend", r.last.backend},
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};
+  {
+    // Where the instrument is at the end (its tool frame's origin, the tip of the dental
+    // instruments), in the frame of the script's moves: the tooth's, mm; world mm without a tooth.
+    const dentsph::Vec3 p = r.last.tool_pose.position;
+    const dentsph::Vec3 mm = (scene.tooth ? scene.tooth->frame().to_local(p) : p) * 1e3;
+    j["tool_position_mm"] = {mm.x, mm.y, mm.z};
+  }
   if (r.last.assessment) j["assessment"] = json::parse(dentsph::assessment_json(*r.last.assessment));
   if (realtime) j["realtime"] = json::parse(dentsph::realtime_json(*realtime));
   if (!r.last.message.empty()) j["message"] = r.last.message;

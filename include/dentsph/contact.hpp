@@ -175,6 +175,9 @@ class HardContact {
   // Pushes `g` out of the surfaces along their normals (a few passes over the spheres in
   // `active_`); returns the deepest penetration left (m, >= 0) and the mean normal of the pushes.
   real project(const ContactField& field, Vec3& g, Vec3& normal, Vec3& contact_point);
+  // The proxy at `g` touching at `contact` (res_.touching and res_.normal set by the caller):
+  // the force and torque on the hand at `target`.
+  const ContactResult& finish(const Vec3& g, const Vec3& contact, const Vec3& target, const Vec3& device_velocity);
 
   ContactParams p_;
   double scale_;

@@ -96,6 +96,7 @@ const ContactResult& HardContact::update(const ContactField& field, const Contac
   }
   const Vec3 from = proxy_;
   const real move = norm(target - from);
+  const Vec3 was_normal = res_.touching ? res_.normal : Vec3{};
   res_ = {};
   // Nothing within reach of the instrument's bounding sphere along the whole move: free.
   const ContactField::Sample around = field.sample(from + q.rotate(shape.centre));
@@ -127,12 +128,36 @@ const ContactResult& HardContact::update(const ContactField& field, const Contac
   ignore_tooth_ = ignore_tooth_ ? !out_tooth : in_tooth;
   ignore_particles_ = ignore_particles_ ? !out_particles : in_particles;
 
-  // The frictionless proxy: from where it was to the device, in steps, pushed out after each.
+  const real still2 = 1e-6 * min_radius_ * min_radius_;  // (a thousandth of a radius)^2
+  // Static friction first: a proxy that rested on a surface stays where it is while the device's
+  // pull along that surface is inside the friction cone (one projection: a hand holding still on
+  // the tooth, or pressing into it, costs no more).
+  if (was_normal != Vec3{}) {
+    Vec3 h = from, hn, hc;
+    if (project(field, h, hn, hc) >= 0 && norm2(h - from) <= still2) {
+      const real depth = dot(h - target, hn);
+      Vec3 pull = target - h;
+      pull -= hn * dot(pull, hn);
+      if (depth > 0 && norm(pull) <= p_.friction * depth) {
+        res_.touching = true;
+        res_.normal = hn;
+        return finish(h, hc, target, device_velocity);
+      }
+    }
+  }
+  // The frictionless proxy: from where it was to the device, in steps, pushed out after each. A
+  // step does not push into the surface touched (the last step's normal, or the last tick's): its
+  // part along the surface is all the proxy can move, and once that is nothing the proxy rests
+  // (a hand pressing into the tooth costs one projection a step it moves, not one a step).
   const int steps = std::clamp(int(std::ceil(move / (min_radius_ / 3))), 1, kMaxSteps);
-  Vec3 g = from, normal, contact;
+  Vec3 g = from, normal = was_normal, contact;
   real deepest = -1;
   for (int s = 0; s < steps; ++s) {
-    g += (target - g) / real(steps - s);
+    Vec3 d = (target - g) / real(steps - s);
+    const real into = dot(d, normal);
+    if (into < 0) d -= normal * into;
+    if (s > 0 && norm2(d) < still2) break;
+    g += d;
     deepest = project(field, g, normal, contact);
   }
   const real depth = deepest >= 0 ? dot(g - target, normal) : 0;  // scene m behind the surface
@@ -150,9 +175,15 @@ const ContactResult& HardContact::update(const ContactField& field, const Contac
     res_.touching = true;
     res_.normal = normal;
   }
+  return finish(g, contact, target, device_velocity);
+}
+
+const ContactResult& HardContact::finish(const Vec3& g, const Vec3& contact, const Vec3& target,
+                                         const Vec3& device_velocity) {
   proxy_ = g;
   res_.proxy = g;
   if (res_.touching) {
+    const Vec3 normal = res_.normal;
     const Vec3 d = (g - target) / scale_;  // device m
     Vec3 f = d * p_.stiffness_N_per_m;
     res_.depth_m = std::max<real>(0, dot(d, normal));
