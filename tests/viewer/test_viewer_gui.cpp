@@ -176,6 +176,31 @@ TEST(ViewerGui, TheCuringLightCuresThePasteColouredByConversion) {
   EXPECT_GT(ia.share(beam) - ib.share(beam), 0.0001) << "the beam is drawn";
 }
 
+// Set paste stops the mouse's instrument: the paste heaped in the cavity cured under 3 s of light,
+// then the instrument sent down to 4 mm below the occlusal reference stays on the set paste's top
+// (above the reference, where the floor is 1.9 mm below it), drawn there in the instrument's
+// salmon on the paste's green (coloured by conversion, cut by the section).
+TEST(ViewerGui, TheMousesInstrumentStopsOnSetPaste) {
+  REQUIRE_XVFB();
+  const fs::path script = temp("set_press.json"), png = temp("set_press.png"), sum = temp("set_press_summary.json");
+  std::ofstream(script) << R"({"actions": [{"step": 0, "action": "light_on"}, {"step": 2000, "action": "light_off"},
+    {"step": 2000, "action": "move", "position_mm": [0, 0, -4]}, {"step": 2800, "action": "end"}]})";
+  const Result r = run_viewer(fmt::format("--colour-by conversion --section --frames 5 --script '{}' --screenshot '{}' "
+                                          "--summary '{}'",
+                                          script.string(), png.string(), sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(sum));
+  const double z = j["tool_position_mm"][2].get<double>();
+  std::printf("the instrument ended at z = %.3f mm (tooth frame)\n", z);
+  EXPECT_GT(z, 0.0) << "it went into the set paste";
+  const Image im(png);
+  auto instrument = [](int r_, int g, int b) { return r_ > 200 && r_ > g + 20 && g > b + 10 && r_ - b > 50 && g > 140; };
+  auto cured = [](int r_, int g, int) { return g > 60 && g > r_ + 20; };
+  std::printf("instrument %.4f, cured paste %.4f of the picture\n", im.share(instrument), im.share(cured));
+  EXPECT_GT(im.share(instrument), 0.001) << "the instrument is drawn";
+  EXPECT_GT(im.share(cured), 0.01) << "the set paste is drawn";
+}
+
 TEST(ViewerGui, BrokenSceneMeshOrScriptEndsWithAMessage) {
   REQUIRE_XVFB();
   const fs::path scene = temp("broken_scene.json"), mesh = temp("open.stl"), script = temp("bad_script.json");
