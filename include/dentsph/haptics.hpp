@@ -138,9 +138,10 @@ struct LoopTiming {
   std::uint64_t deadline_misses = 0;  // ticks that started more than half a period late
 };
 
-// The force the device rendered while the simulated tool touched nothing: the ticks at which no
+// The force the device rendered while the instrument touched nothing: the ticks at which no
 // step of the last `window_s` of wall time had a force on the tool (without material within reach
-// the tool's force is exactly zero), against the ticks in contact. What a student feels in air is
+// the tool's force is exactly zero) and the hard contact did not touch (HapticSample::contact_force
+// zero: the tooth and set paste put no force on the simulated tool), against the ticks in contact. What a student feels in air is
 // the coupling's lag behind the hand, not the material.
 struct FreeAirForce {
   double window_s = 0.02;

@@ -1,4 +1,4 @@
-// free_air_force (haptics.hpp): the force rendered while the simulated tool touched nothing.
+// free_air_force (haptics.hpp): the force rendered while the instrument touched nothing.
 #include <algorithm>
 #include <cstddef>
 #include <vector>
@@ -39,7 +39,9 @@ FreeAirForce free_air_force(const Recording& r, double window_s) {
     while (end < steps.size() && steps[end].wall_t <= tick.t) touching += touches(end++);
     while (begin < end && steps[begin].wall_t <= tick.t - window_s) touching -= touches(begin++);
     if (begin == end) continue;  // no step in the window: neither
-    (touching > 0 ? contact : free).push_back(norm(tick.force));
+    // The hard contact touching (the tooth, set paste) is contact too, though the simulated tool
+    // feels nothing there.
+    (touching > 0 || norm2(tick.contact_force) > 0 ? contact : free).push_back(norm(tick.force));
   }
   f.free_ticks = free.size();
   f.contact_ticks = contact.size();

@@ -121,7 +121,7 @@ std::string realtime_report(const RealtimeResult& r) {
       "{} deadline misses in {} ticks\n"
       "force: age p50 {:.0f} us, p99 {:.0f} us; largest {:.4g} N, largest step {:.4g} N; limited {} (magnitude) / {} "
       "(rate) ticks; watchdog trips {}, ticks at zero gain {}\n"
-      "force in air (no tool force for {:.0f} ms): mean {:.3f} N, p95 {:.3f} N over {} ticks; in contact: mean {:.3f} N, "
+      "force in air (no tool force for {:.0f} ms, no hard contact): mean {:.3f} N, p95 {:.3f} N over {} ticks; in contact: mean {:.3f} N, "
       "p95 {:.3f} N over {} ticks\n"
       "hard contact (tooth, band, set paste; {:.0f} N/m, friction {:.2f}): {} ticks touching, field rebuilt {} times "
       "(longest {:.1f} ms)\n"

@@ -105,6 +105,55 @@ INSTANTIATE_TEST_SUITE_P(Surfaces, HardContactRuntime,
                          ::testing::Values(ToothPress{"enamel", {0, 2.6e-3, 6e-3}}, ToothPress{"floor", {0.5e-3, 0, 0.5e-3}}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// Set paste through the runtime: the built-in procedure's first increment, cured under its light
+// from 0.9 s (the later increments left out), and the hand coming down onto it at 20 mm/s from
+// 3.5 s, 2.6 s into the light, to the cavity's floor level and holding there. The set paste stops the
+// instrument above the floor: the contact's force is k times the device's distance behind its proxy,
+// along that offset, and the simulated instrument stays with the proxy, not with the hand.
+TEST(HardContactRuntime, SetPasteStopsTheInstrumentAndIsFelt) {
+  Scene scene = default_dental_procedure();
+  scene.events.resize(2);  // the first increment and its cure
+  ASSERT_EQ(scene.events[1].kind, ProcedureEvent::Kind::cure);
+  const ToothFrame f = scene.tooth->frame();
+  const DeviceProfile profile = device_profile("falcon");
+  const Vec3 above = f.to_world({0.5e-3, 0, 4e-3}), floor_level = f.to_world({0.5e-3, 0, -1.9e-3});
+  const double down = norm(floor_level - above) / 0.02;
+  auto path = [=](double t) {
+    const double a = std::clamp((t - 3.5) / down, 0.0, 1.0), back = std::clamp((t - 5.0) / down, 0.0, 1.0);
+    return above + (floor_level - above) * (a - back);
+  };
+  testing::PathDevice device(path, 5.4);
+  RealtimeOptions o = contact_options();
+  const RealtimeResult r = run_realtime(scene, device, o);
+  testing::print_timing(r);
+  testing::expect_safe(r, profile);
+  int held = 0;
+  double proxy_height = 0;
+  for (const HapticSample& s : r.recording.haptic) {
+    if (s.t < 4.0 || s.t > 4.95 || s.gain < 1) continue;
+    ++held;
+    const Vec3 behind = s.contact_proxy - s.device_position;
+    proxy_height = f.to_local(s.contact_proxy).z;
+    ASSERT_GT(norm(behind), 0.5e-3) << "at " << s.t << " s: the instrument went into the set paste";
+    EXPECT_NEAR(norm(s.contact_force), profile.contact.stiffness_N_per_m * norm(behind),
+                0.1 * profile.contact.stiffness_N_per_m * norm(behind))
+        << "at " << s.t << " s";
+    EXPECT_LT(testing::angle_deg(s.contact_force, behind), 5.0) << "at " << s.t << " s";
+  }
+  EXPECT_GT(held, 500);
+  // Pressing set paste is contact, not a force in air (the simulated tool feels nothing there).
+  EXPECT_LE(r.haptic.free_air.free_p95_N, 0.05);
+  EXPECT_GT(r.haptic.free_air.contact_ticks, 900u);
+  std::printf("the set paste held the proxy at %.3f mm (tooth frame; the floor is at -1.9 mm)\n", proxy_height * 1e3);
+  EXPECT_GT(proxy_height, -1.5e-3) << "held above the floor";
+  // The simulated instrument stayed with the proxy, within the coupling's reach, not with the hand.
+  for (const StepSample& st : r.recording.steps) {
+    if (st.wall_t > 4.2 && st.wall_t < 4.9) {
+      EXPECT_GT(f.to_local(st.tool_pose.position).z, proxy_height - 0.1e-3) << "at " << st.wall_t << " s";
+    }
+  }
+}
+
 // The same press played by the reference client over UDP, as a device would: the hand 1 mm into
 // the enamel beside the cavity feels k times its distance behind the proxy, along the surface's
 // normal; the client receives that force.

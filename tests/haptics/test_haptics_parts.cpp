@@ -652,6 +652,11 @@ TEST(FreeAir, TicksAreSplitByTheToolForceOfTheLastWindow) {
   // A longer window makes more ticks contact.
   EXPECT_GT(free_air_force(r, 0.05).contact_ticks, f.contact_ticks);
   EXPECT_EQ(free_air_force(Recording{}).free_ticks, 0u) << "an empty recording";
+  // The hard contact touching (the tooth, set paste: no force on the simulated tool) is contact.
+  for (int k = 250; k < 270; ++k) r.haptic[std::size_t(k)].contact_force = {0, 3.0, 0};
+  const FreeAirForce g = free_air_force(r);
+  EXPECT_EQ(g.contact_ticks, f.contact_ticks + 20);
+  EXPECT_EQ(g.free_ticks, f.free_ticks - 20);
 }
 
 // A recording of `seconds` at `rate` whose tick k renders force(k / rate), at time t(k).
