@@ -63,6 +63,7 @@ struct Options {
   double scale = 1;                // positions sent times this (1000: a client sending millimetres)
   double spike_at_s = -1, spike_m = 0;  // one pose at this time with x = spike_m
   double toggle_button_hz = 0;     // button 1 toggled at this rate the whole run
+  double toggle_light_hz = 0;      // button 2 (the curing light) toggled at this rate the whole run
   double start_after_s = 0;        // wait this long before the first message
   double wait_s = 0;               // > 0: heartbeats until dentsph answers, at most this long, before the first pose
   unsigned seed = 1;
@@ -152,6 +153,8 @@ int main(int argc, char** argv) {
   app.add_option("--spike-at", o.spike_at_s, "Send one absurd pose at this time (s)...");
   app.add_option("--spike-m", o.spike_m, "... with x this many metres");
   app.add_option("--toggle-button-hz", o.toggle_button_hz, "Toggle button 1 at this rate (Hz) the whole run")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--toggle-light-hz", o.toggle_light_hz, "Toggle button 2 (the curing light) at this rate (Hz) the whole run")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--start-after", o.start_after_s, "Wait this long (s) before the first message")
       ->check(CLI::Range(0.0, 86400.0));
@@ -342,6 +345,7 @@ int main(int argc, char** argv) {
     for (const double at : o.press_button_at_s)
       if (t >= at && t < at + o.press_button_for_s) p.buttons |= proto::kButtonDispense;
     if (o.toggle_button_hz > 0 && std::fmod(t * o.toggle_button_hz, 1.0) < 0.5) p.buttons |= proto::kButtonDispense;
+    if (o.toggle_light_hz > 0 && std::fmod(t * o.toggle_light_hz, 1.0) < 0.5) p.buttons |= proto::kButtonLight;
     const std::size_t n = proto::encode(p, buf);
     ++st.poses_sent;
     const std::span<const std::uint8_t> pkt(buf.data(), n);

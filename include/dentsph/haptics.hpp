@@ -200,6 +200,8 @@ struct HapticReport {
   double contact_build_max_ms = 0;        // the longest rebuild (off the haptic thread)
   std::uint64_t dispense_presses = 0;     // presses of button 1 counted (handed to the simulation)
   std::uint64_t dispense_presses_refused = 0;  // presses over limits::max_dispense_presses_per_s
+  std::uint64_t light_presses = 0;        // presses of button 2 counted (the curing light toggled)
+  std::uint64_t light_presses_refused = 0;  // presses over limits::max_light_presses_per_s
   std::uint64_t watchdog_trips = 0;       // healthy -> fault transitions
   std::uint64_t sim_stale_ticks = 0, pose_stale_ticks = 0, zero_gain_ticks = 0;
   FreeAirForce free_air;                  // from the recording, after the run

@@ -54,6 +54,8 @@ inline constexpr std::uint64_t max_recorded_steps = 20'000'000;
 
 // Presses of the device's button 1 counted in any one second (more are refused and counted).
 inline constexpr int max_dispense_presses_per_s = 4;
+// Presses of the device's button 2 (the curing light on or off) counted in any one second.
+inline constexpr int max_light_presses_per_s = 4;
 // The paste an increment may bring the scene to, in cavity volumes (a tooth's cavity holds one;
 // without a tooth: the grid domain's volume).
 inline constexpr real max_material_per_cavity = 2;

@@ -89,9 +89,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     if (fresh.session != sample_.session) start_session(fresh, now);
     // Button 1's presses are counted here, at the device's rate, so that the simulation loop,
     // which sees only the newest command, misses none between two of its steps.
-    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) count_press(now);
-    // Button 2 turns the curing light on or off: each press counts (a toggle adds nothing).
-    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonLight) ++light_presses_;
+    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonDispense) dispense_presses_.press(now);
+    // Button 2 turns the curing light on or off, at most as often.
+    if ((fresh.buttons & ~sample_.buttons) & haptic_protocol::kButtonLight) light_presses_.press(now);
     sample_ = fresh;
     const Vec3 x = sample_.pose.position;
     const double ddt = sample_.device_time_s - prev_device_time_;
@@ -191,8 +191,8 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     c.contact_normal = contact.touching ? contact.normal : Vec3{};
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
-    c.dispense_presses = dispense_presses_;
-    c.light_presses = light_presses_;
+    c.dispense_presses = dispense_presses_.counted();
+    c.light_presses = light_presses_.counted();
     c.valid = true;
     shared_.command.publish();
   }
@@ -236,21 +236,12 @@ void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
   shared_.sessions.publish();
 }
 
-void HapticLoop::count_press(std::int64_t now) {
-  // press_ns_ holds the last max_dispense_presses_per_s counted presses, oldest at next_press_.
-  const std::int64_t oldest = press_ns_[next_press_];
-  if (rep_.dispense_presses >= press_ns_.size() && now - oldest < 1'000'000'000) {
-    ++rep_.dispense_presses_refused;
-    return;
-  }
-  press_ns_[next_press_] = now;
-  next_press_ = (next_press_ + 1) % press_ns_.size();
-  ++rep_.dispense_presses;
-  ++dispense_presses_;
-}
-
 HapticReport HapticLoop::report() const {
   HapticReport r = rep_;
+  r.dispense_presses = dispense_presses_.counted();
+  r.dispense_presses_refused = dispense_presses_.refused();
+  r.light_presses = light_presses_.counted();
+  r.light_presses_refused = light_presses_.refused();
   r.timing.period_p50_us = periods_.quantile(0.5);
   r.timing.period_p99_us = periods_.quantile(0.99);
   r.timing.period_max_us = periods_.max();

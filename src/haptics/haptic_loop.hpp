@@ -13,6 +13,7 @@
 #include "dentsph/contact.hpp"
 #include "dentsph/haptics.hpp"
 #include "haptics/force_limiter.hpp"
+#include "haptics/press_limiter.hpp"
 #include "haptics/force_renderer.hpp"
 #include "haptics/shared.hpp"
 #include "haptics/timing_stats.hpp"
@@ -35,9 +36,6 @@ class HapticLoop {
   // A new device session (DeviceSample::session changed): forget the previous one's motion and
   // forces, announce it to the virtual coupling, ramp the force in from zero.
   void start_session(const DeviceSample& fresh, std::int64_t now_ns);
-  // Counts a press of button 1 at now_ns unless limits::max_dispense_presses_per_s were counted in
-  // the last second.
-  void count_press(std::int64_t now_ns);
   void publish_live(std::int64_t now_ns, const Vec3& force, double pose_age_s, double sim_age_s, double gain,
                     std::uint32_t status);
 
@@ -55,10 +53,10 @@ class HapticLoop {
   std::uint64_t dropped_ = 0;
   // device state
   DeviceSample sample_;
-  std::uint64_t dispense_presses_ = 0;  // button 1 presses counted in fresh samples (ToolCommand)
-  std::uint64_t light_presses_ = 0;     // button 2 presses (the curing light), every one
-  std::array<std::int64_t, limits::max_dispense_presses_per_s> press_ns_{};  // the last ones counted
-  std::size_t next_press_ = 0;
+  // Presses counted in fresh samples, handed to the simulation (ToolCommand): button 1 (dispense)
+  // and button 2 (the curing light).
+  PressLimiter<limits::max_dispense_presses_per_s> dispense_presses_;
+  PressLimiter<limits::max_light_presses_per_s> light_presses_;
   std::int64_t session_start_ns_ = 0;  // simulation outputs answering older commands are ignored
   Vec3 velocity_, prev_position_;
   double prev_device_time_ = 0;

@@ -81,6 +81,8 @@ std::string realtime_json(const RealtimeResult& r) {
                  {"sessions", h.sessions},
                  {"dispense_presses", h.dispense_presses},
                  {"dispense_presses_refused", h.dispense_presses_refused},
+                 {"light_presses", h.light_presses},
+                 {"light_presses_refused", h.light_presses_refused},
                  {"watchdog", {{"trips", h.watchdog_trips},
                                {"sim_stale_ticks", h.sim_stale_ticks},
                                {"pose_stale_ticks", h.pose_stale_ticks},
@@ -127,7 +129,8 @@ std::string realtime_report(const RealtimeResult& r) {
       "(longest {:.1f} ms)\n"
       "{}"
       "simulation ({}): {} steps, {:.0f} steps/s ({:.3f} x real time), step p50 {:.0f} us, p99 {:.0f} us; {} increments "
-      "dispensed by the button ({} presses over {} a second refused)\n"
+      "dispensed by the button ({} presses over {} a second refused), the light toggled {} times ({} presses "
+      "refused)\n"
       "consumer: {} snapshots at {:.1f} Hz\n",
       r.recording.mode, r.device_name, h.timing.rate_hz, h.target_rate_hz, h.timing.period_p50_us,
       h.timing.period_p99_us, h.timing.period_max_us, h.timing.deadline_misses, h.timing.ticks, h.force_age_p50_us,
@@ -137,7 +140,8 @@ std::string realtime_report(const RealtimeResult& r) {
       h.profile.contact.stiffness_N_per_m, h.profile.contact.friction, h.contact_ticks, h.contact_rebuilds,
       h.contact_build_max_ms, spectrum_line(h.force_spectrum), r.run.backend, r.sim.steps, r.sim.steps_per_second, r.sim.realtime_factor,
       r.sim.step_p50_us, r.sim.step_p99_us, r.sim.button_dispenses, h.dispense_presses_refused,
-      limits::max_dispense_presses_per_s, r.consumer.frames, r.consumer.rate_hz);
+      limits::max_dispense_presses_per_s, r.sim.light_toggles, h.light_presses_refused, r.consumer.frames,
+      r.consumer.rate_hz);
 }
 
 }  // namespace dentsph

@@ -232,7 +232,8 @@ class UdpDeviceImpl final : public Device {
   // window): newer: accepted (a jump counts the skipped ones as gaps); within the window and
   // unseen: reordered (fills a gap, not used: a newer pose is already in hand); seen: duplicate;
   // further behind: too old. `restart_after` duplicates or too old poses in a row, each numbered
-  // one after the previous, are a client that numbers its poses from the start again: a new session.
+  // one after the previous, either from the start or sent after the newest pose (its timestamp),
+  // are a client that numbers its poses from the start again: a new session.
   bool accept_pose(const proto::PosePacket& p, std::int64_t now_ns, DeviceSample& s) {
     const std::uint32_t q = p.header.sequence;
     if (have_pose_ && !proto::sequence_newer(q, newest_sequence_)) {
@@ -246,9 +247,17 @@ class UdpDeviceImpl final : public Device {
       }
       // A duplicate or a pose too old: refused, and it does not keep the session alive; but a run
       // of them numbered one after another is the client counting from the start again.
-      old_streak_ = old_streak_ > 0 && q == old_last_ + 1 ? old_streak_ + 1 : 1;
+      // A run that numbers from the start (its first pose at most restart_after) or is sent now
+      // (timestamps not older than the newest pose's: the client's clock went on) is; old poses
+      // resent later with their old timestamps are not.
+      const bool fresh = p.header.timestamp_ns >= newest_stamp_;
+      const bool follows = old_streak_ > 0 && q == old_last_ + 1;
+      old_streak_ = follows ? old_streak_ + 1 : 1;
+      old_fresh_ = follows ? old_fresh_ && fresh : fresh;
+      if (!follows) old_first_ = q;
       old_last_ = q;
-      if (old_streak_ < opt_.restart_after) {
+      const bool from_start = old_first_ <= std::uint32_t(opt_.restart_after);
+      if (old_streak_ < opt_.restart_after || !(from_start || old_fresh_)) {
         ++(duplicate ? c_.duplicates : c_.too_old);
         return false;
       }
@@ -266,6 +275,7 @@ class UdpDeviceImpl final : public Device {
     }
     have_pose_ = true;
     newest_sequence_ = q;
+    newest_stamp_ = p.header.timestamp_ns;
     ++c_.poses;
     if (!plausible(p, now_ns)) return false;  // arrived (not lost), but not used nor answered
     last_heard_ns_ = now_ns;
@@ -308,6 +318,9 @@ class UdpDeviceImpl final : public Device {
   std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0, accepted_ns_ = 0, received_ns_ = 0;
   std::uint32_t newest_sequence_ = 0, out_sequence_ = 0, answer_sequence_ = 0, old_last_ = 0, session_number_ = 0;
   int old_streak_ = 0;
+  bool old_fresh_ = false;            // every pose of the run sent after the newest pose
+  std::uint32_t old_first_ = 0;       // the run's first pose number
+  std::uint64_t newest_stamp_ = 0;    // the newest pose's timestamp (the client's clock)
   std::uint64_t answer_timestamp_ = 0, accepted_stamp_ = 0, received_stamp_ = 0, seen_mask_ = 0;
   Vec3 accepted_position_, received_position_;
   UdpCounters c_;

@@ -5,8 +5,14 @@
 // flood the scene with paste.
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <sys/socket.h>
+#include <netinet/in.h>
+#include <arpa/inet.h>
 
 #include <algorithm>
+#include <array>
+#include <chrono>
+#include <memory>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -20,6 +26,7 @@
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/limits.hpp"
+#include "dentsph/haptics/protocol.hpp"
 #include "press_scene.hpp"
 #include "runtime_support.hpp"
 
@@ -191,6 +198,58 @@ TEST(HapticSafety, AClientThatRestartsItsNumberingIsANewSession) {
   }
 }
 
+// Old poses resent later with their old timestamps (a network path that delivers a burst of
+// stale datagrams): three in a row, numbered one after another, were read as a restart (the
+// session started again, every pose since counted lost). They are too old; a client that really
+// numbers from the start again (its clock going on, or from pose 1 whatever its clock) is a restart.
+TEST(HapticSafety, StalePosesResentAreNotARestart) {
+  namespace proto = haptic_protocol;
+  struct Case {
+    const char* name;
+    std::uint32_t first;     // the run's first pose number
+    bool old_stamps;         // sent with the timestamps they first had
+    int restarts;
+  };
+  for (const Case k : {Case{"stale 100-102", 100, true, 0}, Case{"numbered from 1, clock going on", 1, false, 1},
+                       Case{"numbered from 1, a clock that restarted", 1, true, 1},
+                       Case{"numbered from 100, clock going on", 100, false, 1}}) {
+    SCOPED_TRACE(k.name);
+    std::uint16_t port = 0;
+    const std::unique_ptr<Device> device = make_udp_device({"127.0.0.1", 0}, &port);
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(port);
+    ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+    device->start(0);
+    DeviceSample sample;
+    std::int64_t now = 1'000'000'000;
+    auto send = [&](std::uint32_t seq, std::uint64_t stamp) {
+      proto::PosePacket pose;
+      pose.header.sequence = seq;
+      pose.header.timestamp_ns = stamp;
+      std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
+      const std::size_t n = proto::encode(pose, buf);
+      ::sendto(fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      now += 1'000'000;
+      device->read(now, sample);
+    };
+    const std::uint64_t t0 = 5'000'000'000;  // the client's clock at its first pose
+    for (std::uint32_t q = 1; q <= 2000; ++q) send(q, t0 + q * 1'000'000ull);
+    for (std::uint32_t q = k.first; q < k.first + 3; ++q)
+      send(q, k.old_stamps ? t0 + q * 1'000'000ull : t0 + (2000 + q) * 1'000'000ull);
+    ::close(fd);
+    const nlohmann::json d = nlohmann::json::parse(device->report_json());
+    EXPECT_EQ(d["restarts"], k.restarts);
+    EXPECT_EQ(d["lost"], 0);
+    if (k.restarts == 0) {
+      EXPECT_EQ(d["too_old"], 3);
+      EXPECT_EQ(d["sessions"], 1);
+    }
+  }
+}
+
 // ---- class 9: the protocol document --------------------------------------------------------------
 
 std::string protocol_doc() {
@@ -255,6 +314,25 @@ TEST(HapticSafety, AButtonToggledFastIsRateLimited) {
   EXPECT_GE(r.haptic.dispense_presses, std::uint64_t(limits::max_dispense_presses_per_s));
   EXPECT_EQ(r.sim.button_dispenses, r.haptic.dispense_presses);
   EXPECT_EQ(h["dispense_presses_refused"], r.haptic.dispense_presses_refused);
+  EXPECT_EQ(r.run.status, "completed");
+}
+
+// Button 2 (the curing light) toggled 250 times a second: 1,045 toggles in 5 s before; now at
+// most limits::max_light_presses_per_s presses count in any second, the rest refused and counted.
+TEST(HapticSafety, TheLightButtonToggledFastIsRateLimited) {
+  RealtimeOptions o = options(ForceMode::direct);
+  o.duration_s = 2.2;
+  const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", "--toggle-light-hz", "250"},
+                                      "light_toggle");
+  ASSERT_FALSE(c.is_null()) << "the client failed";
+  const nlohmann::json h = realtime_sections(r)["haptic"];
+  std::printf("light presses counted %llu, refused %llu, toggles %llu\n", (unsigned long long)r.haptic.light_presses,
+              (unsigned long long)r.haptic.light_presses_refused, (unsigned long long)r.sim.light_toggles);
+  EXPECT_GT(r.haptic.light_presses_refused, 100u);
+  EXPECT_LE(r.haptic.light_presses, std::uint64_t(3 * limits::max_light_presses_per_s));  // 2.2 s
+  EXPECT_GE(r.haptic.light_presses, std::uint64_t(limits::max_light_presses_per_s));
+  EXPECT_EQ(r.sim.light_toggles, r.haptic.light_presses);
+  EXPECT_EQ(h["light_presses_refused"], r.haptic.light_presses_refused);
   EXPECT_EQ(r.run.status, "completed");
 }
 
