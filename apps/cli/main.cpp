@@ -22,6 +22,7 @@
 #include "dentsph/scene.hpp"
 #include "dental_options.hpp"
 #include "material_test.hpp"
+#include "option_checks.hpp"
 #include "output_dir.hpp"
 #include "progress.hpp"
 #include "realtime.hpp"
@@ -166,7 +167,7 @@ int main(int argc, char** argv) {
   run_dental.add_options(*run, scene_opt, true);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::finite_positive(1e6))
       ->excludes(steps);
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
   run->add_flag("--allow-unstable", opt.allow_unstable, "Run even when dt is over a stability limit");

@@ -9,6 +9,7 @@
 
 #include "dentsph/limits.hpp"
 #include "dentsph/scene.hpp"
+#include "option_checks.hpp"
 #include "report/replay_outputs.hpp"
 
 namespace dentsph::cli {
@@ -37,22 +38,23 @@ void RealtimeCommand::add_device_options(CLI::App& run, CLI::Option* rt) {
   need(run.add_option("--mode", mode_, "Force rendering: coupling (virtual coupling) or direct (the paper's)")
            ->check(CLI::IsMember({"coupling", "direct"}))
            ->capture_default_str());
-  need(run.add_option("--haptic-rate", haptic_rate_, "Haptic loop rate (Hz)")->check(CLI::Range(500.0, 4000.0))->capture_default_str());
+  need(run.add_option("--haptic-rate", haptic_rate_, "Haptic loop rate (Hz)")->check(finite_range(500.0, 4000.0))->capture_default_str());
   need(run.add_option("--force-scale", force_scale_, "Device N per simulated N (default: the scene's force_scale)")
-           ->check(CLI::PositiveNumber));
+           ->check(finite_range(1e-6, 1e9)));
   need(run.add_option("--profile", profile_, "Device force limits and contact stiffness: falcon (9 N, 3000 N/m), omega (12 N, 5000 N/m), touch (3.3 N, 1000 N/m), sigma7 (20 N, 0.4 N m torque)")
            ->check(CLI::IsMember({"falcon", "omega", "touch", "sigma7"}))
            ->capture_default_str());
   need(run.add_option("--port", udp_.port, "UDP port of the bridge (--device udp)")->capture_default_str());
   need(run.add_option("--address", udp_.address, "IPv4 address the bridge listens on (0.0.0.0: every interface)")->capture_default_str());
-  need(run.add_option("--workspace-scale", workspace_scale_, "Scene m per device m")->check(CLI::PositiveNumber)->capture_default_str());
+  need(run.add_option("--workspace-scale", workspace_scale_, "Scene m per device m")->check(finite_range(1e-4, 1e4))->capture_default_str());
   need(run.add_option("--workspace-origin", origin_, "Scene position of the device's origin (m; default: the tool's first keyframe)")
-           ->expected(3));
-  need(run.add_option("--stiffness", coupling_.stiffness_N_per_m, "Virtual coupling stiffness (N/m)")->check(CLI::PositiveNumber)->capture_default_str());
-  need(run.add_option("--damping", coupling_.damping_N_s_per_m, "Virtual coupling damping (N s/m)")->check(CLI::NonNegativeNumber)->capture_default_str());
-  need(run.add_option("--sim-rate", sim_rate_, "Cap the simulation at this many steps per second (0: no cap)")->check(CLI::NonNegativeNumber));
+           ->expected(3)
+           ->check(finite_range(-10, 10)));
+  need(run.add_option("--stiffness", coupling_.stiffness_N_per_m, "Virtual coupling stiffness (N/m)")->check(finite_range(1, 1e7))->capture_default_str());
+  need(run.add_option("--damping", coupling_.damping_N_s_per_m, "Virtual coupling damping (N s/m)")->check(finite_range(0, 1e4))->capture_default_str());
+  need(run.add_option("--sim-rate", sim_rate_, "Cap the simulation at this many steps per second (0: no cap)")->check(finite_range(0, 1e7)));
   need(run.add_flag("--free-run", free_run_, "Step as fast as possible (default: never ahead of the wall clock)"));
-  need(run.add_option("--snapshot-rate", snapshot_rate_, "Consumer loop rate (Hz, 30 to 60)")->check(CLI::Range(30.0, 60.0))->capture_default_str());
+  need(run.add_option("--snapshot-rate", snapshot_rate_, "Consumer loop rate (Hz, 30 to 60)")->check(finite_range(30.0, 60.0))->capture_default_str());
 }
 
 RealtimeOptions RealtimeCommand::options(const Scene& scene, double duration_s, int threads, bool allow_unstable,

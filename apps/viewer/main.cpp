@@ -18,6 +18,7 @@
 #include "colour_map.hpp"
 #include "dentsph/haptics.hpp"
 #include "dental_options.hpp"
+#include "option_checks.hpp"
 #include "realtime.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"
@@ -109,7 +110,7 @@ int main(int argc, char** argv) {
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
   app.add_flag("--paused", so.start_paused, "Start paused");
   app.add_option("--timeout", vo.timeout_s, "Give up after this many seconds (exit code 4); 0: never")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::finite_range(0, 1e6));
   std::string summary_file;
   app.add_option("--summary", summary_file, "Write the frame and simulation rates and the final assessment as JSON");
   cli::RealtimeCommand device;
@@ -117,7 +118,7 @@ int main(int argc, char** argv) {
   bool no_vsync = false;
   app.add_flag("--no-vsync", no_vsync, "Do not wait for the display's refresh");
   app.add_option("--max-fps", vo.max_fps, "Frames per second at most; 0: as fast as possible (to measure)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::finite_range(0, 10000))
       ->capture_default_str();
   try {
     app.parse(argc, argv);

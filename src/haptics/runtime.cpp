@@ -47,10 +47,18 @@ void check_options(const RealtimeOptions& o, double force_scale) {
     bad(fmt::format("haptic rate {} Hz: use 500 to 4000 Hz", o.haptic_rate_hz));
   if (!(o.snapshot_rate_hz == 0 || (o.snapshot_rate_hz >= 30 && o.snapshot_rate_hz <= 60)))
     bad(fmt::format("snapshot rate {} Hz: use 30 to 60 Hz (0: no consumer)", o.snapshot_rate_hz));
-  if (!(force_scale > 0) || !std::isfinite(force_scale))
-    bad(fmt::format("force scale {}: must be positive and finite (device N per simulated N)", force_scale));
-  if (!(o.workspace.scale > 0) || !std::isfinite(o.workspace.scale) || !is_finite(o.workspace.origin))
-    bad("workspace: the scale must be positive and finite, the origin finite");
+  if (!(force_scale >= 1e-6 && force_scale <= 1e9))
+    bad(fmt::format("force scale {}: use 1e-6 to 1e9 device N per simulated N", force_scale));
+  if (!(o.workspace.scale >= 1e-4 && o.workspace.scale <= 1e4) || !is_finite(o.workspace.origin) ||
+      norm(o.workspace.origin) > 10)
+    bad(fmt::format("workspace: the scale {} must be 1e-4 to 1e4 scene m per device m, the origin finite and within "
+                    "10 m",
+                    o.workspace.scale));
+  if (!(o.coupling.stiffness_N_per_m >= 1 && o.coupling.stiffness_N_per_m <= 1e7) ||
+      !(o.coupling.damping_N_s_per_m >= 0 && o.coupling.damping_N_s_per_m <= 1e4))
+    bad(fmt::format("virtual coupling: stiffness {} N/m must be 1 to 1e7 (stable over that range, tested), damping {} "
+                    "N s/m 0 to 1e4",
+                    o.coupling.stiffness_N_per_m, o.coupling.damping_N_s_per_m));
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
   if (o.duration_s > limits::max_realtime_s)

@@ -729,6 +729,25 @@ TEST(HapticRuntime, RefusesImpossibleOptions) {
   o.force_scale = 20;
   o.dispense_volume = -1;
   EXPECT_THROW(run_realtime(scene, *device, o), std::invalid_argument);
+  o.dispense_volume = 0;
+  // Numbers far out of what the runtime can use: the coupling's stiffness (1e308 rendered 0 N a
+  // whole session), the workspace's scale (1e308 sent the tool to -6.6e291 m), the force scale.
+  auto refused = [&](const char* what) {
+    try {
+      run_realtime(scene, *device, o);
+      ADD_FAILURE() << what << " was not refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  o.coupling.stiffness_N_per_m = 1e308;
+  refused("virtual coupling");
+  o.coupling = {};
+  o.workspace.scale = 1e308;
+  refused("workspace");
+  o.workspace.scale = 1;
+  o.force_scale = 1e300;
+  refused("force scale");
   EXPECT_THROW(make_udp_device({"not-an-address", 0}), std::invalid_argument);
 }
 

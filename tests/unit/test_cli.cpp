@@ -2,6 +2,8 @@
 // cavity that does not fit the tooth, broken procedure files. Runs the built `dentsph` binary.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <fstream>
 #include <string>
 
@@ -107,6 +109,33 @@ TEST(Cli, ImpossibleCavityOptionsNameTheOptionAndTheFix) {
   expect_refused("run scenes/tool_press.json --cavity class2 --steps 1 -q", {"--cavity", "excludes"});
   for (const char* args : {"run --cavity-width -1 --steps 1 -q", "run --cavity-depth 5 --steps 1 -q"})
     EXPECT_EQ(dentsph_cli(args).code, 2) << args;
+}
+
+// Numeric options that are not numbers, infinite or far out of what the program can use are refused
+// before anything runs, naming the option and its range: --force-scale nan was replaced by the
+// default without a word, --stiffness 1e308 rendered 0 N a whole session, --workspace-scale 1e308
+// sent the tool to -6.6e291 m and reported "completed". The library refuses them too.
+TEST(Cli, NumericOptionsOutOfRangeAreRefused) {
+  const char* rt = "run --realtime --device scripted --duration 0.2 -q ";
+  for (const auto& [option, value, range] :
+       std::vector<std::array<std::string, 3>>{{"--force-scale", "nan", "1e-06 to 1e+09"},
+                                                {"--force-scale", "inf", "1e-06 to 1e+09"},
+                                                {"--stiffness", "1e308", "1 to 1e+07"},
+                                                {"--damping", "-inf", "0 to 10000"},
+                                                {"--workspace-scale", "1e308", "0.0001 to 10000"},
+                                                {"--haptic-rate", "nan", "500 to 4000"},
+                                                {"--sim-rate", "nan", "0 to 1e+07"}}) {
+    const Result r = dentsph_cli(std::string(rt) + option + " " + value);
+    EXPECT_EQ(r.code, 2) << option << " " << value << ": " << r.output;
+    EXPECT_NE(r.output.find(option + ": Value " + value + " not in range " + range), std::string::npos)
+        << option << " " << value << ": " << r.output;
+  }
+  const Result o = dentsph_cli(std::string(rt) + "--workspace-origin 0 nan 0");
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("--workspace-origin"), std::string::npos) << o.output;
+  const Result d = dentsph_cli("run --duration nan -q");
+  EXPECT_EQ(d.code, 2) << d.output;
+  EXPECT_NE(d.output.find("--duration: Value nan not in range"), std::string::npos) << d.output;
 }
 
 nlohmann::json read_json(const fs::path& f) {
