@@ -244,6 +244,7 @@ int main(int argc, char** argv) {
       if (out_dir.empty()) cli::prepare_output_dir(out_dir, "--out");  // refused: writes nothing
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
+      session.check(opt.out_dir);  // the store, before the session: never lost at its end
       const int rc = cmd_run(run_scene, run_dental, run_solver, opt, quiet, realtime, session);
       if (rc == 0) session.record(opt.out_dir);
       return rc;

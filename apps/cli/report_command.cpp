@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "option_checks.hpp"
 #include "progress.hpp"
 #include "report/class_report.hpp"
 #include "report/session_folder.hpp"
@@ -39,9 +40,19 @@ void with_progress(std::size_t n, F each) {
 }  // namespace
 
 void SessionOptions::add_options(CLI::App& run) {
-  run.add_option("--student", student_, "Who runs the session (the report's title; the session store's index)");
-  run.add_option("--exercise", exercise_, "Which exercise the session is (the report; the session store's index)");
+  run.add_option("--student", student_, "Who runs the session (the report's title; the session store's index)")
+      ->check(person_text());
+  run.add_option("--exercise", exercise_, "Which exercise the session is (the report; the session store's index)")
+      ->check(person_text());
   run.add_option("--db", db_, "Index the finished session in this session store (an SQLite file, created when missing)");
+}
+
+void SessionOptions::check(const std::filesystem::path& out_dir) const {
+  if (db_.empty()) return;
+  if (out_dir.empty()) throw std::invalid_argument("--db needs the run's folder: give --out DIR");
+  // Opening it says now what would otherwise be said after the session (a folder that does not
+  // exist, a file that is not a session store, one from a newer dentsph): refused before the run.
+  report::SessionStore store(db_);
 }
 
 void SessionOptions::apply(Scene& scene) const {

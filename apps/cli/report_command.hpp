@@ -19,6 +19,9 @@ class SessionOptions {
   void add_options(CLI::App& run);
   // The names given on the command line replace the scene file's.
   void apply(Scene& scene) const;
+  // Before the run: with --db, the run has a folder and the store opens (an SQLite file is created
+  // when missing); throws (report::StoreError, std::invalid_argument) otherwise.
+  void check(const std::filesystem::path& out_dir) const;
   // Adds the finished run's folder to the store when --db was given (says so on stdout).
   void record(const std::filesystem::path& out_dir) const;
 

@@ -143,6 +143,33 @@ nlohmann::json read_json(const fs::path& f) {
   return nlohmann::json::parse(in);
 }
 
+// What would lose a session at its end is refused before it runs: a student or exercise name
+// that is not UTF-8 (it failed in the JSON writer after the whole session: summary.json empty, no
+// report, no store entry) and a session store that cannot be opened (checked after the run before).
+TEST(Cli, NamesAndTheStoreAreCheckedBeforeTheSession) {
+  const fs::path out = dir() / "early";
+  fs::remove_all(out);
+  const Result latin1 = dentsph_cli("run --steps 2 -q --student \"$(printf 'Jos\\351')\" --out " + out.string());
+  EXPECT_EQ(latin1.code, 2) << latin1.output;
+  EXPECT_NE(latin1.output.find("--student: not UTF-8 text: byte 0xE9 at position 3"), std::string::npos) << latin1.output;
+  const Result control = dentsph_cli("run --steps 2 -q --exercise \"$(printf 'a\\033b')\" --out " + out.string());
+  EXPECT_EQ(control.code, 2) << control.output;
+  EXPECT_NE(control.output.find("--exercise: a control character"), std::string::npos) << control.output;
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  for (const std::string& db : {std::string("./no/dir/s.sqlite"), (dir() / "text.sqlite").string()}) {
+    std::ofstream(dir() / "text.sqlite") << "not a database\n";
+    const Result r = dentsph_cli("run --steps 2 -q --db " + db + " --out " + out.string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(db), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json")) << "the session ran before the store was checked";
+  }
+  // UTF-8 names go through to the summary.
+  const Result ok = dentsph_cli("run --steps 2 -q --student \"José\" --out " + out.string());
+  ASSERT_EQ(ok.code, 0) << ok.output;
+  EXPECT_EQ(read_json(out / "summary.json")["session"]["student"], "José");
+}
+
+
 TEST(Cli, AClassTwoRunOnTheBuiltInCrown) {
   const fs::path out = dir() / "class2";
   const Result r = dentsph_cli("run --cavity class2 --cavity-side distal --cavity-width 3.5 --cavity-taper 4 --steps 5 "
