@@ -250,12 +250,14 @@ int main(int argc, char** argv) {
         if (proto::sequence_newer(f.pose_sequence, seq)) continue;  // answers a pose of the session before
         ++forces_after_restart;
       }
-      const double mag = std::hypot(f.force[0], f.force[1], f.force[2]);
+      // |f| as dentsph's limiter computes it (the root of the sum of squares: std::hypot rounds
+      // otherwise, and a force limited to exactly 9 N read 9.000000000000002).
+      const double mag = std::sqrt(f.force[0] * f.force[0] + f.force[1] * f.force[1] + f.force[2] * f.force[2]);
       st.max_force_N = std::max(st.max_force_N, mag);
       if (mag > o.limit_N) ++st.over_limit;
       if (h.type == proto::Type::wrench) {
         ++st.wrenches;
-        const double tau = std::hypot(f.torque[0], f.torque[1], f.torque[2]);
+        const double tau = std::sqrt(f.torque[0] * f.torque[0] + f.torque[1] * f.torque[1] + f.torque[2] * f.torque[2]);
         st.max_torque_N_m = std::max(st.max_torque_N_m, tau);
         if (tau > o.torque_limit_N_m) ++st.torque_over_limit;
       }
