@@ -129,6 +129,11 @@ int main(int argc, char** argv) {
   if (!screenshot.empty() && vo.frames == 0) vo.frames = 1;
   vo.screenshot = screenshot;
 
+  // Closing (SIGINT, SIGTERM) is asked for from here on: the scene, the simulation and the contact
+  // field take seconds to build, and a signal then ended the viewer with no word (status 143); now
+  // its first frame closes it cleanly.
+  std::signal(SIGINT, [](int) { viewer::request_close(); });
+  std::signal(SIGTERM, [](int) { viewer::request_close(); });
   try {
     (void)viewer::colour_by_from_name(vo.colour_by);
     if (!script_file.empty()) vo.script = viewer::load_input_script(script_file);
@@ -145,8 +150,6 @@ int main(int argc, char** argv) {
     }
     viewer::SimSession session(std::move(sc), so);
     if (dev) session.use_device(std::move(dev), ro);
-    std::signal(SIGINT, [](int) { viewer::request_close(); });
-    std::signal(SIGTERM, [](int) { viewer::request_close(); });
     const viewer::ViewerResult r = viewer::run_viewer(session, vo);
     fmt::print("viewer: {} frames, {:.1f} fps (median), frame time p50 {:.2f} ms, p99 {:.2f} ms; simulation {} steps, "
                "{:.0f} steps/s\n",
