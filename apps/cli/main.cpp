@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include <fstream>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -167,7 +168,7 @@ int main(int argc, char** argv) {
   run_dental.add_options(*run, scene_opt, true);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
-      ->check(cli::finite_positive(1e6))
+      ->check(cli::finite_positive(std::numeric_limits<double>::max()))  // its limit: the scene's steps
       ->excludes(steps);
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
   run->add_flag("--allow-unstable", opt.allow_unstable, "Run even when dt is over a stability limit");
