@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
   run_dental.add_options(*run, scene_opt, true);
   auto* steps = run->add_option("--steps", opt.steps, "Number of steps")->check(CLI::PositiveNumber);
   run->add_option("--duration", opt.duration, "Simulated seconds (instead of --steps); with --realtime: wall seconds")
-      ->check(cli::finite_positive(std::numeric_limits<double>::max()))  // its limit: the scene's steps
+      ->check(cli::finite_positive())  // its limit: the scene's steps, checked with the scene
       ->excludes(steps);
   run->add_option("--out", out_dir, "Output folder")->capture_default_str();
   run->add_flag("--allow-unstable", opt.allow_unstable, "Run even when dt is over a stability limit");

@@ -25,16 +25,19 @@ inline CLI::Validator finite_range(double lo, double hi) {
       fmt::format("FLOAT in [{:g} - {:g}]", lo, hi));
 }
 
-// A finite number in (0, hi].
-inline CLI::Validator finite_positive(double hi) {
+// A finite number in (0, hi] (no upper bound without `hi`: a later check names the limit).
+inline CLI::Validator finite_positive(double hi = HUGE_VAL) {
+  const bool bounded = std::isfinite(hi);
   return CLI::Validator(
-      [hi](std::string& input) -> std::string {
+      [hi, bounded](std::string& input) -> std::string {
         double v = 0;
         if (!CLI::detail::lexical_cast(input, v)) return fmt::format("Value {} is not a number", input);
-        if (!std::isfinite(v) || !(v > 0) || v > hi) return fmt::format("Value {} not in range (0 to {:g}]", input, hi);
+        if (!std::isfinite(v) || !(v > 0) || v > hi)
+          return bounded ? fmt::format("Value {} not in range (0 to {:g}]", input, hi)
+                         : fmt::format("Value {} not in range: a positive finite number", input);
         return {};
       },
-      fmt::format("FLOAT in (0 - {:g}]", hi));
+      bounded ? fmt::format("FLOAT in (0 - {:g}]", hi) : std::string("POSITIVE FLOAT"));
 }
 
 // Where `text` stops being UTF-8 (its length when it is), by the encoding's rules: no stray
