@@ -16,8 +16,7 @@ namespace dentsph::iisph {
 namespace {
 
 // Force (N) on tool particle i from its material neighbours (pressure, viscosity) and its bonds.
-Vec3 tool_particle_force(const State& s, std::uint32_t i) {
-  const IisphScratch& x = s.iisph;
+Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i) {
   const SolverPair* row = x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
   Vec3 pressure, viscous;
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
@@ -28,11 +27,11 @@ Vec3 tool_particle_force(const State& s, std::uint32_t i) {
   return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];
 }
 
-void tool_wrench(State& s) {
+void tool_wrench(State& s, const IisphScratch& x) {
   ToolWrench w;
   const Vec3 c = s.tool_pose_applied.position;
-  for (const std::uint32_t i : s.iisph.tools) {  // the tool particles in index order (rows.cpp)
-    const Vec3 f = tool_particle_force(s, i);
+  for (const std::uint32_t i : x.tools) {  // the tool particles in index order (rows.cpp)
+    const Vec3 f = tool_particle_force(s, x, i);
     s.force[i] = f * (s.rho[i] / s.mass[i]);  // force density, as the paper's step keeps it
     w.force += f;
     w.torque += cross(s.pos[i] - c, f);
@@ -42,9 +41,8 @@ void tool_wrench(State& s) {
 
 }  // namespace
 
-void finish(const Model& model, State& s, int threads) {
-  tool_wrench(s);
-  const IisphScratch& x = s.iisph;
+void finish(const Model& model, State& s, const IisphScratch& x, int threads) {
+  tool_wrench(s, x);
   const real dt = model.dt;
   real a2max = 0, v2max = 0;
   std::uint64_t non_finite = 0, projected = 0, held = 0;
