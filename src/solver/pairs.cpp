@@ -92,7 +92,7 @@ class RowBuilder {
     for (std::uint32_t e = 0; e < n; ++e) {
       const real r2 = w.r2[e], mj = mass[w.j[e]];
       const real wk = k_.h2 - r2;
-      w.rho[e] = mj * wk * wk * wk;
+      w.rho[e] = kernels::poly6_mass_term(mj, wk);
       const real r = std::sqrt(r2);
       const auto [g, g_over_r] = radial(r);
       w.f[e] = mj * g_over_r;
