@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <fstream>
@@ -21,6 +22,7 @@
 #include "dentsph/limits.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/solver.hpp"
 #include "dental_options.hpp"
 #include "material_test.hpp"
 #include "option_checks.hpp"
@@ -44,18 +46,9 @@ void print_scene(const Scene& sc, const State& st) {
   fmt::print("grid       {} x {} x {} cells of {:.4g} m\n", sc.model.grid.dims[0], sc.model.grid.dims[1],
              sc.model.grid.dims[2], sc.model.grid.cell_size);
   const StabilityLimits l = stability_limits(sc.model, st);
-  if (sc.model.solver == Solver::iisph) {
-    const real v = scene_tool_speed(sc);
-    fmt::print("solver     iisph (implicit pressure and viscosity; docs/model.md)\n");
-    fmt::print("time step  dt = {:.4g} s; limit: velocity CFL {:.4g} s = {:.2g} h / {:.4g} m/s (the tool's fastest); the "
-               "paper's step's acoustic {:.4g} s and viscous {:.4g} s do not bind it\n",
-               sc.model.dt, velocity_time_step_limit(sc.model, v), sc.model.iisph.cfl, v, l.paper_acoustic,
-               l.paper_viscous);
-  } else {
-    fmt::print("solver     paper (the paper's explicit step)\n");
-    fmt::print("time step  dt = {:.4g} s; limits: acoustic {:.4g} s, viscous {:.4g} s\n", sc.model.dt, l.acoustic,
-               l.viscous);
-  }
+  const StepSolver& solver = solver_properties(sc.model.solver);
+  fmt::print("solver     {} ({})\n", solver.name(), solver.description());
+  fmt::print("time step  {}\n", solver.time_step_report(sc.model, l, scene_tool_speed(sc)));
 }
 
 int cmd_validate(const std::string& file) {
@@ -183,10 +176,14 @@ int main(int argc, char** argv) {
   report.add_subcommand(app);
   std::string run_backend = "cpu", bench_backend = "cpu", replay_backend = "cpu";
   cli::add_backend_option(*run, run_backend);
-  const std::vector<std::string> solvers = {"paper", "iisph"};
+  // The registered solvers (solver.hpp), each with what it is.
+  std::vector<std::string> solvers, described;
+  for (const SolverEntry& e : registered_solvers()) {
+    solvers.push_back(e.name);
+    described.push_back(fmt::format("{} ({})", e.name, solver_properties(e.key).description()));
+  }
   const std::string solver_help =
-      "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: the "
-      "scene's simulation.solver";
+      fmt::format("The step: {}; default: the scene's simulation.solver", fmt::join(described, " or "));
   std::string run_solver, replay_solver, bench_solver;
   run->add_option("--solver", run_solver, solver_help)->check(CLI::IsMember(solvers));
 
@@ -204,7 +201,8 @@ int main(int argc, char** argv) {
   cli::add_backend_option(*bench, bench_backend,
                           "cpu (thread counts), or cuda: the sweep then reaches 2 million particles (cuda-emulation: "
                           "the GPU's algorithm on the CPU)");
-  bench->add_option("--solver", bench_solver, "The step the built-in dental scene and the sweep run: paper (default) or iisph")
+  bench->add_option("--solver", bench_solver,
+                    fmt::format("The step the built-in dental scene and the sweep run: {} (default: paper)", solver_choices()))
       ->check(CLI::IsMember(solvers));
 
   std::string replay_dir, replay_scene;

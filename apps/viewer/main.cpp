@@ -6,12 +6,15 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "backend_option.hpp"
@@ -102,10 +105,12 @@ int main(int argc, char** argv) {
   std::string backend = "cpu";
   cli::add_backend_option(app, backend);
   std::string solver;
+  std::vector<std::string> solvers;  // the registered solvers (solver.hpp)
+  for (const SolverEntry& e : registered_solvers()) solvers.push_back(e.name);
   app.add_option("--solver", solver,
-                 "The step: paper (the paper's explicit step) or iisph (the implicit solver, docs/model.md); default: "
-                 "the scene's simulation.solver")
-      ->check(CLI::IsMember({"paper", "iisph"}));
+                 fmt::format("The step: {} (docs/model.md, \"Solvers\"); default: the scene's simulation.solver",
+                             solver_choices()))
+      ->check(CLI::IsMember(solvers));
   app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed, bonds or conversion (the paste's degree of conversion under the curing light)")->capture_default_str();
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
   app.add_flag("--paused", so.start_paused, "Start paused");

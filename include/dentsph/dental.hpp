@@ -13,7 +13,7 @@
 
 namespace dentsph {
 
-// The dental scenes' time step for each solver, s: the paper's explicit step 5e-5 (under its
+// The dental scenes' time step for each solver (StepSolver::default_time_step), s: the paper's explicit step 5e-5 (under its
 // acoustic limit, 62 us for the paste and walls below), the iisph solver 1.5e-3 (with the prepared
 // tooth's wall field; it fills the cavities as the paper's step does, where 2 ms left FDI 36's two
 // cavities 0.002 behind; a 1 kHz haptic loop gets every second step, 3 ticks apart; docs/model.md).

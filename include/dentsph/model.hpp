@@ -56,7 +56,8 @@ struct GridSpec {
   std::int64_t cell_count() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 };
 
-// Which step `step()` runs (docs/model.md, "Solvers"):
+// Which solver steps the model (docs/model.md, "Solvers"): the key of a solver object in the
+// registry (dentsph/solver.hpp, src/solver/registry.cpp), which says everything else about it.
 // - paper: the paper's explicit, weakly compressible step (src/step), capped by its acoustic,
 //   viscous and force limits; the reference every paper figure is about.
 // - iisph: implicit incompressible SPH (Ihmsen et al. 2014) with implicit viscosity and the
@@ -67,9 +68,10 @@ enum class Solver { paper, iisph };
 enum class PressureGradient { spiky, cubic };
 const char* gradient_name(PressureGradient g);  // "spiky", "cubic"
 std::optional<PressureGradient> gradient_from_name(std::string_view name);
-const char* solver_name(Solver s);                           // "paper", "iisph"
+// The registered solvers' names (registry.cpp): "paper", "iisph".
+const char* solver_name(Solver s);
 std::optional<Solver> solver_from_name(std::string_view name);
-inline constexpr const char* solver_choices = "paper or iisph";
+std::string solver_choices();  // "paper or iisph", for messages
 
 // The iisph solver's budget and targets (docs/model.md, "The iisph solver").
 struct IisphParams {

@@ -124,7 +124,8 @@ std::shared_ptr<const WallField> tooth_wall_field(const Scene& scene, bool whole
 // checked against before a run.
 real scene_tool_speed(const Scene& scene);
 // A dental scene whose dt follows its solver (Scene::dt_follows_solver) takes the solver's dental
-// time step (dental_time_step) or, for the iisph solver, the velocity CFL limit of the scene's
+// time step (dental_time_step) or, where the solver's step is limited by the tool's speed
+// (StepSolver::tool_speed_limit: the iisph solver's velocity CFL limit), the limit at the scene's
 // fastest tool speed where that is smaller (rounded down to 10 us), so that a procedure with a fast
 // instrument runs instead of being refused; the Model's dt with it. Other scenes: unchanged.
 // select_solver and the procedure builder call it.

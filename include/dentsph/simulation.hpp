@@ -22,6 +22,7 @@
 #include "dentsph/force_stats.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/step.hpp"
 #include "dentsph/stepper.hpp"
 
@@ -34,13 +35,10 @@ class UnstableTimeStep : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// "simulation.dt: ... s is over the acoustic (...) stability limit of ... s (acoustic ..., viscous
-// ...)" when `dt` is over the acoustic or viscous limit of `l`; empty otherwise.
-std::string time_step_excess(real dt, const StabilityLimits& l);
-
 // The limits of a scene's initial state, and an error (UnstableTimeStep) when dt exceeds one of
-// them and `allow_unstable` is false: the paper's step's acoustic and viscous limits, or the iisph
-// solver's velocity CFL limit against the tool's fastest speed between its keyframes.
+// them and `allow_unstable` is false: the limits the scene's solver names (StepSolver::time_step_problem:
+// the paper's step's acoustic and viscous limits, the iisph solver's velocity CFL limit against the
+// tool's fastest speed between its keyframes).
 StabilityLimits check_time_step(const Scene& scene, const State& state, bool allow_unstable);
 
 // How a run advances a long cure (Simulation::advance_cure_at_rest; docs/architecture.md,
@@ -84,21 +82,8 @@ struct RunSummary {
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
   Solver solver = Solver::paper;     // the step that ran
-  // The iisph solver's pressure solve over the run: iterations per step and the mean compression
-  // of the paste it left (StepDiagnostics::density_error), mean and largest; the solve's largest
-  // error (StepDiagnostics::pressure_residual).
-  double iterations_mean = 0;
-  int iterations_max = 0;
-  double density_error_mean = 0, density_error_max = 0, pressure_residual_max = 0;
-  // Times the wall field moved a paste particle out of the walls (StepDiagnostics::wall_projections),
-  // summed over the run, and in how many steps.
-  std::uint64_t wall_projections = 0, wall_projection_steps = 0;
-  // Steps the iisph solver took in equal parts (its velocity CFL limit under dt), and the most parts.
-  std::uint64_t substepped_steps = 0;
-  int substeps_max = 1;
-  // Paste held at the domain's edge at the end (StepDiagnostics::held, Model::hold_outside_domain):
-  // it fell off the model.
-  std::uint64_t held_outside_domain = 0;
+  // Its figures over the run (solver.hpp; none recorded by the paper's step).
+  SolverStatistics solver_statistics;
   // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it
   // was advanced in large updates (CureSchedule) and in how many; the cure's assessment (JSON
   // object, cure_assessment_json; empty without curing) and its text.
@@ -249,12 +234,10 @@ class Simulation {
   std::uint64_t force_violation_steps_ = 0;
   real first_force_violation_t_ = -1;
   std::uint64_t events_applied_ = 0;
-  // The iisph solver's solve statistics: sums over the steps taken, largest values.
-  std::uint64_t solver_steps_ = 0;
-  double iterations_sum_ = 0, density_error_sum_ = 0, density_error_max_ = 0, pressure_residual_max_ = 0;
-  int iterations_max_ = 0;
-  std::uint64_t wall_projections_ = 0, wall_projection_steps_ = 0, substepped_steps_ = 0;
-  int substeps_max_ = 1;
+  // The model's solver (the registry's object: its limits and figures) and its figures over the
+  // steps taken (StepSolver::record).
+  const StepSolver& solver_;
+  SolverStatistics solver_statistics_;
   bool diverged_ = false;
   std::string divergence_;
   // Curing.

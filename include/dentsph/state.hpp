@@ -110,63 +110,8 @@ struct GridIndex {
   std::vector<PairData> pair_data;
 };
 
-// One neighbour within h of a particle, as the iisph solver's pair pass leaves it. Stored in single
-// precision (20 bytes instead of 40): the rows are the solver's largest memory stream (a material
-// row holds about 30 of them and every pressure iteration and viscosity iteration sweeps them), and
-// a kernel weight's seventh digit is far below the solve's tolerance (docs/model.md). Sums over
-// them are taken in double precision.
-struct SolverPair {
-  float gx = 0, gy = 0, gz = 0;  // m_j gradW_cubic(r_i - r_j), kg/m^4
-  float visc = 0;      // (mu_i + mu_j)/2 m_j lapW_visc(r) / rho_j, Pa s / m^5 (rho_j: the pair pass's density,
-                       // rest density for boundary and tool; material rows only)
-  std::uint32_t j = 0; // the neighbour's index
-  Vec3 grad() const { return {real(gx), real(gy), real(gz)}; }
-};
-
-// The iisph solver's scratch (src/solver), sized when particles are added (a step allocates
-// nothing) and only for a model whose solver is iisph. Every particle has a row (indexed like the
-// particles, cell order): a material particle's lists every neighbour within h, a boundary or tool
-// particle's its material neighbours (the pressure solve's constraints are every particle's
-// density; only material moves).
-struct IisphScratch {
-  static constexpr int kPairStride = 64;  // neighbours within h kept per row
-  bool sized = false;  // also: the reorder keeps `State::pressure` (the next solve starts from it)
-  std::vector<std::uint32_t> material;       // [material] the material particles, cell order (at a rebuild)
-  std::vector<std::uint32_t> active;         // [<= n] the rows of the pressure solve this step: material, and
-                                             // boundary and tool particles with material neighbours
-  std::uint32_t active_count = 0;
-  std::vector<SolverPair> pairs;             // [n * kPairStride]: material neighbours from the front, boundary
-                                             // and tool neighbours from the back
-  std::vector<std::uint8_t> n_material, n_other;  // [n] entries at each end
-  // [n] per row:
-  std::vector<Vec3> grad_sum;        // S_i = sum_j m_j gradW_ij over every neighbour (material rows)
-  std::vector<real> diag_x;          // a_ii = -dt^2 / rho_i^2 diag_x (pressure.cpp)
-  std::vector<real> visc_diag;       // material rows: sum_j of the row's visc
-  std::vector<Vec3> visc_fixed;      // material rows: sum over boundary and tool neighbours of visc v_j
-  std::vector<real> div_fixed;       // material rows: sum over boundary and tool neighbours of v_j . m_j gradW_ij
-  std::vector<Vec3> v_star;          // material: velocity after gravity and adhesion, then after the pressure
-  std::vector<real> source;          // target density - max(rho_adv, target)
-  std::vector<Vec3> tool_force;      // N, tool particles: adhesion on them
-  std::vector<real> inv_rho;         // 1 / rho (this step's density)
-  std::vector<real> q;               // p / rho^2
-  std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
-  std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
-  std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
-  std::vector<Vec3> partial;         // [n / kSumBlock + 1] sums of fixed blocks of rows (solver/block_sum.hpp)
-  static constexpr int kSumBlock = 64;
-  // The tool's neighbours, found every step (solver/tool_pairs.cpp): the tool moves farther in a
-  // step than the neighbour lists' skin allows, so its particles are left out of the lists and of
-  // their rebuild's criterion.
-  static constexpr int kToolStride = 128;    // neighbours within h kept per tool particle
-  std::vector<std::uint32_t> tools;          // [tool] the tool particles, cell order (at a rebuild)
-  std::vector<std::uint32_t> tool_list;      // [tool * kToolStride] each one's neighbours within h
-  std::vector<std::uint16_t> tool_count;     // [tool] entries of tool_list (kToolStride + 1: overflowed)
-  std::vector<std::uint32_t> link_start;     // [n + 1] the other particles' tool neighbours: those of i
-  std::vector<std::uint32_t> link_fill;      // [n]     are link_tool[link_start[i], link_start[i + 1])
-  std::vector<std::uint32_t> link_tool;      // [tool * kToolStride]
-
-  std::size_t bytes() const;
-};
+// A number no State stamp has had (State::layout_stamp, order_stamp).
+std::uint64_t new_state_stamp();
 
 class State {
  public:
@@ -214,7 +159,11 @@ class State {
   std::vector<std::uint32_t> scratch_u32;
   std::vector<Role> scratch_role;
   std::vector<MaterialIndex> scratch_material;
-  IisphScratch iisph;
+  // Stamps of what a solver's own buffers depend on (solver.hpp, StepSolver::resize): `layout_stamp`
+  // is new after every add_particles and remove_particles, `order_stamp` also after every reorder
+  // into cell order (stages::reorder). Unique across States: a copy shares its original's until
+  // either changes.
+  std::uint64_t layout_stamp = 0, order_stamp = 0;
 
   std::uint32_t size() const { return std::uint32_t(pos.size()); }
   // Filling material: a moving material particle, or paste that has set (now a static boundary
@@ -247,8 +196,6 @@ class State {
  private:
   // Sizes index_of_id, the bond store and the scratch for n particles (after adding or removing).
   void size_by_id_and_scratch(const Model& model, std::uint32_t n);
-  // Sizes (or, for another solver, empties) the iisph solver's scratch.
-  void size_iisph_scratch(const Model& model, std::uint32_t n);
 };
 
 }  // namespace dentsph

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "dentsph/model.hpp"
 #include "dentsph/state.hpp"
@@ -31,9 +32,13 @@ struct StepOptions {
   StageTimes* times = nullptr;  // when set, each stage's wall time is added to it
 };
 
-// The grid step: cell keys, counting radix sort, reorder and cell ranges, density, pressure,
-// forces over the 27 neighbouring cells with the bond hysteresis of each moving particle, semi-implicit Euler; then the
-// tool wrench. The tool moves to state.tool_pose. Allocation-free once particles are added.
+// One step of the model's solver (model.solver; solver.hpp): for the paper's, the grid step: cell
+// keys, counting radix sort, reorder and cell ranges, density, pressure, forces over the 27
+// neighbouring cells with the bond hysteresis of each moving particle, semi-implicit Euler; then the
+// tool wrench. The tool moves to state.tool_pose. It steps with a solver object this thread keeps,
+// which sizes its buffers for each State it is handed: allocation-free from the second step of a
+// State on, until particles are added or removed. A loop holds a solver object of its own (a
+// Stepper's, solver.hpp).
 void step(const Model& model, State& state, const StepOptions& options = {});
 
 // The all-pairs reference step (the paper's "less efficient algorithm"): the same physics with
@@ -44,7 +49,7 @@ void step_all_pairs(const Model& model, State& state);
 real mean_neighbours(const Model& model, State& state);
 
 // Time-step limits (MODEL.md, "Stability"; docs/model.md, "Solvers"), in seconds. Which hold
-// depends on the model's solver: the paper's explicit step has its acoustic, viscous and force
+// depends on the model's solver (StepSolver::set_limits): the paper's explicit step has its acoustic, viscous and force
 // limits; the iisph solver treats pressure, viscosity and adhesion so that none of those binds, and
 // is limited by the velocity CFL condition dt <= cfl h / max|v| alone.
 struct StabilityLimits {
@@ -66,6 +71,9 @@ StabilityLimits stability_limits(const Model& model, const State& state, const M
 // 0.25 sqrt(h / max|a|), or for the iisph solver the velocity CFL limit cfl h / max|v|; infinite
 // before any step.
 real force_time_step_limit(const Model& model, const StepDiagnostics& diagnostics);
+// "simulation.dt: ... s is over the acoustic (...) stability limit of ... s (acoustic ..., viscous
+// ...)" when `dt` is over the acoustic or viscous limit of `l`; empty otherwise.
+std::string time_step_excess(real dt, const StabilityLimits& l);
 // The velocity CFL limit cfl h / speed for a speed in m/s (infinite for 0).
 real velocity_time_step_limit(const Model& model, real speed);
 // Weakly compressible SPH keeps material far slower than its sound speed: material at

@@ -1,8 +1,8 @@
-// Stepper: one way of stepping a State, behind one interface: the CPU grid step (step() of
-// step.hpp, which steps the host State in place), the CUDA backend and its CPU emulation (which
-// keep the particles in their own memory between steps; backend.hpp), and solvers to come. Every
-// loop (the offline run, the haptic runtime, the viewer, replay) steps through a Simulation
-// (simulation.hpp), which owns the host State and a Stepper.
+// Stepper: one way of stepping a State, behind one interface: the CPU step (the model's solver
+// object, solver.hpp, which steps the host State in place), the CUDA backend and its CPU emulation
+// (which keep the particles in their own memory between steps; backend.hpp). Every loop (the
+// offline run, the haptic runtime, the viewer, replay) steps through a Simulation (simulation.hpp),
+// which owns the host State and a Stepper.
 //
 // The host State is the one a caller reads and edits. After step() its small results (tool
 // wrench, diagnostics, tool poses, time, step count, bond counters) are always current: the
@@ -20,6 +20,7 @@
 // capturing its graphs again (a changed size costs new memory and a new capture).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -54,6 +55,9 @@ class Stepper {
   // Takes `host` back as the state the next step starts from, after an edit between steps
   // (particles added, removed or changed). `host` must have been synced first.
   virtual void sync_from_host(const State& host) = 0;
+  // Bytes its solver object keeps beyond the State (the CPU's: its buffers, solver.hpp; a GPU
+  // backend's memory is its own: 0).
+  virtual std::size_t solver_bytes() const { return 0; }
 };
 
 // How the CPU step's thread count is chosen: `threads` for every step, or up to `threads` by a
@@ -61,8 +65,9 @@ class Stepper {
 // another program takes a core). Either gives the same result bit for bit.
 enum class ThreadPolicy { fixed, governed };
 
-// The CPU grid step of `model` on `threads` threads (step.hpp): it steps the host State itself.
-std::unique_ptr<Stepper> make_cpu_stepper(const Model& model, int threads,
+// The CPU step of `model` on `threads` threads: the model's solver object (solver.hpp), sized for
+// `state`, steps the host State itself.
+std::unique_ptr<Stepper> make_cpu_stepper(const Model& model, const State& state, int threads,
                                           ThreadPolicy policy = ThreadPolicy::fixed);
 
 }  // namespace dentsph

@@ -30,8 +30,9 @@ ToolShape condenser(real diameter, real length, real spacing);
 // The names tool_by_name knows, in a fixed order (a recording names a switched tool by its
 // position here: new instruments go at the end).
 const std::vector<std::string>& instrument_names();
-// The layers of particles an instrument's walls have for a solver: the iisph solver's walls need
-// two (docs/model.md, "What changes in the paper's model"), the paper's ball is one shell.
+// The layers of particles an instrument's walls have for a solver (StepSolver::instrument_layers):
+// the iisph solver's walls need two (docs/model.md, "What changes in the paper's model"), the
+// paper's ball is one shell.
 int instrument_layers(Solver solver);
 // A tool by name ("ball_burnisher", "flat_plugger", "condenser") with its default size for a
 // material spacing, as `solver` runs it (the ball burnisher has instrument_layers(solver) layers;

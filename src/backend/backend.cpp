@@ -34,7 +34,7 @@ std::unique_ptr<Stepper> make_stepper(Backend backend, const Model& model, const
         backend_name(backend), solver_name(model.solver), backend_name(backend), solver_name(model.solver),
         solver_name(model.solver)));
   switch (backend) {
-    case Backend::cpu: return make_cpu_stepper(model, threads, policy);
+    case Backend::cpu: return make_cpu_stepper(model, state, threads, policy);
     case Backend::cuda: return make_cuda_stepper(model, state);
     case Backend::cuda_emulation: return make_emulated_gpu_stepper(model, state);
   }

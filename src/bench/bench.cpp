@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/bench.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/thread_governor.hpp"
 #include "dentsph/dental.hpp"
 
@@ -80,13 +81,15 @@ template <class Prepare>
 Measured measure_governed(const Model& model, State& state, int max_threads, const BenchOptions& opt,
                           Prepare&& prepare) {
   ThreadGovernor governor(max_threads);
+  const std::unique_ptr<StepSolver> solver = make_solver(model.solver);
+  solver->resize(model, state);
   Measured m = timed_runs(opt, false, [&](StageTimes*) {
     prepare(state);
     const auto t0 = std::chrono::steady_clock::now();
-    step(model, state, StepOptions{governor.threads(), nullptr});
+    solver->step(model, state, StepOptions{governor.threads(), nullptr});
     governor.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   });
-  m.bytes_per_particle = state.bytes_per_particle();
+  m.bytes_per_particle = state.bytes_per_particle() + solver->bytes() / std::max<std::size_t>(1, state.size());
   return m;
 }
 
@@ -130,7 +133,7 @@ Measured measure(const Model& model, State& state, int threads, const BenchOptio
     for (int k = 0; k < 20; ++k) one(&t);
     m.per_step = per_step(t, t.steps);
   }
-  m.bytes_per_particle = state.bytes_per_particle();
+  m.bytes_per_particle = state.bytes_per_particle() + stepper->solver_bytes() / std::max<std::size_t>(1, state.size());
   return m;
 }
 
@@ -279,12 +282,13 @@ BenchResult run_benchmarks(const BenchOptions& opt, const std::function<void(con
     log(fmt::format("{}, one core busy: governor up to {} threads: {:.0f} steps/s", paper.name, most, m.steps_per_second));
   }
 
-  // The dental scene on both solvers at their dental time steps: single runs alternated, paper and
-  // iisph in turn, `repeats` times for each thread count; the median of each.
+  // The dental scene on every registered solver (solver.hpp) at its dental time step: single runs
+  // alternated, each solver in turn, `repeats` times for each thread count; the median of each.
   if (!gpu && opt.compare_solvers) {
     BenchOptions one = opt;
     one.repeats = 1;
-    const Solver both[] = {Solver::paper, Solver::iisph};
+    std::vector<Solver> both;
+    for (const SolverEntry& e : registered_solvers()) both.push_back(e.key);
     std::map<Solver, std::pair<Scene, State>> scenes;  // each solver's scene and start, made once
     for (Solver s : both) {
       DentalSceneParams dp;

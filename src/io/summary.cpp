@@ -34,13 +34,14 @@ std::string summary_json(const RunSummary& s) {
                 {"broken", s.bonds.broken},
                 {"overflowed", s.bonds.overflowed}};
   j["solver"] = {{"name", solver_name(s.solver)}};
-  if (s.solver == Solver::iisph)
-    j["solver"].update({{"pressure_iterations", {{"mean", s.iterations_mean}, {"max", s.iterations_max}}},
-                        {"density_error", {{"mean", s.density_error_mean}, {"max", s.density_error_max}}},
-                        {"pressure_residual_max", s.pressure_residual_max},
-                        {"wall_projections", {{"particles", s.wall_projections}, {"steps", s.wall_projection_steps}}},
-                        {"substepped", {{"steps", s.substepped_steps}, {"most", s.substeps_max}}},
-                        {"held_outside_domain", s.held_outside_domain}});
+  // The figures its solver recorded over the run (none for the paper's step).
+  if (const SolverStatistics& st = s.solver_statistics; st.recorded)
+    j["solver"].update({{"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
+                        {"density_error", {{"mean", st.density_error_mean()}, {"max", st.density_error_max}}},
+                        {"pressure_residual_max", st.pressure_residual_max},
+                        {"wall_projections", {{"particles", st.wall_projections}, {"steps", st.wall_projection_steps}}},
+                        {"substepped", {{"steps", st.substepped_steps}, {"most", st.substeps_max}}},
+                        {"held_outside_domain", st.held_outside_domain}});
   j["stability"] = {{"dt_s", s.dt},
                     {"limits_s", {{"acoustic", seconds(s.limits.acoustic)},
                                   {"viscous", seconds(s.limits.viscous)},

@@ -20,6 +20,29 @@ struct Motion {
   bool finite = true;
 };
 
+// The Motion of a material particle that moved to `pos` with velocity `vel` and acceleration
+// `accel` over the step: written once for this integration and the iisph solver's
+// (solver/finish.cpp, whose velocity comes from its solve).
+DENTSPH_HD inline Motion motion_of(const Vec3& accel, const Vec3& vel, const Vec3& pos) {
+  Motion m;
+  m.a2 = norm2(accel);
+  m.v2 = norm2(vel);
+  m.finite = std::isfinite(m.a2) && std::isfinite(m.v2) && is_finite(pos);
+  return m;
+}
+
+// A particle's Motion into the step's diagnostics: the largest squares of the finite ones, and the
+// count of the others.
+template <class Count>
+DENTSPH_HD inline void tally(const Motion& m, real& a2max, real& v2max, Count& non_finite) {
+  if (!m.finite) {
+    ++non_finite;
+  } else {
+    a2max = a2max < m.a2 ? m.a2 : a2max;
+    v2max = v2max < m.v2 ? m.v2 : v2max;
+  }
+}
+
 // One particle of `role` over dt: `force` is its force density (N/m^3), `anchor` its place in the
 // tool frame and `tool(anchor)` where the new tool pose puts it.
 template <class ToolTransform>
@@ -33,9 +56,7 @@ DENTSPH_HD inline Motion integrate(Role role, Vec3& pos, Vec3& vel, const Vec3& 
       const Vec3 p = pos + v * dt;
       vel = v;
       pos = p;
-      m.a2 = norm2(a);
-      m.v2 = norm2(v);
-      m.finite = std::isfinite(m.a2) && std::isfinite(m.v2) && is_finite(p);
+      m = motion_of(a, v, p);
       break;
     }
     case Role::boundary:

@@ -26,6 +26,12 @@ DENTSPH_HD inline KernelCoeffs make_coeffs(real h, const AdhesionParams& a) {
   return k;
 }
 
+// One neighbour's term of a density sum before the poly6 constant: m_j w^3, w = h^2 - r^2 >= 0
+// (each density pass clamps or tests w its own way and applies k.poly6 once to its sum). Written
+// once for the paper's density pass (step/density.cpp), its CUDA stage body
+// (backend/cuda/density.hpp) and the iisph solver's pair pass (solver/pairs.cpp).
+DENTSPH_HD inline real poly6_mass_term(real m, real w) { return m * w * w * w; }
+
 // Density kernel W_poly6 from the squared distance, 1/m^3. Integrates to 1.
 DENTSPH_HD inline real poly6(real r2, const KernelCoeffs& k) {
   if (r2 >= k.h2) return 0;

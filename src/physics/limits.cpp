@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/state.hpp"
+#include "solver/scratch.hpp"
 
 namespace dentsph::limits {
 

@@ -23,20 +23,6 @@ void require_finite_positive(real v, const char* field, const char* fix) {
 
 }  // namespace
 
-const char* solver_name(Solver s) {
-  switch (s) {
-    case Solver::paper: return "paper";
-    case Solver::iisph: return "iisph";
-  }
-  return "unknown";
-}
-
-std::optional<Solver> solver_from_name(std::string_view name) {
-  for (Solver s : {Solver::paper, Solver::iisph})
-    if (name == solver_name(s)) return s;
-  return std::nullopt;
-}
-
 const char* gradient_name(PressureGradient g) {
   switch (g) {
     case PressureGradient::spiky: return "spiky";

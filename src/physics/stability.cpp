@@ -1,11 +1,15 @@
 // Time-step limits (MODEL.md, "Stability"). Kp has the units of a squared sound speed
-// (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material. The iisph solver
-// (src/solver) is implicit in pressure and viscosity: its step is limited by the velocity CFL
-// condition alone.
+// (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material. Which of them bind
+// is the model's solver's to say (StepSolver::set_limits, motion_limit): the paper's explicit step
+// has all of them, the iisph solver (implicit in pressure and viscosity) the velocity CFL condition
+// alone.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "dentsph/solver.hpp"
 #include "dentsph/step.hpp"
 
 namespace dentsph {
@@ -33,15 +37,7 @@ StabilityLimits stability_limits(const Model& model, const State& s, const Mater
   l.paper_acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
   l.paper_viscous = 0.125 * h * h * rho_over_mu_min;
   l.force = force_time_step_limit(model, s.diagnostics);
-  if (model.solver == Solver::iisph) {
-    l.acoustic = inf;
-    l.viscous = inf;
-    l.sound_speed = h / model.dt;
-  } else {
-    l.acoustic = l.paper_acoustic;
-    l.viscous = l.paper_viscous;
-    l.sound_speed = std::sqrt(kp_max);
-  }
+  solver_properties(model.solver).set_limits(model, kp_max, l);
   return l;
 }
 
@@ -50,8 +46,17 @@ real velocity_time_step_limit(const Model& model, real speed) {
 }
 
 real force_time_step_limit(const Model& model, const StepDiagnostics& d) {
-  if (model.solver == Solver::iisph) return velocity_time_step_limit(model, d.max_speed);
-  return d.max_accel > 0 ? 0.25 * std::sqrt(model.kernel.h / d.max_accel) : inf;
+  return solver_properties(model.solver).motion_limit(model, d);
+}
+
+std::string time_step_excess(real dt, const StabilityLimits& l) {
+  const real limit = std::min(l.acoustic, l.viscous);
+  if (!(dt > limit)) return "";
+  const char* which = l.acoustic <= l.viscous ? "acoustic (lambda h / sqrt(max stiffness))"
+                                              : "viscous (0.125 h^2 rest_density / viscosity)";
+  return fmt::format("simulation.dt: {:.3g} s is over the {} stability limit of {:.3g} s (acoustic {:.3g} s, viscous "
+                     "{:.3g} s)",
+                     dt, which, limit, l.acoustic, l.viscous);
 }
 
 }  // namespace dentsph

@@ -6,12 +6,13 @@
 #include <cmath>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/tools.hpp"
 #include "scene/paste_sites.hpp"
 
 namespace dentsph {
 
-real dental_time_step(Solver solver) { return solver == Solver::iisph ? 1.5e-3 : 5e-5; }
+real dental_time_step(Solver solver) { return solver_properties(solver).default_time_step(); }
 
 IisphParams dental_iisph_params() {
   IisphParams p;

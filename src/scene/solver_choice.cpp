@@ -14,6 +14,7 @@
 
 #include "dentsph/dental.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph {
@@ -36,7 +37,7 @@ void select_solver(Scene& scene, Solver solver) {
 std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backend) {
   if (!named.empty()) {
     const std::optional<Solver> s = solver_from_name(named);
-    if (!s) throw std::invalid_argument(fmt::format("--solver {}: unknown solver; choose {}", named, solver_choices));
+    if (!s) throw std::invalid_argument(fmt::format("--solver {}: unknown solver; choose {}", named, solver_choices()));
     if (*s != scene.model.solver) select_solver(scene, *s);  // the scene's own already made for it
     return {};
   }
@@ -50,16 +51,14 @@ std::string choose_solver(Scene& scene, const std::string& named, bool gpu_backe
 
 void fit_dental_time_step(Scene& scene) {
   if (!scene.dt_follows_solver) return;
-  real dt = dental_time_step(scene.params.solver);
-  if (scene.params.solver == Solver::iisph) {
-    const real speed = scene_tool_speed(scene);
-    const real limit = speed > 0 ? scene.params.iisph.cfl * scene.params.h / speed : inf;
-    if (dt > limit) {
-      constexpr real tick = 1e-5;
-      dt = std::floor(limit / tick) * tick;
-      if (dt > limit) dt -= tick;
-      dt = std::max(dt, tick);  // a tool this fast is refused by the run's check, naming it
-    }
+  const StepSolver& solver = solver_properties(scene.model.solver);
+  real dt = solver.default_time_step();
+  const real limit = solver.tool_speed_limit(scene.model, scene_tool_speed(scene));
+  if (dt > limit) {
+    constexpr real tick = 1e-5;
+    dt = std::floor(limit / tick) * tick;
+    if (dt > limit) dt -= tick;
+    dt = std::max(dt, tick);  // a tool this fast is refused by the run's check, naming it
   }
   scene.params.dt = dt;
   scene.model.dt = dt;
@@ -98,7 +97,7 @@ void shape_instruments(Scene& scene) {
 }
 
 void attach_walls(Scene& scene) {
-  if (scene.model.solver != Solver::iisph) {
+  if (!solver_properties(scene.model.solver).uses_walls()) {
     scene.model.walls.reset();
     return;
   }

@@ -9,6 +9,7 @@
 #include <fmt/ranges.h>
 
 #include "dentsph/limits.hpp"
+#include "dentsph/solver.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {
@@ -74,7 +75,7 @@ const std::vector<std::string>& instrument_names() {
   return names;
 }
 
-int instrument_layers(Solver solver) { return solver == Solver::iisph ? 2 : 1; }
+int instrument_layers(Solver solver) { return solver_properties(solver).instrument_layers(); }
 
 ToolShape tool_by_name(const std::string& name, real spacing, Solver solver) {
   // Default sizes in spacings: the paper's 42-particle ball at 0.3 mm is 1.1 mm across.

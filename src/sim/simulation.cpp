@@ -14,7 +14,8 @@
 namespace dentsph {
 
 Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
-    : scene_(scene), options_(options), model_(scene.model), state_(make_state(scene)) {
+    : scene_(scene), options_(options), model_(scene.model), state_(make_state(scene)),
+      solver_(solver_properties(scene.model.solver)) {
   limits_ = check_time_step(scene, state_, options.allow_unstable);
   limits_.force = std::numeric_limits<real>::infinity();
   acoustic_violated_ = model_.dt > limits_.acoustic;
@@ -112,21 +113,10 @@ bool Simulation::step(const Pose& tool_pose) {
   ++steps_since_cure_update_;
   const StepDiagnostics& d = state_.diagnostics;
   forces_.add(state_.tool_wrench.force, model_.dt);
-  const real force_limit = force_time_step_limit(model_, d);
+  const real force_limit = solver_.motion_limit(model_, d);
   limits_.force = std::min(limits_.force, force_limit);
   if (model_.dt > force_limit && force_violation_steps_++ == 0) first_force_violation_t_ = t;
-  if (model_.solver == Solver::iisph) {
-    ++solver_steps_;
-    iterations_sum_ += d.pressure_iterations;
-    iterations_max_ = std::max(iterations_max_, d.pressure_iterations);
-    density_error_sum_ += d.density_error;
-    density_error_max_ = std::max<double>(density_error_max_, d.density_error);
-    pressure_residual_max_ = std::max<double>(pressure_residual_max_, d.pressure_residual);
-    wall_projections_ += d.wall_projections;
-    wall_projection_steps_ += d.wall_projections > 0;
-    substepped_steps_ += d.substeps > 1;
-    substeps_max_ = std::max(substeps_max_, d.substeps);
-  }
+  solver_.record(solver_statistics_, d);
   // Exploded material: the run says so instead of stepping garbage.
   if (!diverged_ && exploded(d, limits_.sound_speed)) {
     diverged_ = true;
@@ -136,7 +126,7 @@ bool Simulation::step(const Pose& tool_pose) {
         d.non_finite > 0 ? fmt::format("{} material particles became non-finite", d.non_finite)
                          : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
                                        d.max_speed, explosion_speed_factor, limits_.sound_speed),
-        state_.time, state_.steps, model_.solver == Solver::iisph ? "velocity CFL" : "force", limits_.force,
+        state_.time, state_.steps, solver_.motion_limit_name(), limits_.force,
         model_.dt);
   }
   if (!diverged_) cure_after_step(t);
@@ -150,18 +140,7 @@ RunSummary Simulation::summary() {
   s.backend = stepper_->name();
   s.threads = options_.threads;
   s.solver = model_.solver;
-  if (solver_steps_ > 0) {
-    s.iterations_mean = iterations_sum_ / double(solver_steps_);
-    s.iterations_max = iterations_max_;
-    s.density_error_mean = density_error_sum_ / double(solver_steps_);
-    s.density_error_max = density_error_max_;
-    s.pressure_residual_max = pressure_residual_max_;
-    s.wall_projections = wall_projections_;
-    s.wall_projection_steps = wall_projection_steps_;
-    s.substepped_steps = substepped_steps_;
-    s.substeps_max = substeps_max_;
-    s.held_outside_domain = st.diagnostics.held;
-  }
+  s.solver_statistics = solver_statistics_;
   if (diverged_) {
     s.status = "diverged";
     s.message = divergence_;

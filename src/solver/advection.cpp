@@ -15,8 +15,7 @@ namespace dentsph::iisph {
 namespace {
 
 // Adhesion force (N) on moving particle i from its bonded partners; breaks those past B.
-Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, bonds::Events& ev) {
-  const IisphScratch& x = s.iisph;
+Vec3 bonded_adhesion(const Model& model, State& s, const IisphScratch& x, std::uint32_t i, bonds::Events& ev) {
   const real B2 = model.adhesion.B * model.adhesion.B;
   const std::uint32_t id = s.id[i];
   const real vi = s.mass[i] * x.inv_rho[i];
@@ -39,8 +38,7 @@ Vec3 bonded_adhesion(const Model& model, State& s, std::uint32_t i, bonds::Event
 
 }  // namespace
 
-void advect(const Model& model, State& s, int threads) {
-  IisphScratch& x = s.iisph;
+void advect(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t n = s.size();
   const real dt = model.dt;
   std::uint64_t broken = 0;
@@ -49,7 +47,7 @@ void advect(const Model& model, State& s, int threads) {
     const std::uint32_t i = std::uint32_t(k);
     if (s.role[i] == Role::boundary) continue;
     bonds::Events ev;
-    const Vec3 f = bonded_adhesion(model, s, i, ev);
+    const Vec3 f = bonded_adhesion(model, s, x, i, ev);
     broken += ev.broken;
     SolverPair* row = x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
     real diag = 0;

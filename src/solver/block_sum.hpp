@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "dentsph/state.hpp"
+#include "solver/scratch.hpp"
 
 namespace dentsph::iisph {
 

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics/integrate.hpp"
+#include "physics/wrench.hpp"
 #include "solver/iisph.hpp"
 #include "step/stages.hpp"
 
@@ -16,8 +18,7 @@ namespace dentsph::iisph {
 namespace {
 
 // Force (N) on tool particle i from its material neighbours (pressure, viscosity) and its bonds.
-Vec3 tool_particle_force(const State& s, std::uint32_t i) {
-  const IisphScratch& x = s.iisph;
+Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i) {
   const SolverPair* row = x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
   Vec3 pressure, viscous;
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
@@ -28,23 +29,22 @@ Vec3 tool_particle_force(const State& s, std::uint32_t i) {
   return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];
 }
 
-void tool_wrench(State& s) {
+void tool_wrench(State& s, const IisphScratch& x) {
   ToolWrench w;
   const Vec3 c = s.tool_pose_applied.position;
-  for (const std::uint32_t i : s.iisph.tools) {  // the tool particles in index order (rows.cpp)
-    const Vec3 f = tool_particle_force(s, i);
-    s.force[i] = f * (s.rho[i] / s.mass[i]);  // force density, as the paper's step keeps it
-    w.force += f;
-    w.torque += cross(s.pos[i] - c, f);
+  for (const std::uint32_t i : x.tools) {  // the tool particles in index order (rows.cpp)
+    const physics::WrenchTerm t = physics::wrench_of(tool_particle_force(s, x, i), s.pos[i], c);
+    s.force[i] = t.force * (s.rho[i] / s.mass[i]);  // force density, as the paper's step keeps it
+    w.force += t.force;
+    w.torque += t.torque;
   }
   s.tool_wrench = w;
 }
 
 }  // namespace
 
-void finish(const Model& model, State& s, int threads) {
-  tool_wrench(s);
-  const IisphScratch& x = s.iisph;
+void finish(const Model& model, State& s, const IisphScratch& x, int threads) {
+  tool_wrench(s, x);
   const real dt = model.dt;
   real a2max = 0, v2max = 0;
   std::uint64_t non_finite = 0, projected = 0, held = 0;
@@ -72,13 +72,7 @@ void finish(const Model& model, State& s, int threads) {
         s.vel[i] = v;
         s.pos[i] = r;
         s.volume[i] = s.mass[i] / s.rho[i];
-        const real a2 = norm2(a), v2 = norm2(v);
-        if (!std::isfinite(a2) || !std::isfinite(v2) || !is_finite(s.pos[i])) {
-          ++non_finite;
-        } else {
-          a2max = std::max(a2max, a2);
-          v2max = std::max(v2max, v2);
-        }
+        physics::tally(physics::motion_of(a, v, r), a2max, v2max, non_finite);
         break;
       }
       case Role::boundary:

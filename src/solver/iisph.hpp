@@ -17,43 +17,52 @@
 // in a fixed order, so every thread count gives the same result bit for bit.
 #pragma once
 
+#include <memory>
+
 #include "dentsph/model.hpp"
+#include "dentsph/solver.hpp"
 #include "dentsph/state.hpp"
 #include "dentsph/step.hpp"
+#include "solver/scratch.hpp"
 
 namespace dentsph::iisph {
 
-// One step of the iisph solver (step() runs it for a model whose solver is iisph). Where the last
-// step's fastest paste would cross more than cfl h in dt (a squeeze against set paste or a wall),
-// it takes substeps() equal steps instead, counted as one (diagnostics.substeps).
-void step(const Model& model, State& state, const StepOptions& options);
+// The iisph solver object (iisph_solver.cpp): its scratch, its step and its properties. The
+// registry's factory (registry.cpp).
+std::unique_ptr<StepSolver> make_solver();
+
+// One step of the iisph solver with its scratch `x` (sized for `state`: IisphScratch::resize). Where
+// the last step's fastest paste would cross more than cfl h in dt (a squeeze against set paste or a
+// wall), it takes substeps() equal steps instead, counted as one (diagnostics.substeps).
+void step(const Model& model, State& state, IisphScratch& x, const StepOptions& options);
 // How many: ceil(max|v| dt / (cfl h)) of the last step, 1 to kMaxSubsteps.
 inline constexpr int kMaxSubsteps = 16;
 int substeps(const Model& model, const State& state);
 
 // rows.cpp: lists the material and the tool particles (after a rebuild).
-void list_material(State& state);
+void list_material(const State& state, IisphScratch& x);
 // rows.cpp: each tool particle's velocity over this step (to state.tool_pose), the boundary at rest,
 // and their entries in the solver's per-particle arrays.
-void prepare_particles(const Model& model, State& state, int threads);
+void prepare_particles(const Model& model, State& state, IisphScratch& x, int threads);
 // pairs.cpp: the density of every particle and its pair row; material and tool particles form bonds
 // with the material closer than A.
-void compute_pairs(const Model& model, State& state, int threads, bool build_lists);
+void compute_pairs(const Model& model, State& state, IisphScratch& x, int threads, bool build_lists);
 // tool_pairs.cpp: each tool particle's neighbours within h, and each other particle's tool
 // neighbours; returns the neighbours beyond a tool particle's capacity (none expected).
-std::uint64_t find_tool_pairs(const Model& model, State& state, int threads);
+std::uint64_t find_tool_pairs(const Model& model, State& state, IisphScratch& x, int threads);
 // rows.cpp: the rows of this step's pressure solve: material, and the boundary and tool particles
 // with material neighbours (the others get pressure 0).
-void list_active_rows(State& state);
+void list_active_rows(State& state, IisphScratch& x);
 // advection.cpp: breaks bonds past B, adhesion, gravity: v* of material rows; the viscosity and
 // divergence terms of the boundary and tool neighbours, fixed for the step.
-void advect(const Model& model, State& state, int threads);
-// viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_sweeps Jacobi sweeps.
-void implicit_viscosity(const Model& model, State& state, int threads);
+void advect(const Model& model, State& state, IisphScratch& x, int threads);
+// viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
+// iterations.
+void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads);
 // pressure.cpp: the pressure solve; leaves each material particle's pressure acceleration in
-// state.iisph.accel and the iterations and density error in state.diagnostics.
-void solve_pressure(const Model& model, State& state, int threads);
+// x.accel and the iterations and density error in state.diagnostics.
+void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads);
 // finish.cpp: v = v** + dt a_p, r += dt v; the tool to its pose; outputs, diagnostics, wrench.
-void finish(const Model& model, State& state, int threads);
+void finish(const Model& model, State& state, const IisphScratch& x, int threads);
 
 }  // namespace dentsph::iisph

@@ -11,7 +11,7 @@ namespace dentsph::iisph {
 
 namespace {
 
-void one_step(const Model& model, State& state, const StepOptions& opt) {
+void one_step(const Model& model, State& state, IisphScratch& x, const StepOptions& opt) {
   const int t = opt.threads < 1 ? 1 : opt.threads;
   stages::StageClock clock(opt.times);
   const bool rebuild = stages::lists_need_rebuild(model, state, t, /*tool_listed=*/false);  // tool_pairs.cpp
@@ -20,24 +20,24 @@ void one_step(const Model& model, State& state, const StepOptions& opt) {
     clock.lap(&StageTimes::hash_us);
     stages::sort_by_cell(model, state);
     clock.lap(&StageTimes::sort_us);
-    stages::reorder(model, state, t);
+    stages::reorder(model, state, t, /*keep_pressure=*/true);  // the next solve starts from it
     stages::remember_build_positions(state, t);
-    list_material(state);
+    list_material(state, x);
     clock.lap(&StageTimes::reorder_us);
   } else {
     clock.lap(&StageTimes::reorder_us);
   }
-  prepare_particles(model, state, t);
-  compute_pairs(model, state, t, rebuild);   // density, pair rows, bonds formed below A
-  list_active_rows(state);
+  prepare_particles(model, state, x, t);
+  compute_pairs(model, state, x, t, rebuild);  // density, pair rows, bonds formed below A
+  list_active_rows(state, x);
   clock.lap(&StageTimes::density_us);
-  advect(model, state, t);                   // bonds broken past B, adhesion, gravity: v*
+  advect(model, state, x, t);                  // bonds broken past B, adhesion, gravity: v*
   clock.lap(&StageTimes::forces_us);
-  solve_pressure(model, state, t);           // the pressure; v* + dt a_p
+  solve_pressure(model, state, x, t);          // the pressure; v* + dt a_p
   clock.lap(&StageTimes::pressure_us);
-  implicit_viscosity(model, state, t);       // v**
+  implicit_viscosity(model, state, x, t);      // v**
   clock.lap(&StageTimes::viscosity_us);
-  finish(model, state, t);                   // velocity, position, tool, diagnostics, wrench
+  finish(model, state, x, t);                  // velocity, position, tool, diagnostics, wrench
   clock.lap(&StageTimes::integrate_us);
   state.diagnostics.rebuilt = rebuild;
 }
@@ -51,10 +51,10 @@ int substeps(const Model& model, const State& state) {
   return int(std::clamp<real>(n, 1, kMaxSubsteps));
 }
 
-void step(const Model& model, State& state, const StepOptions& opt) {
+void step(const Model& model, State& state, IisphScratch& x, const StepOptions& opt) {
   const int n = substeps(model, state);
   if (n == 1) {
-    one_step(model, state, opt);
+    one_step(model, state, x, opt);
     state.diagnostics.substeps = 1;
     return;
   }
@@ -73,7 +73,7 @@ void step(const Model& model, State& state, const StepOptions& opt) {
   std::uint64_t projections = 0;
   for (int k = 1; k <= n; ++k) {
     state.tool_pose = k == n ? to : interpolate(from, to, real(k) / real(n));
-    one_step(sub, state, opt);
+    one_step(sub, state, x, opt);
     mean.force += state.tool_wrench.force / real(n);
     mean.torque += state.tool_wrench.torque / real(n);
     projections += state.diagnostics.wall_projections;

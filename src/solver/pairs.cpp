@@ -44,11 +44,11 @@ struct Within {
 // Builds the row of particle i from the neighbours handed to it, in the order given.
 class RowBuilder {
  public:
-  RowBuilder(const Model& model, State& s, std::uint32_t i)
-      : k_(model.kernel), s_(s), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
+  RowBuilder(const Model& model, State& s, IisphScratch& x, std::uint32_t i)
+      : k_(model.kernel), s_(s), x_(x), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
         A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
         grad6_(6 * k_.cubic / k_.h), grad6_over_h_(grad6_ * inv_h_),
-        spiky_(model.iisph.gradient == PressureGradient::spiky), pairs_(s.iisph.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+        spiky_(model.iisph.gradient == PressureGradient::spiky), pairs_(x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
   // Candidate j at d = r_i - r_j, r2 = |d|^2: kept when within h and not i itself.
   void offer(std::uint32_t j, const Vec3& d, real r2) {
@@ -67,7 +67,7 @@ class RowBuilder {
     take();
     flush_bonds();
     ev += events_;
-    IisphScratch& x = s_.iisph;
+    IisphScratch& x = x_;
     x.n_material[i_] = std::uint8_t(front_);
     x.n_other[i_] = std::uint8_t(IisphScratch::kPairStride - back_);
     const bool material = role_ == Role::material;
@@ -92,7 +92,7 @@ class RowBuilder {
     for (std::uint32_t e = 0; e < n; ++e) {
       const real r2 = w.r2[e], mj = mass[w.j[e]];
       const real wk = k_.h2 - r2;
-      w.rho[e] = mj * wk * wk * wk;
+      w.rho[e] = kernels::poly6_mass_term(mj, wk);
       const real r = std::sqrt(r2);
       const auto [g, g_over_r] = radial(r);
       w.f[e] = mj * g_over_r;
@@ -165,6 +165,7 @@ class RowBuilder {
   static constexpr std::uint32_t kClose = 2 * Within::capacity + 1;
   const KernelCoeffs& k_;
   State& s_;
+  IisphScratch& x_;
   std::uint32_t i_;
   Role role_;
   real mi_, mu_i_, A2_, inv_h_, grad6_, grad6_over_h_;
@@ -240,7 +241,7 @@ void offer(const State& s, std::uint32_t i, const std::uint32_t* list, std::uint
 
 // The row of material or boundary particle i: its listed neighbours (or, for an overflowed list,
 // those of a search of the grid), then its tool neighbours (tool_pairs.cpp).
-void offer_lists(const Model& model, const State& s, std::uint32_t i, bool listed_all, bool sorted, RowBuilder& row) {
+void offer_lists(const Model& model, const State& s, const IisphScratch& x, std::uint32_t i, bool listed_all, bool sorted, RowBuilder& row) {
   const GridIndex& g = s.grid;
   if (listed_all) {
     offer(s, i, g.neighbours.data() + std::size_t(i) * GridIndex::kNeighbourStride, g.neighbour_count[i], row);
@@ -249,15 +250,14 @@ void offer_lists(const Model& model, const State& s, std::uint32_t i, bool liste
       if (s.role[j] != Role::tool) row.offer(j, d, r2);
     });
   }
-  const IisphScratch& x = s.iisph;
   offer(s, i, x.link_tool.data() + x.link_start[i], x.link_start[i + 1] - x.link_start[i], row);
 }
 
 }  // namespace
 
-void compute_pairs(const Model& model, State& s, int threads, bool build_lists) {
+void compute_pairs(const Model& model, State& s, IisphScratch& x, int threads, bool build_lists) {
   if (!s.rho_static_valid) stages::compute_static_density(model, s);  // after particles were added
-  std::uint64_t formed = 0, overflowed = 0, pair_overflow = find_tool_pairs(model, s, threads);
+  std::uint64_t formed = 0, overflowed = 0, pair_overflow = find_tool_pairs(model, s, x, threads);
   auto finish_row = [&](RowBuilder& row) {
     bonds::Events ev;
     std::uint64_t over = 0;
@@ -270,21 +270,20 @@ void compute_pairs(const Model& model, State& s, int threads, bool build_lists) 
   for (std::int64_t k = 0; k < n; ++k) {
     const std::uint32_t i = std::uint32_t(k);
     if (s.role[i] == Role::tool) continue;
-    RowBuilder row(model, s, i);
+    RowBuilder row(model, s, x, i);
     const bool listed_all = build_lists ? build_list(model, s, i) : s.grid.neighbour_count[i] <= GridIndex::kNeighbourCapacity;
-    offer_lists(model, s, i, listed_all, build_lists, row);
+    offer_lists(model, s, x, i, listed_all, build_lists, row);
     const auto [f, o, p] = finish_row(row);
     formed += f;
     overflowed += o;
     pair_overflow += p;
   }
   // The tool rows, from the tool's pairs.
-  IisphScratch& x = s.iisph;
   const std::int64_t tools = std::int64_t(x.tools.size());
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : formed, overflowed, pair_overflow)
   for (std::int64_t k = 0; k < tools; ++k) {
     const std::uint32_t i = x.tools[k];
-    RowBuilder row(model, s, i);
+    RowBuilder row(model, s, x, i);
     offer(s, i, x.tool_list.data() + std::size_t(k) * IisphScratch::kToolStride, x.tool_count[k], row);
     const auto [f, o, p] = finish_row(row);
     formed += f;

@@ -35,8 +35,7 @@ const SolverPair* row_of(const IisphScratch& x, std::uint32_t i) {
 }
 
 // The pressure acceleration of every material particle from the pressures q = p / rho^2.
-void pressure_accelerations(State& s, int threads) {
-  IisphScratch& x = s.iisph;
+void pressure_accelerations(IisphScratch& x, int threads) {
   const std::int64_t n = std::int64_t(x.material.size());
   const real* q = x.q.data();
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -60,8 +59,7 @@ real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool materi
 }
 
 // The predicted density without pressure (from v*), the right-hand side and the start of row i.
-void start_row(const Model& model, State& s, std::uint32_t i) {
-  IisphScratch& x = s.iisph;
+void start_row(const Model& model, State& s, IisphScratch& x, std::uint32_t i) {
   const real dt = model.dt;
   const std::vector<Vec3>& v = x.v_a;  // v* (boundary, tool: their velocity)
   const SolverPair* row = row_of(x, i);
@@ -78,18 +76,17 @@ void start_row(const Model& model, State& s, std::uint32_t i) {
 
 }  // namespace
 
-void solve_pressure(const Model& model, State& s, int threads) {
-  IisphScratch& x = s.iisph;
+void solve_pressure(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t rows = x.active_count, n_material = std::int64_t(x.material.size());
   const real dt2 = model.dt * model.dt;
   const IisphParams& ip = model.iisph;
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t k = 0; k < rows; ++k) start_row(model, s, x.active[k]);
+  for (std::int64_t k = 0; k < rows; ++k) start_row(model, s, x, x.active[k]);
   int it = 0;
   real mean_error = 0, mean_compression = 0, last_error = -1;
   real omega = ip.omega;
   while (it < ip.max_iterations) {
-    pressure_accelerations(s, threads);
+    pressure_accelerations(x, threads);
     // The update of every active row, and the sums of the material rows' error and compression
     // in the same pass (block_sum.hpp: the same sums, bit for bit, on every thread count).
     const Vec3 sums = for_rows_summed(rows, threads, x.partial.data(), [&](std::int64_t k) {
@@ -121,7 +118,7 @@ void solve_pressure(const Model& model, State& s, int threads) {
     if (last_error >= 0 && mean_error > 1.25 * last_error) omega *= 0.5;
     last_error = mean_error;
   }
-  pressure_accelerations(s, threads);  // of the pressures the solve ends with
+  pressure_accelerations(x, threads);  // of the pressures the solve ends with
   // v* + dt a_p: the viscosity's start and right-hand side.
   const real dt = model.dt;
 #pragma omp parallel for num_threads(threads) schedule(static)

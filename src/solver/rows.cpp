@@ -7,11 +7,10 @@
 
 namespace dentsph::iisph {
 
-void list_material(State& s) {
+void list_material(const State& s, IisphScratch& x) {
   // Paste that set (the cure's gel transition) became wall, so there can be fewer material particles
-  // than the lists were sized for (State::size_iisph_scratch, which particles added later call):
-  // cleared and refilled within their capacity, no allocation.
-  IisphScratch& x = s.iisph;
+  // than the lists were sized for (IisphScratch::resize, after particles were added): cleared and
+  // refilled within their capacity, no allocation.
   x.material.clear();
   x.tools.clear();
   for (std::uint32_t i = 0; i < s.size(); ++i) {
@@ -20,8 +19,7 @@ void list_material(State& s) {
   }
 }
 
-void prepare_particles(const Model& model, State& s, int threads) {
-  IisphScratch& x = s.iisph;
+void prepare_particles(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t n = s.size();
   const real inv_dt = 1 / model.dt;
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -33,8 +31,7 @@ void prepare_particles(const Model& model, State& s, int threads) {
   }
 }
 
-void list_active_rows(State& s) {
-  IisphScratch& x = s.iisph;
+void list_active_rows(State& s, IisphScratch& x) {
   std::uint32_t k = 0;
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     if (s.role[i] == Role::material || x.n_material[i] > 0) {

@@ -18,8 +18,7 @@
 
 namespace dentsph::iisph {
 
-std::uint64_t find_tool_pairs(const Model& model, State& s, int threads) {
-  IisphScratch& x = s.iisph;
+std::uint64_t find_tool_pairs(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t tools = std::int64_t(x.tools.size());
   const real h2 = model.kernel.h2;
   constexpr std::uint32_t cap = IisphScratch::kToolStride - 1;  // one scratch slot

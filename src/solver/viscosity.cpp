@@ -28,8 +28,8 @@ inline Vec3 quotient(const Vec3& a, const Vec3& b) {
 
 class ViscositySolve {
  public:
-  ViscositySolve(const Model& model, State& s, int threads)
-      : s_(s), x_(s.iisph), dt_(model.dt), threads_(threads), n_(std::int64_t(x_.material.size())) {}
+  ViscositySolve(const Model& model, State& s, IisphScratch& x, int threads)
+      : s_(s), x_(x), dt_(model.dt), threads_(threads), n_(std::int64_t(x_.material.size())) {}
 
   // Conjugate gradients from v' (in v_a, also the right-hand side's v_star), `iterations` of them.
   // Three parallel passes an iteration, each sum taken in the pass that computes its terms
@@ -94,8 +94,8 @@ class ViscositySolve {
 
 }  // namespace
 
-void implicit_viscosity(const Model& model, State& s, int threads) {
-  ViscositySolve(model, s, threads).run(model.iisph.viscosity_iterations);
+void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads) {
+  ViscositySolve(model, s, x, threads).run(model.iisph.viscosity_iterations);
 }
 
 }  // namespace dentsph::iisph

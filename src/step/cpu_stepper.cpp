@@ -1,9 +1,12 @@
-// The CPU's Stepper: the grid step (step.cpp) on the host State itself, so that syncing is nothing.
+// The CPU's Stepper: the model's solver object (dentsph/solver.hpp) stepping the host State itself,
+// so that syncing is nothing; it sizes the solver's buffers for the State it starts from and after
+// every edit (sync_from_host), so that a step allocates nothing.
 #include <chrono>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "dentsph/solver.hpp"
 #include "dentsph/stepper.hpp"
 #include "dentsph/thread_governor.hpp"
 
@@ -13,8 +16,10 @@ namespace {
 
 class CpuStepper final : public Stepper {
  public:
-  CpuStepper(const Model& model, int threads, ThreadPolicy policy) : model_(model), threads_(threads) {
+  CpuStepper(const Model& model, const State& state, int threads, ThreadPolicy policy)
+      : model_(model), solver_(make_solver(model.solver)), threads_(threads) {
     if (policy == ThreadPolicy::governed && threads > 1) governor_.emplace(threads);
+    solver_->resize(model_, state);
   }
 
   const char* name() const override { return "cpu"; }
@@ -25,31 +30,33 @@ class CpuStepper final : public Stepper {
   void step(State& host, const Pose& tool_pose) override {
     host.tool_pose = tool_pose;
     if (!governor_) {
-      dentsph::step(model_, host, StepOptions{threads_, nullptr});
+      solver_->step(model_, host, StepOptions{threads_, nullptr});
       return;
     }
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
-    dentsph::step(model_, host, StepOptions{governor_->threads(), nullptr});
+    solver_->step(model_, host, StepOptions{governor_->threads(), nullptr});
     governor_->record(std::chrono::duration<double>(clock::now() - t0).count());
   }
   void step_timed(State& host, const Pose& tool_pose, StageTimes& times) override {
     host.tool_pose = tool_pose;
-    dentsph::step(model_, host, StepOptions{threads_, &times});
+    solver_->step(model_, host, StepOptions{threads_, &times});
   }
   void sync_to_host(State&) override {}
-  void sync_from_host(const State&) override {}
+  void sync_from_host(const State& host) override { solver_->resize(model_, host); }
+  std::size_t solver_bytes() const override { return solver_->bytes(); }
 
  private:
   Model model_;
+  std::unique_ptr<StepSolver> solver_;
   int threads_;
   std::optional<ThreadGovernor> governor_;
 };
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_cpu_stepper(const Model& model, int threads, ThreadPolicy policy) {
-  return std::make_unique<CpuStepper>(model, threads, policy);
+std::unique_ptr<Stepper> make_cpu_stepper(const Model& model, const State& state, int threads, ThreadPolicy policy) {
+  return std::make_unique<CpuStepper>(model, state, threads, policy);
 }
 
 }  // namespace dentsph

@@ -52,13 +52,13 @@ real density_sum(const Model& model, const State& s, std::int64_t i, grid::Visit
       for (std::uint32_t j = b; j < e; ++j) {
         const real dx = a.xi - a.x[j], dy = a.yi - a.y[j], dz = a.zi - a.z[j];
         const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
-        sum += a.m[j] * w * w * w;
+        sum += kernels::poly6_mass_term(a.m[j], w);
       }
     } else {
       for (std::uint32_t j = b; j < e; ++j) {
         const real dx = a.xi - pos[j].x, dy = a.yi - pos[j].y, dz = a.zi - pos[j].z;
         const real w = std::max<real>(0, a.h2 - (dx * dx + dy * dy + dz * dz));
-        sum += a.m[j] * w * w * w;
+        sum += kernels::poly6_mass_term(a.m[j], w);
       }
     }
   });
@@ -89,13 +89,13 @@ real list_sum(const std::uint32_t* list, std::uint32_t count, const real* m, W&&
     for (std::uint32_t l = 0; l < 4; ++l) {
       const std::uint32_t j = list[q + l];
       const real w = w_at(q + l, j);
-      part[l] += m[j] * w * w * w;
+      part[l] += kernels::poly6_mass_term(m[j], w);
       keep(j, w);
     }
   for (; q < count; ++q) {
     const std::uint32_t j = list[q];
     const real w = w_at(q, j);
-    part[0] += m[j] * w * w * w;
+    part[0] += kernels::poly6_mass_term(m[j], w);
     keep(j, w);
   }
   return (part[0] + part[1]) + (part[2] + part[3]);

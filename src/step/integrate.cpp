@@ -20,12 +20,7 @@ void integrate(const Model& model, State& s, int threads) {
   for (std::int64_t i = 0; i < n; ++i) {
     const physics::Motion m = physics::integrate(s.role[i], s.pos[i], s.vel[i], s.force[i], s.rho[i], s.anchor[i],
                                                  model.gravity, dt, tool);
-    if (!m.finite) {
-      ++non_finite;
-    } else {
-      a2max = std::max(a2max, m.a2);
-      v2max = std::max(v2max, m.v2);
-    }
+    physics::tally(m, a2max, v2max, non_finite);
   }
   close_step(s, a2max, v2max, non_finite, dt);
 }

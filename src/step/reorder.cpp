@@ -23,7 +23,7 @@ void gather(std::vector<T>& a, std::vector<T>& scratch, const std::vector<std::u
 
 }  // namespace
 
-void reorder(const Model& model, State& s, int threads) {
+void reorder(const Model& model, State& s, int threads, bool keep_pressure) {
   const auto& order = s.grid.order;
   const std::int64_t n = s.size();
   const MaterialTable& table = model.materials;
@@ -36,9 +36,9 @@ void reorder(const Model& model, State& s, int threads) {
     gather(s.anchor, s.scratch_vec, order);
     gather(s.mass, s.scratch_real, order);
     gather(s.material, s.scratch_material, order);
-    // The iisph solver starts each pressure solve from the last one (the paper's step recomputes
-    // its pressure before reading it). rho and force are recomputed before they are read again.
-    if (s.iisph.sized) gather(s.pressure, s.scratch_real, order);
+    // A solver that starts each pressure solve from the last one keeps the pressure (the paper's step
+    // recomputes its pressure before reading it). rho and force are recomputed before they are read again.
+    if (keep_pressure) gather(s.pressure, s.scratch_real, order);
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       s.index_of_id[s.id[i]] = std::uint32_t(i);
@@ -53,6 +53,7 @@ void reorder(const Model& model, State& s, int threads) {
       s.Ka[i] = m.Ka;
     }
   }
+  s.order_stamp = new_state_stamp();  // what a solver listed in the old order is stale
 }
 
 }  // namespace dentsph::stages

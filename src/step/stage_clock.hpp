@@ -1,5 +1,5 @@
 // Adds the wall time of each stage of a step to a StageTimes when one is given; costs nothing
-// otherwise. Shared by the paper's step (step.cpp) and the iisph solver (src/solver).
+// otherwise. Shared by the paper's step (paper_step.cpp) and the iisph solver (src/solver).
 #pragma once
 
 #include <chrono>

@@ -1,4 +1,4 @@
-// The stages of one step (MODEL.md, "One step"), one file each. step.cpp calls them in the
+// The stages of one step (MODEL.md, "One step"), one file each. paper_step.cpp calls them in the
 // paper's order; brute_force.cpp replaces the grid stages by all-pairs loops.
 #pragma once
 
@@ -12,8 +12,9 @@ void compute_cell_keys(const Model& model, State& state, int threads);
 // 2a. Counting radix sort of the particles by cell key, and each cell's range (sort.cpp).
 void sort_by_cell(const Model& model, State& state);
 // 2b. Reorder every particle array into cell order; refresh index_of_id and the material cache
-// from model.materials (reorder.cpp).
-void reorder(const Model& model, State& state, int threads);
+// from model.materials (reorder.cpp). With keep_pressure, State::pressure too (a solver whose next
+// pressure solve starts from the last one's).
+void reorder(const Model& model, State& state, int threads, bool keep_pressure = false);
 // 3. Density: over the 27 neighbouring cells, building each moving particle's neighbour list
 // (radius h + skin), or, between rebuilds, over those lists (density.cpp); each particle's
 // pressure (stage 4, pressure.hpp) as soon as its density is known.

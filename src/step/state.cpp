@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <utility>
 
@@ -16,6 +17,11 @@ const char* role_name(Role r) {
     case Role::tool: return "tool";
   }
   return "unknown";
+}
+
+std::uint64_t new_state_stamp() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
 }
 
 std::uint32_t State::count(Role r) const {
@@ -109,54 +115,7 @@ void State::size_by_id_and_scratch(const Model& model, std::uint32_t n) {
   scratch_u32.resize(n);
   scratch_role.resize(n);
   scratch_material.resize(n);
-  size_iisph_scratch(model, n);
-}
-
-void State::size_iisph_scratch(const Model& model, std::uint32_t n) {
-  IisphScratch& x = iisph;
-  x.sized = model.solver == Solver::iisph;
-  const std::size_t per = x.sized ? n : 0;
-  auto size = [](auto& v, std::size_t k) {
-    v.resize(k);
-    v.shrink_to_fit();
-  };
-  size(x.material, x.sized ? count(Role::material) : 0);
-  size(x.active, per);
-  x.active_count = 0;
-  size(x.pairs, per * IisphScratch::kPairStride);
-  size(x.n_material, per);
-  size(x.n_other, per);
-  size(x.grad_sum, per);
-  size(x.diag_x, per);
-  size(x.visc_diag, per);
-  size(x.visc_fixed, per);
-  size(x.div_fixed, per);
-  size(x.v_star, per);
-  size(x.source, per);
-  size(x.tool_force, per);
-  size(x.inv_rho, per);
-  size(x.q, per);
-  size(x.accel, per);
-  size(x.v_a, per);
-  size(x.cg_p, per);
-  size(x.cg_r, per);
-  size(x.cg_ap, per);
-  size(x.partial, x.sized ? n / IisphScratch::kSumBlock + 1 : 0);
-  const std::size_t tools = x.sized ? count(Role::tool) : 0;
-  size(x.tools, tools);
-  size(x.tool_list, tools * IisphScratch::kToolStride);
-  size(x.tool_count, tools);
-  size(x.link_start, x.sized ? n + 1 : 0);
-  size(x.link_fill, per);
-  size(x.link_tool, tools * IisphScratch::kToolStride);
-}
-
-std::size_t IisphScratch::bytes() const {
-  auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
-         b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial) + b(tools) + b(tool_list) + b(tool_count) +
-         b(link_start) + b(link_fill) + b(link_tool);
+  layout_stamp = order_stamp = new_state_stamp();
 }
 
 std::size_t State::bytes_per_particle() const {
@@ -165,7 +124,7 @@ std::size_t State::bytes_per_particle() const {
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
                             bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + cure.bytes() * size() + bytes(grid.key) +
                             bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
-                            bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role) + bytes(scratch_material) + iisph.bytes();
+                            bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role) + bytes(scratch_material);
   return total / size();
 }
 

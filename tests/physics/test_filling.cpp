@@ -107,8 +107,8 @@ void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver:
               file, kind == CavityClass::class_1 ? "I" : "II", solver_name(solver), ts.boundary.points.size(), s.material,
               a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
               a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(),
-              s.iterations_mean,
-              (unsigned long long)s.wall_projections, (unsigned long long)s.wall_projection_steps, s.wall_time_s,
+              s.solver_statistics.iterations_mean(),
+              (unsigned long long)s.solver_statistics.wall_projections, (unsigned long long)s.solver_statistics.wall_projection_steps, s.wall_time_s,
               opt.out_dir.c_str());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.9);
   // No paste in the tooth. Before the lining's surface layer closed its holes (0.7 spacing,
@@ -149,8 +149,8 @@ void fills_and_cures_the_crown(Solver solver) {
               solver_name(solver), a["fill_fraction"].get<double>(), a["void_count"].get<int>(),
               a["void_volume_mm3"].get<double>(), a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(),
               a["lost_particles"].get<int>(), (unsigned long long)s.steps, s.light_on_s, s.cure_at_rest_s,
-              (unsigned long long)s.cure_updates_at_rest, s.iterations_mean, s.density_error_mean, s.density_error_max,
-              (unsigned long long)s.wall_projections, s.cure_report.c_str());
+              (unsigned long long)s.cure_updates_at_rest, s.solver_statistics.iterations_mean(), s.solver_statistics.density_error_mean(), s.solver_statistics.density_error_max,
+              (unsigned long long)s.solver_statistics.wall_projections, s.cure_report.c_str());
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
   EXPECT_LT(a["void_volume_mm3"].get<double>(), 0.15) << "a few particles' volume in all";
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
@@ -184,7 +184,7 @@ void fills_the_crown_uncured(Solver solver) {
               "iterations, %llu wall projections in %llu steps\n",
               solver_name(solver), a["fill_fraction"].get<double>(), a["void_count"].get<int>(),
               a["overfill_mm3"].get<double>(), a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(),
-              s.iterations_mean, (unsigned long long)s.wall_projections, (unsigned long long)s.wall_projection_steps);
+              s.solver_statistics.iterations_mean(), (unsigned long long)s.solver_statistics.wall_projections, (unsigned long long)s.solver_statistics.wall_projection_steps);
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.97);
   EXPECT_EQ(a["void_count"].get<int>(), 0);
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);

@@ -165,7 +165,7 @@ TEST(IisphStep, MaterialThatWouldLeaveTheDomainIsHeldAtRest) {
       scene.particles.push_back(testing::particle(Role::material, x, m, Material{1.0, 10, rho0, 0}));
     Simulation sim(scene, SimulationOptions{});
     for (int k = 0; k < 340; ++k) ASSERT_TRUE(sim.step(Pose{})) << "step " << k << ": " << sim.summary().message;
-    EXPECT_EQ(sim.summary().held_outside_domain, 8u);
+    EXPECT_EQ(sim.summary().solver_statistics.held_outside_domain, 8u);
   }
   // Without it the drop falls on, at g (no other force acts on it).
   const Column falling = drop(Solver::iisph, false);

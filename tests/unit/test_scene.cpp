@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <tuple>
 
 #include "dentsph/scene.hpp"
+#include "dentsph/solver.hpp"
 #include "physics/kernels.hpp"
 #include "scene/shapes.hpp"
 #include "support/builders.hpp"
@@ -176,9 +178,17 @@ TEST(SceneParse, ReadsTheSolverAndTheCommandLineChoosesAnother) {
   select_solver(sc, Solver::paper);
   EXPECT_EQ(sc.model.solver, Solver::paper);
   EXPECT_EQ(sc.model.dt, dt);
-  EXPECT_EQ(make_state(sc).iisph.pairs.size(), 0u) << "the paper's step sizes no iisph scratch";
+  // Each solver object sizes its own buffers for the State: the paper's step has none (its scratch
+  // is the State's grid), the iisph solver its rows.
+  const State st = make_state(sc);
+  const std::unique_ptr<StepSolver> paper = make_solver(sc.model.solver);
+  paper->resize(sc.model, st);
+  EXPECT_EQ(paper->bytes(), 0u) << "the paper's step sizes no iisph scratch";
   select_solver(sc, Solver::iisph);
-  EXPECT_GT(make_state(sc).iisph.pairs.size(), 0u);
+  const std::unique_ptr<StepSolver> iisph = make_solver(sc.model.solver);
+  EXPECT_EQ(iisph->bytes(), 0u) << "nothing before it is sized";
+  iisph->resize(sc.model, make_state(sc));
+  EXPECT_GT(iisph->bytes(), 0u);
 }
 
 // simulation.iisph: the iisph solver's settings over the defaults; the paper's step ignores them.

@@ -141,6 +141,7 @@ class Buffers {
     s.bonds.counters.broken = base_counters_.broken + events.broken;
     s.bonds.counters.overflowed = base_counters_.overflowed + events.overflowed;
     s.grid.lists_valid = false;  // the CPU's neighbour lists do not know the GPU's order
+    s.order_stamp = new_state_stamp();  // nor does what a solver object listed in the old one
   }
 
  private:

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "backend/cuda/neighbourhood.hpp"
+#include "physics/kernels.hpp"
 
 namespace dentsph::gpu {
 
@@ -14,7 +15,7 @@ DENTSPH_HD inline real density_sum(const StepView& v, std::uint32_t i, grid::Vis
   real sum = 0;
   for_each_neighbour(v, pi, visit, [&](std::uint32_t j) {
     const real w = h2 - norm2(pi - v.p.pos[j]);
-    if (w > 0) sum += v.p.mass[j] * w * w * w;
+    if (w > 0) sum += kernels::poly6_mass_term(v.p.mass[j], w);
   });
   return v.kernel.poly6 * sum;
 }

@@ -1,4 +1,4 @@
-// One step on the device, in the paper's order (the CPU's step.cpp): keys, sort and cell ranges,
+// One step on the device, in the paper's order (the CPU's paper_step.cpp): keys, sort and cell ranges,
 // reorder, density, pressure, forces and bonds, tool wrench, integration and the step's output.
 // Enqueued once per direction into a CUDA graph (cuda_stepper.cpp), or stage by stage with events
 // between the stages for their times.

@@ -1,0 +1,104 @@
+// The solver registry (dentsph/solver.hpp): every registered solver answers to its own name, and each
+// steps the same small scene, a block of paste settling in an open container, to finite, sensible
+// results: the paste stays in the container, near its rest density.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "dentsph/solver.hpp"
+#include "support/builders.hpp"
+
+namespace dentsph {
+namespace {
+
+constexpr real kSpacing = 0.01;
+
+TEST(Solvers, EachNameRoundTripsThroughTheRegistry) {
+  ASSERT_GE(registered_solvers().size(), 2u) << "the paper's step and the iisph solver";
+  std::set<std::string> names;
+  for (const SolverEntry& e : registered_solvers()) {
+    SCOPED_TRACE(e.name);
+    EXPECT_TRUE(names.insert(e.name).second) << "each name once";
+    EXPECT_STREQ(solver_name(e.key), e.name);
+    EXPECT_EQ(solver_from_name(e.name), e.key);
+    EXPECT_NE(solver_choices().find(e.name), std::string::npos);
+    const std::unique_ptr<StepSolver> s = make_solver(e.key);
+    EXPECT_EQ(s->key(), e.key);
+    EXPECT_STREQ(s->name(), e.name);
+    EXPECT_EQ(s->bytes(), 0u) << "nothing held before resize()";
+    const StepSolver& shared = solver_properties(e.key);
+    EXPECT_EQ(&shared, &solver_properties(e.key)) << "the registry's own object, made once";
+    EXPECT_STREQ(shared.name(), e.name);
+    EXPECT_GT(shared.default_time_step(), 0);
+    EXPECT_GE(shared.instrument_layers(), 1);
+  }
+  EXPECT_FALSE(solver_from_name("fast"));
+  EXPECT_EQ(registered_solvers().front().key, Solver::paper) << "the scene files' default first";
+}
+
+// A 6 x 6 x 4 block of paste in an open container two layers thick, under gravity.
+struct Box {
+  Model model;
+  State state;
+};
+
+Box settling_box(Solver solver) {
+  const real s = kSpacing;
+  ModelParams p = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.12, 0.12, 0.12}, 2e-4, {0, 0, -9.81});
+  p.solver = solver;
+  Box b{make_model(p), {}};
+  const Material paste{0.5, 60, 1000, 0}, wall{0.5, 60, 1000, 0};
+  const real m = lattice_particle_mass(1000, s, b.model.kernel);
+  std::vector<ParticleInit> ps;
+  for (Vec3 x : testing::lattice({0, 0, 0}, s, 6, 6, 4)) ps.push_back(testing::particle(Role::material, x, m, paste));
+  for (Vec3 x : testing::open_container({0, 0, 0}, s, 5, 5, 6, 2)) ps.push_back(testing::particle(Role::boundary, x, m, wall));
+  b.state.add_particles(b.model, ps);
+  return b;
+}
+
+TEST(Solvers, EachStepsABlockOfPasteSettlingInAContainer) {
+  for (const SolverEntry& e : registered_solvers()) {
+    SCOPED_TRACE(e.name);
+    Box b = settling_box(e.key);
+    const std::unique_ptr<StepSolver> solver = make_solver(e.key);
+    solver->resize(b.model, b.state);
+    constexpr int kSteps = 100;
+    for (int k = 0; k < kSteps; ++k) {
+      solver->step(b.model, b.state, {});
+      ASSERT_EQ(b.state.diagnostics.non_finite, 0u) << "step " << k;
+    }
+    const State& st = b.state;
+    EXPECT_EQ(st.steps, std::uint64_t(kSteps));
+    EXPECT_NEAR(st.time, kSteps * b.model.dt, 1e-12);
+    // In the container (its inner box is 0 to 5 spacings wide; the paste starts a spacing above the
+    // floor's top layer), slower than a free fall over the run, near its rest density.
+    const real s = kSpacing;
+    std::vector<real> rho;
+    for (std::uint32_t i = 0; i < st.size(); ++i) {
+      if (st.role[i] != Role::material) continue;
+      EXPECT_TRUE(inside(st.pos[i], Vec3{-s, -s, -s}, Vec3{6 * s, 6 * s, 8 * s})) << "particle " << st.id[i];
+      EXPECT_LT(norm(st.vel[i]), 9.81 * kSteps * b.model.dt);
+      rho.push_back(st.rho[i]);
+    }
+    ASSERT_EQ(rho.size(), 144u);
+    std::sort(rho.begin(), rho.end());
+    EXPECT_NEAR(rho[rho.size() / 2], 1000, 100) << "the median density near the rest density";
+    EXPECT_LT(rho.back(), 1200) << "nothing squeezed";
+    // Particles added between steps: the solver sizes its buffers again before its next step.
+    const real m = st.mass[0];
+    std::vector<ParticleInit> more;
+    for (Vec3 x : testing::lattice({2 * s, 2 * s, 6 * s}, s, 2, 2, 1))
+      more.push_back(testing::particle(Role::material, x, m, Material{0.5, 60, 1000, 0}));
+    b.state.add_particles(b.model, more);
+    for (int k = 0; k < 10; ++k) solver->step(b.model, b.state, {});
+    EXPECT_EQ(b.state.diagnostics.non_finite, 0u);
+    EXPECT_EQ(b.state.count(Role::material), 148u);
+  }
+}
+
+}  // namespace
+}  // namespace dentsph
