@@ -33,6 +33,13 @@ struct SolverStatistics {
   double iterations_sum = 0;
   int iterations_max = 0;
   double density_error_sum = 0, density_error_max = 0, pressure_residual_max = 0;
+  // Steps whose pressure solve stopped on its budget (StepDiagnostics::pressure_on_budget), and the
+  // largest error it stopped at.
+  std::uint64_t on_budget_steps = 0;
+  double on_budget_residual_max = 0;
+  // The implicit viscosity: its iterations a step and its relative residual (mean, largest).
+  int viscosity_iterations = 0;
+  double viscosity_residual_sum = 0, viscosity_residual_max = 0;
   // Times the wall field moved a paste particle out of the walls (StepDiagnostics::wall_projections),
   // summed over the run, and in how many steps.
   std::uint64_t wall_projections = 0, wall_projection_steps = 0;
@@ -45,6 +52,7 @@ struct SolverStatistics {
 
   double iterations_mean() const { return steps > 0 ? iterations_sum / double(steps) : 0; }
   double density_error_mean() const { return steps > 0 ? density_error_sum / double(steps) : 0; }
+  double viscosity_residual_mean() const { return steps > 0 ? viscosity_residual_sum / double(steps) : 0; }
 };
 
 class StepSolver {

@@ -60,6 +60,10 @@ struct StepDiagnostics {
   real pressure_residual = 0;   // the pressure solve's error: mean over material particles of
                                 // |rho_predicted - rho0 - p / (k Kp)| / rho0 (where p = 0: its positive
                                 // part; k = iisph.stiffness)
+  bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
+                                    // iisph.density_error (pressure_residual says how far)
+  int viscosity_iterations = 0;     // conjugate-gradient iterations of the implicit viscosity
+  real viscosity_residual = 0;      // its relative residual at the end: sqrt(r.D^-1 r / r0.D^-1 r0)
   std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)

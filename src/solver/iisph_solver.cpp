@@ -87,6 +87,13 @@ class IisphSolver final : public StepSolver {
     s.density_error_sum += d.density_error;
     s.density_error_max = std::max<double>(s.density_error_max, d.density_error);
     s.pressure_residual_max = std::max<double>(s.pressure_residual_max, d.pressure_residual);
+    if (d.pressure_on_budget) {
+      ++s.on_budget_steps;
+      s.on_budget_residual_max = std::max<double>(s.on_budget_residual_max, d.pressure_residual);
+    }
+    s.viscosity_iterations = d.viscosity_iterations;
+    s.viscosity_residual_sum += d.viscosity_residual;
+    s.viscosity_residual_max = std::max<double>(s.viscosity_residual_max, d.viscosity_residual);
     s.wall_projections += d.wall_projections;
     s.wall_projection_steps += d.wall_projections > 0;
     s.substepped_steps += d.substeps > 1;

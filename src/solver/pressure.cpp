@@ -128,6 +128,7 @@ void solve_pressure(const Model& model, State& s, IisphScratch& x, int threads) 
     x.v_a[i] = x.v_star[i];
   }
   s.diagnostics.pressure_iterations = it;
+  s.diagnostics.pressure_on_budget = it >= ip.max_iterations && mean_error > ip.density_error;
   s.diagnostics.density_error = mean_compression;
   s.diagnostics.pressure_residual = mean_error;
 }

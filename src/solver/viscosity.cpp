@@ -13,6 +13,9 @@
 // The three components are three independent solves sharing each sweep. The sums over particles
 // are taken in fixed blocks in a fixed order (block_sum.hpp), so every thread count gives the same
 // result.
+#include <algorithm>
+#include <cmath>
+
 #include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
 
@@ -34,7 +37,8 @@ class ViscositySolve {
   // Conjugate gradients from v' (in v_a, also the right-hand side's v_star), `iterations` of them.
   // Three parallel passes an iteration, each sum taken in the pass that computes its terms
   // (block_sum.hpp); z = D^-1 r is kept in cg_p's place only until the direction is updated.
-  void run(int iterations) {
+  // Returns the relative residual left, sqrt(r.D^-1 r / r0.D^-1 r0) (0 for a zero start residual).
+  real run(int iterations) {
     Vec3* v = x_.v_a.data();
     Vec3* p = x_.cg_p.data();
     Vec3* r = x_.cg_r.data();
@@ -44,6 +48,8 @@ class ViscositySolve {
       p[i] = r[i] / diagonal(i);
       return mul(r[i], p[i]);
     });
+    const real rz0 = rz.x + rz.y + rz.z;
+    real rz_end = rz0;
     for (int it = 0; it < iterations; ++it) {
       const Vec3 pap = summed([&](std::uint32_t i) {
         ap[i] = apply(p, i);
@@ -55,11 +61,13 @@ class ViscositySolve {
         r[i] -= mul(alpha, ap[i]);
         return mul(r[i], r[i] / diagonal(i));
       });
+      rz_end = rz_next.x + rz_next.y + rz_next.z;
       if (it + 1 == iterations) break;  // the last direction would not be used
       const Vec3 beta = quotient(rz_next, rz);
       rz = rz_next;
       each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
     }
+    return rz0 > 0 ? std::sqrt(std::max<real>(0, rz_end) / rz0) : 0;
   }
 
  private:
@@ -95,7 +103,8 @@ class ViscositySolve {
 }  // namespace
 
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads) {
-  ViscositySolve(model, s, x, threads).run(model.iisph.viscosity_iterations);
+  s.diagnostics.viscosity_iterations = model.iisph.viscosity_iterations;
+  s.diagnostics.viscosity_residual = ViscositySolve(model, s, x, threads).run(model.iisph.viscosity_iterations);
 }
 
 }  // namespace dentsph::iisph

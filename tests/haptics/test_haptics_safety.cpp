@@ -295,46 +295,51 @@ TEST(HapticProtocolDoc, AClientWrittenFromItIsUnderstoodAndEveryCounterIsNamed) 
 
 // ---- class 4: runaway growth over the network ----------------------------------------------------
 
-// Button 1 toggled 500 times a second for 5 s dispensed 707 increments. The haptic loop counts at
-// most limits::max_dispense_presses_per_s presses in any second and refuses (and counts) the rest.
-TEST(HapticSafety, AButtonToggledFastIsRateLimited) {
+// A button toggled 250 times a second: button 1 dispensed 707 increments in 5 s, button 2 (the
+// curing light) toggled 1,045 times. The haptic loop counts at most 4 presses of each in any second
+// (limits::max_dispense_presses_per_s, max_light_presses_per_s) and refuses (and counts) the rest.
+struct FastButton {
+  const char* name;
+  const char* client_option;
+  std::uint64_t HapticReport::*counted;
+  std::uint64_t HapticReport::*refused;
+  std::uint64_t SimReport::*applied;
+  int per_second;
+  const char* refused_key;
+};
+
+class ButtonToggledFast : public ::testing::TestWithParam<FastButton> {};
+
+TEST_P(ButtonToggledFast, IsRateLimited) {
+  const FastButton& b = GetParam();
   RealtimeOptions o = options(ForceMode::direct);
   o.workspace.origin = {0.03, 0, 0.11};  // the still device's tool beside the increments' drop
   o.duration_s = 2.2;
   const real s = increment_spacing(press_scene());
   o.dispense_volume = 20 * s * s * s;
-  const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", "--toggle-button-hz", "250"},
-                                      "toggle");
+  const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", b.client_option, "250"}, b.name);
   ASSERT_FALSE(c.is_null()) << "the client failed";
   const nlohmann::json h = realtime_sections(r)["haptic"];
-  std::printf("presses counted %llu, refused %llu, increments %llu\n", (unsigned long long)r.haptic.dispense_presses,
-              (unsigned long long)r.haptic.dispense_presses_refused, (unsigned long long)r.sim.button_dispenses);
-  EXPECT_GT(r.haptic.dispense_presses_refused, 100u);
-  EXPECT_LE(r.haptic.dispense_presses, std::uint64_t(3 * limits::max_dispense_presses_per_s));  // 2.2 s
-  EXPECT_GE(r.haptic.dispense_presses, std::uint64_t(limits::max_dispense_presses_per_s));
-  EXPECT_EQ(r.sim.button_dispenses, r.haptic.dispense_presses);
-  EXPECT_EQ(h["dispense_presses_refused"], r.haptic.dispense_presses_refused);
+  const std::uint64_t counted = r.haptic.*b.counted, refused = r.haptic.*b.refused;
+  std::printf("%s: presses counted %llu, refused %llu, applied %llu\n", b.name, (unsigned long long)counted,
+              (unsigned long long)refused, (unsigned long long)(r.sim.*b.applied));
+  EXPECT_GT(refused, 100u);
+  EXPECT_LE(counted, std::uint64_t(3 * b.per_second));  // 2.2 s
+  EXPECT_GE(counted, std::uint64_t(b.per_second));
+  EXPECT_EQ(r.sim.*b.applied, counted);
+  EXPECT_EQ(h[b.refused_key], refused);
   EXPECT_EQ(r.run.status, "completed");
 }
 
-// Button 2 (the curing light) toggled 250 times a second: 1,045 toggles in 5 s before; now at
-// most limits::max_light_presses_per_s presses count in any second, the rest refused and counted.
-TEST(HapticSafety, TheLightButtonToggledFastIsRateLimited) {
-  RealtimeOptions o = options(ForceMode::direct);
-  o.duration_s = 2.2;
-  const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", "--toggle-light-hz", "250"},
-                                      "light_toggle");
-  ASSERT_FALSE(c.is_null()) << "the client failed";
-  const nlohmann::json h = realtime_sections(r)["haptic"];
-  std::printf("light presses counted %llu, refused %llu, toggles %llu\n", (unsigned long long)r.haptic.light_presses,
-              (unsigned long long)r.haptic.light_presses_refused, (unsigned long long)r.sim.light_toggles);
-  EXPECT_GT(r.haptic.light_presses_refused, 100u);
-  EXPECT_LE(r.haptic.light_presses, std::uint64_t(3 * limits::max_light_presses_per_s));  // 2.2 s
-  EXPECT_GE(r.haptic.light_presses, std::uint64_t(limits::max_light_presses_per_s));
-  EXPECT_EQ(r.sim.light_toggles, r.haptic.light_presses);
-  EXPECT_EQ(h["light_presses_refused"], r.haptic.light_presses_refused);
-  EXPECT_EQ(r.run.status, "completed");
-}
+INSTANTIATE_TEST_SUITE_P(
+    HapticSafety, ButtonToggledFast,
+    ::testing::Values(FastButton{"dispense", "--toggle-button-hz", &HapticReport::dispense_presses,
+                                 &HapticReport::dispense_presses_refused, &SimReport::button_dispenses,
+                                 limits::max_dispense_presses_per_s, "dispense_presses_refused"},
+                      FastButton{"light", "--toggle-light-hz", &HapticReport::light_presses,
+                                 &HapticReport::light_presses_refused, &SimReport::light_toggles,
+                                 limits::max_light_presses_per_s, "light_presses_refused"}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 // However often it is asked, an increment never brings the paste over twice the cavity's volume
 // (or the grid domain's without a tooth): the cavity can hold only so much.
