@@ -1,12 +1,22 @@
 #include "haptics/contact_loop.hpp"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 
 #include "haptics/clock.hpp"
 
 namespace dentsph::haptics {
 
 void ContactLoop::run() {
+  // The least urgent of the runtime's threads: a rebuild (milliseconds of work as paste sets) must
+  // not take a core from the haptic loop or the simulation. Nice 10 (allowed without privileges);
+  // where it cannot be set, the thread runs at the default priority.
+  errno = 0;
+  (void)setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 10);
   constexpr std::int64_t kPollNs = 5'000'000;
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     if (shared_.rigid.update()) {
