@@ -189,6 +189,16 @@ TEST(Report, BrokenFoldersAreNamedWithTheFix) {
   refused(garbage, {"tool_force.csv", "line 202, column 3", "not a number"});
   std::ofstream(garbage / "summary.json") << "[1, 2]";
   refused(garbage, {"summary.json", "not a dentsph run summary"});
+  // Figures changed by hand: a fill of 1e308 read "inf % good", -5 "-500.0 %".
+  for (const auto& [field, value] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"fill_fraction", 1e308}, {"fill_fraction", -5}, {"fill_fraction", "full"}, {"leaked_particles", -1}}) {
+    nlohmann::json sm = summary(1, 0, 0, 1, 1);
+    sm["assessment"][field] = value;
+    const fs::path tampered = write_folder("tampered", sm);
+    refused(tampered, {"summary.json", "assessment." + field + " is " + value.dump(), "not a number in", "run the session again"});
+  }
+  // An untouched summary is read.
+  EXPECT_NO_THROW(read_session(write_folder("untouched", summary(0.97, 0, 0, 1, 1))));
 }
 
 TEST(Report, DecimationKeepsThePeaks) {
