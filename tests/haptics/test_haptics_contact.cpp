@@ -159,15 +159,17 @@ TEST(HardContactRuntime, SetPasteStopsTheInstrumentAndIsFelt) {
   }
 }
 
-// The same press played by the reference client over UDP, as a device would: the hand 1 mm into
-// the enamel beside the cavity feels k times its distance behind the proxy, along the surface's
-// normal; the client receives that force.
-TEST(HardContactUdp, TheReferenceClientFeelsTheEnamel) {
+// The same presses played by the reference client over UDP, as a device would: the hand 1 mm into
+// the enamel beside the cavity, and into the cavity floor, feels k times its distance behind the
+// proxy, along the surface's normal; the client receives that force.
+class HardContactUdp : public ::testing::TestWithParam<ToothPress> {};
+
+TEST_P(HardContactUdp, TheReferenceClientFeelsTheTooth) {
   const testing::ContactBench& b = testing::ContactBench::get();
   const ToothFrame& f = b.tooth().frame();
   const DeviceProfile profile = device_profile("falcon");
   HardContact probe(profile.contact);
-  const Vec3 start = f.to_world({0, 2.6e-3, 6e-3});
+  const Vec3 start = f.to_world(GetParam().start_local);
   const testing::PressRun plan = testing::press(probe, b.field, b.shape, start, -f.z, 1e-3, 0.02, false, &b.tooth());
   ASSERT_TRUE(plan.touched);
   // The client's device origin is `start`; it goes to the hold point in 0.45 s (a smooth step) and stays.
@@ -181,7 +183,7 @@ TEST(HardContactUdp, TheReferenceClientFeelsTheEnamel) {
                                 {"--wait", "30", "--duration", "1.2", "--motion", "hold", "--period", "1.5", "--depth",
                                  fmt::format("{:.9g}", norm(to)), "--axis", fmt::format("{:.9g}", to.x),
                                  fmt::format("{:.9g}", to.y), fmt::format("{:.9g}", to.z)},
-                                "enamel");
+                                std::string("udp_") + GetParam().name);
   ASSERT_TRUE(client.started());
   const RealtimeResult r = run_realtime(empty_cavity_scene(), *device, o);
   const nlohmann::json c = client.wait();
@@ -208,11 +210,15 @@ TEST(HardContactUdp, TheReferenceClientFeelsTheEnamel) {
   EXPECT_EQ(c["wrenches_received"].get<int>(), 0) << "a 3-DoF client gets force packets";
 }
 
+INSTANTIATE_TEST_SUITE_P(Surfaces, HardContactUdp,
+                         ::testing::Values(ToothPress{"enamel", {0, 2.6e-3, 6e-3}}, ToothPress{"floor", {0.5e-3, 0, 0.5e-3}}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
 // A 6-DoF client (--torque) gets wrench packets: with the sigma.7's profile, the instrument lying
 // across the tooth and pressed onto it, the shank meets the crown millimetres from the handle
 // point and the client feels the torque of that lever (within the profile's limit); a client of a
 // profile without torque output gets wrench packets whose torque is zero.
-TEST(HardContactUdp, ASixDofClientFeelsTheShanksTorque) {
+TEST(HardContactUdpTorque, ASixDofClientFeelsTheShanksTorque) {
   const testing::ContactBench& b = testing::ContactBench::get();
   const ToothFrame& f = b.tooth().frame();
   const Quat lying = Quat::from_axis_angle(f.x, 90 * std::numbers::pi / 180);  // as TheShankMeetsTheTooth
