@@ -13,31 +13,28 @@
 
 namespace dentsph::cli {
 
-// A finite number in [lo, hi].
-inline CLI::Validator finite_range(double lo, double hi) {
+// A finite number in [lo, hi], or in (lo, hi] with `open_below`; `range` says which for a person.
+inline CLI::Validator finite_number(double lo, double hi, bool open_below, std::string range) {
   return CLI::Validator(
-      [lo, hi](std::string& input) -> std::string {
+      [lo, hi, open_below, range](std::string& input) -> std::string {
         double v = 0;
         if (!CLI::detail::lexical_cast(input, v)) return fmt::format("Value {} is not a number", input);
-        if (!std::isfinite(v) || v < lo || v > hi) return fmt::format("Value {} not in range {:g} to {:g}", input, lo, hi);
+        if (!std::isfinite(v) || v < lo || (open_below && v == lo) || v > hi)
+          return fmt::format("Value {} not in range {}", input, range);
         return {};
       },
-      fmt::format("FLOAT in [{:g} - {:g}]", lo, hi));
+      "FLOAT in " + range);
+}
+
+// A finite number in [lo, hi].
+inline CLI::Validator finite_range(double lo, double hi) {
+  return finite_number(lo, hi, false, fmt::format("{:g} to {:g}", lo, hi));
 }
 
 // A finite number in (0, hi] (no upper bound without `hi`: a later check names the limit).
 inline CLI::Validator finite_positive(double hi = HUGE_VAL) {
-  const bool bounded = std::isfinite(hi);
-  return CLI::Validator(
-      [hi, bounded](std::string& input) -> std::string {
-        double v = 0;
-        if (!CLI::detail::lexical_cast(input, v)) return fmt::format("Value {} is not a number", input);
-        if (!std::isfinite(v) || !(v > 0) || v > hi)
-          return bounded ? fmt::format("Value {} not in range (0 to {:g}]", input, hi)
-                         : fmt::format("Value {} not in range: a positive finite number", input);
-        return {};
-      },
-      bounded ? fmt::format("FLOAT in (0 - {:g}]", hi) : std::string("POSITIVE FLOAT"));
+  return finite_number(0, hi, true,
+                       std::isfinite(hi) ? fmt::format("(0 to {:g}]", hi) : std::string("above 0, finite"));
 }
 
 // Where `text` stops being UTF-8 (its length when it is), by the encoding's rules: no stray

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 
 #include "haptics/clock.hpp"
 
@@ -15,16 +14,17 @@ void ContactLoop::run() {
   // The least urgent of the runtime's threads: a rebuild (milliseconds of work as paste sets) must
   // not take a core from the haptic loop or the simulation. Nice 10 (allowed without privileges);
   // where it cannot be set, the thread runs at the default priority.
-  errno = 0;
   (void)setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 10);
   constexpr std::int64_t kPollNs = 5'000'000;
   while (!shared_.stop.load(std::memory_order_relaxed)) {
     if (shared_.rigid.update()) {
       const RigidInput& in = shared_.rigid.front();
       const std::int64_t t0 = now_ns();
-      world_.field.set_particles(in.particles);
-      world_.shape = instrument_contact_shape(in.tool, in.tool_spacing);
-      shared_.contact.back() = world_;
+      // Built in the buffer's free slot: every slot holds the same grid (the runtime's initial
+      // world), and set_particles fills all of it, so nothing is copied.
+      ContactWorld& w = shared_.contact.back();
+      w.field.set_particles(in.particles);
+      w.shape = instrument_contact_shape(in.tool, in.tool_spacing);
       shared_.contact.publish();
       ++rebuilds_;
       build_max_ms_ = std::max(build_max_ms_, double(now_ns() - t0) * 1e-6);

@@ -13,7 +13,8 @@ namespace dentsph::haptics {
 
 class ContactLoop {
  public:
-  ContactLoop(RuntimeShared& shared, const ContactWorld& initial) : shared_(shared), world_(initial) {}
+  // `shared.contact`'s slots must hold the runtime's initial world (its field's grid).
+  explicit ContactLoop(RuntimeShared& shared) : shared_(shared) {}
   // Runs on the calling thread until shared.stop is set.
   void run();
   std::uint64_t rebuilds() const { return rebuilds_; }
@@ -21,7 +22,6 @@ class ContactLoop {
 
  private:
   RuntimeShared& shared_;
-  ContactWorld world_;
   std::uint64_t rebuilds_ = 0;
   double build_max_ms_ = 0;
 };

@@ -95,7 +95,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sim_opt.coupling.sessions = &shared.sessions;
   haptics::SimLoop sim(core, sim_opt, force_scale, shared, scene_rigid_band(scene));
   haptics::ConsumerLoop consumer(opt, shared);
-  haptics::ContactLoop contact(shared, world);
+  haptics::ContactLoop contact(shared);
 
   const std::int64_t t0 = haptics::now_ns() + 20'000'000;  // the threads start together
   std::thread ht([&] { haptic.run(t0); });
