@@ -68,6 +68,13 @@ enum class Solver { paper, iisph };
 enum class PressureGradient { spiky, cubic };
 const char* gradient_name(PressureGradient g);  // "spiky", "cubic"
 std::optional<PressureGradient> gradient_from_name(std::string_view name);
+// How the iisph solver solves its pressure (docs/model.md, "The pressure solve"): relaxed Jacobi
+// (solver/pressure.cpp; a correction travels about one particle layer an iteration) or projected
+// conjugate gradients (solver/pressure_cg.cpp, MPRGP: converges in iterations that grow with the
+// square root of the scene's depth in layers, not its square).
+enum class PressureSolve { jacobi, cg };
+const char* pressure_solve_name(PressureSolve s);  // "jacobi", "cg"
+std::optional<PressureSolve> pressure_solve_from_name(std::string_view name);
 // The registered solvers' names (registry.cpp): "paper", "iisph".
 const char* solver_name(Solver s);
 std::optional<Solver> solver_from_name(std::string_view name);
@@ -78,9 +85,16 @@ struct IisphParams {
   int min_iterations = 2;         // pressure iterations always done
   int max_iterations = 12;        // pressure iterations at most: the step's cost is bounded
   real density_error = 0.002;     // stop once the solve's mean error (relative density) is below this
+  // cg: and once the largest error of a material particle is below this too (jacobi ignores it).
+  real max_density_error = 0.01;
+  PressureSolve pressure_solve = PressureSolve::jacobi;
   real omega = 0.5;               // relaxation of the Jacobi pressure update
   real warm_start = 1;            // the last step's pressure times this starts the solve
-  int viscosity_iterations = 8;   // conjugate-gradient iterations of the backward-Euler viscosity
+  int viscosity_iterations = 8;   // conjugate-gradient iterations of the backward-Euler viscosity (at most,
+                                  // where viscosity_tolerance is set)
+  // 0: viscosity_iterations iterations from v* + dt a_p, whatever the residual (the iisph solver as it
+  // was). Above 0: from the last step's velocity, until the relative residual is below this.
+  real viscosity_tolerance = 0;
   real cfl = 0.4;                 // velocity Courant number: dt <= cfl h / max|v|
   // The solve's equation of state is p = stiffness Kp (rho - rho0). The paper's eq. 5 turns half of
   // a pressure field's gradient into force (its (P_i + P_j) / 2 average), so under a load the paper's

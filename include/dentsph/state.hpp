@@ -60,6 +60,7 @@ struct StepDiagnostics {
   real pressure_residual = 0;   // the pressure solve's error: mean over material particles of
                                 // |rho_predicted - rho0 - p / (k Kp)| / rho0 (where p = 0: its positive
                                 // part; k = iisph.stiffness)
+  real pressure_max_error = 0;  // the largest of those terms over material particles (cg solve; 0 after jacobi)
   bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
                                     // iisph.density_error (pressure_residual says how far)
   int viscosity_iterations = 0;     // conjugate-gradient iterations of the implicit viscosity

@@ -37,6 +37,20 @@ std::optional<PressureGradient> gradient_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+const char* pressure_solve_name(PressureSolve s) {
+  switch (s) {
+    case PressureSolve::jacobi: return "jacobi";
+    case PressureSolve::cg: return "cg";
+  }
+  return "unknown";
+}
+
+std::optional<PressureSolve> pressure_solve_from_name(std::string_view name) {
+  for (PressureSolve s : {PressureSolve::jacobi, PressureSolve::cg})
+    if (name == pressure_solve_name(s)) return s;
+  return std::nullopt;
+}
+
 real adhesion_normalisation(real eps, real zeta) {
   // The bracket x^eps - x^zeta has its minimum where eps x^(eps-1) = zeta x^(zeta-1).
   const real xs = std::pow(zeta / eps, 1.0 / (eps - zeta));
@@ -50,6 +64,13 @@ void check_iisph_params(const IisphParams& ip) {
                      ip.max_iterations));
   if (!(ip.density_error > 0 && ip.density_error < 1))
     fail("iisph.density_error", fmt::format("must be in (0, 1), got {}; 0.001 to 0.01 is usual", ip.density_error));
+  if (!(ip.max_density_error >= ip.density_error && ip.max_density_error < 1))
+    fail("iisph.max_density_error",
+         fmt::format("must be in [density_error, 1), got {} (density_error {}); 0.01 is usual", ip.max_density_error,
+                     ip.density_error));
+  if (!(ip.viscosity_tolerance >= 0 && ip.viscosity_tolerance < 1))
+    fail("iisph.viscosity_tolerance",
+         fmt::format("must be in [0, 1), got {}; 0 for a fixed number of iterations, 1e-3 is usual", ip.viscosity_tolerance));
   if (!(ip.omega > 0 && ip.omega <= 1))
     fail("iisph.omega", fmt::format("must be in (0, 1], got {}; 0.5 is usual", ip.omega));
   if (!(ip.warm_start >= 0 && ip.warm_start <= 1))

@@ -45,7 +45,17 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   const std::optional<Reader> i = simulation.optional_object(
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
   if (!i) return p;
-  i->only({"stiffness", "max_iterations", "density_error", "omega", "viscosity_iterations", "cfl", "gradient"});
+  i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
+           "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient"});
+  if (const std::optional<std::string> ps =
+          i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
+    const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
+    if (!solve)
+      i->fail("pressure_solve", fmt::format("unknown pressure solve \"{}\"", *ps),
+              "give \"jacobi\" (relaxed Jacobi, the default) or \"cg\" (projected conjugate gradients, for deep or "
+              "stiff scenes; docs/model.md)");
+    p.pressure_solve = *solve;
+  }
   if (const std::optional<std::string> g =
           i->optional_string("gradient", "the pressure's kernel gradient: \"spiky\" or \"cubic\"")) {
     const std::optional<PressureGradient> grad = gradient_from_name(*g);
@@ -63,9 +73,14 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
                                        p.min_iterations, 1000));
   p.density_error = i->number_or("density_error", p.density_error, "the pressure solve's target mean density error, e.g. 0.002",
                                  Range::positive);
+  p.max_density_error = i->number_or("max_density_error", p.max_density_error,
+                                     "the cg pressure solve's target largest density error, e.g. 0.01", Range::positive);
   p.omega = i->number_or("omega", p.omega, "the Jacobi relaxation, in (0, 1], e.g. 0.5", Range::positive);
   p.viscosity_iterations = int(i->integer_or("viscosity_iterations", p.viscosity_iterations,
                                              "the viscosity's conjugate-gradient iterations, e.g. 8", 1, 1000));
+  p.viscosity_tolerance = i->number_or("viscosity_tolerance", p.viscosity_tolerance,
+                                       "the viscosity solve's relative residual, e.g. 1e-3 (0: a fixed count)",
+                                       Range::non_negative);
   p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
   try {
     check_iisph_params(p);  // make_model does too, but a dental scene's Model is made later

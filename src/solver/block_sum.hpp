@@ -11,20 +11,20 @@
 
 namespace dentsph::iisph {
 
-// fn(k) for k in [0, n), in parallel; returns the sum of what it returns (a Vec3: up to three sums
-// side by side). `partial` holds n / kSumBlock + 1 entries.
-template <class Fn>
-Vec3 for_rows_summed(std::int64_t n, int threads, Vec3* partial, Fn&& fn) {
+// fn(k) for k in [0, n), in parallel; returns the sum of what it returns (a T with += and a zero
+// default: a Vec3 holds three sums side by side). `partial` holds n / kSumBlock + 1 entries.
+template <class T, class Fn>
+T for_rows_summed(std::int64_t n, int threads, T* partial, Fn&& fn) {
   constexpr std::int64_t B = IisphScratch::kSumBlock;
   const std::int64_t blocks = (n + B - 1) / B;
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
   for (std::int64_t b = 0; b < blocks; ++b) {
-    Vec3 s;
+    T s{};
     const std::int64_t end = std::min(n, (b + 1) * B);
     for (std::int64_t k = b * B; k < end; ++k) s += fn(k);
     partial[b] = s;
   }
-  Vec3 total;
+  T total{};
   for (std::int64_t b = 0; b < blocks; ++b) total += partial[b];
   return total;
 }

@@ -10,6 +10,7 @@
 //   advection.cpp   adhesion of the bonded pairs (bonds break past B), gravity: the velocity v*
 //   pressure.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
 //                   step where its equation of state puts it; v* + dt a_p
+//   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
 //   viscosity.cpp   backward-Euler viscosity by conjugate gradients: v**
 //   finish.cpp      velocity and position, the tool's move, diagnostics, the tool wrench
 //
@@ -59,9 +60,17 @@ void advect(const Model& model, State& state, IisphScratch& x, int threads);
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
 // iterations.
 void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads);
-// pressure.cpp: the pressure solve; leaves each material particle's pressure acceleration in
-// x.accel and the iterations and density error in state.diagnostics.
-void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads);
+// The pressure solve, by model.iisph.pressure_solve: relaxed Jacobi (pressure.cpp) or projected
+// conjugate gradients (pressure_cg.cpp). Each leaves every material particle's pressure acceleration
+// in x.accel, v* + dt a_p in x.v_star and x.v_a, and its iterations and errors in state.diagnostics.
+void solve_pressure_jacobi(const Model& model, State& state, IisphScratch& x, int threads);
+void solve_pressure_cg(const Model& model, State& state, IisphScratch& x, int threads);
+inline void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads) {
+  if (model.iisph.pressure_solve == PressureSolve::cg)
+    solve_pressure_cg(model, state, x, threads);
+  else
+    solve_pressure_jacobi(model, state, x, threads);
+}
 // finish.cpp: v = v** + dt a_p, r += dt v; the tool to its pose; outputs, diagnostics, wrench.
 void finish(const Model& model, State& state, const IisphScratch& x, int threads);
 

@@ -25,50 +25,15 @@
 
 #include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
+#include "solver/pressure_terms.hpp"
 
 namespace dentsph::iisph {
 
 namespace {
 
-const SolverPair* row_of(const IisphScratch& x, std::uint32_t i) {
-  return x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
-}
-
-// The pressure acceleration of every material particle from the pressures q = p / rho^2.
-void pressure_accelerations(IisphScratch& x, int threads) {
-  const std::int64_t n = std::int64_t(x.material.size());
-  const real* q = x.q.data();
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t m = 0; m < n; ++m) {
-    const std::uint32_t i = x.material[m];
-    const SolverPair* row = row_of(x, i);
-    Vec3 a = x.grad_sum[i] * q[i];
-    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) a += row[e].grad() * q[row[e].j];
-    for (std::uint32_t e = IisphScratch::kPairStride - x.n_other[i]; e < IisphScratch::kPairStride; ++e)
-      a += row[e].grad() * q[row[e].j];
-    x.accel[i] = -a;
-  }
-}
-
-// The density change the pressure accelerations make over the step, dt^2 sum_j m_j (a_i - a_j) . gradW_ij.
-real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool material, real dt2) {
-  const SolverPair* row = row_of(x, i);
-  real ap = material ? dot(x.accel[i], x.grad_sum[i]) : 0;
-  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) ap -= dot(x.accel[row[e].j], row[e].grad());
-  return ap * dt2;
-}
-
-// The predicted density without pressure (from v*), the right-hand side and the start of row i.
+// The start of row i: its right-hand side, and the last step's pressure times warm_start.
 void start_row(const Model& model, State& s, IisphScratch& x, std::uint32_t i) {
-  const real dt = model.dt;
-  const std::vector<Vec3>& v = x.v_a;  // v* (boundary, tool: their velocity)
-  const SolverPair* row = row_of(x, i);
-  const bool material = s.role[i] == Role::material;
-  // material: v_i . S_i - sum_j v_j . m_j gradW_ij over every neighbour; boundary and tool: the
-  // material neighbours' motion alone (what the solve can change).
-  real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
-  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad());
-  x.source[i] = s.rho0[i] - (s.rho[i] + dt * div);
+  pressure_source(model, s, x, i);
   const real p = model.iisph.warm_start * s.pressure[i];
   s.pressure[i] = p;
   x.q[i] = p * x.inv_rho[i] * x.inv_rho[i];
@@ -76,7 +41,7 @@ void start_row(const Model& model, State& s, IisphScratch& x, std::uint32_t i) {
 
 }  // namespace
 
-void solve_pressure(const Model& model, State& s, IisphScratch& x, int threads) {
+void solve_pressure_jacobi(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t rows = x.active_count, n_material = std::int64_t(x.material.size());
   const real dt2 = model.dt * model.dt;
   const IisphParams& ip = model.iisph;
@@ -86,13 +51,13 @@ void solve_pressure(const Model& model, State& s, IisphScratch& x, int threads) 
   real mean_error = 0, mean_compression = 0, last_error = -1;
   real omega = ip.omega;
   while (it < ip.max_iterations) {
-    pressure_accelerations(x, threads);
+    pressure_accelerations(x, x.q.data(), threads);
     // The update of every active row, and the sums of the material rows' error and compression
     // in the same pass (block_sum.hpp: the same sums, bit for bit, on every thread count).
     const Vec3 sums = for_rows_summed(rows, threads, x.partial.data(), [&](std::int64_t k) {
       const std::uint32_t i = x.active[k];
       const bool material = s.role[i] == Role::material;
-      const real compliance = 1 / (ip.stiffness * s.Kp[i]);  // kg/m^3 per Pa: rho - rho0 = p / (stiffness Kp)
+      const real compliance = pressure_compliance(model, s, i);
       // rho0 - rho_predicted + p / (k Kp): zero where the equation of state holds at the end of the step
       const real residual = x.source[i] - pressure_density_change(x, i, material, dt2) + s.pressure[i] * compliance;
       // The solve's error: where the pressure pushes, the equation of state's; where it is 0, the
@@ -118,19 +83,13 @@ void solve_pressure(const Model& model, State& s, IisphScratch& x, int threads) 
     if (last_error >= 0 && mean_error > 1.25 * last_error) omega *= 0.5;
     last_error = mean_error;
   }
-  pressure_accelerations(x, threads);  // of the pressures the solve ends with
-  // v* + dt a_p: the viscosity's start and right-hand side.
-  const real dt = model.dt;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t m = 0; m < n_material; ++m) {
-    const std::uint32_t i = x.material[m];
-    x.v_star[i] += x.accel[i] * dt;
-    x.v_a[i] = x.v_star[i];
-  }
+  pressure_accelerations(x, x.q.data(), threads);  // of the pressures the solve ends with
+  apply_pressure_accelerations(model, x, threads);
   s.diagnostics.pressure_iterations = it;
   s.diagnostics.pressure_on_budget = it >= ip.max_iterations && mean_error > ip.density_error;
   s.diagnostics.density_error = mean_compression;
   s.diagnostics.pressure_residual = mean_error;
+  s.diagnostics.pressure_max_error = 0;
 }
 
 }  // namespace dentsph::iisph

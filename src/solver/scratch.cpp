@@ -32,6 +32,12 @@ void IisphScratch::resize(const State& state) {
   size(cg_r, n);
   size(cg_ap, n);
   size(partial, n / kSumBlock + 1);
+  size(pc_scale, n);
+  size(pc_y, n);
+  size(pc_g, n);
+  size(pc_dir, n);
+  size(pc_hp, n);
+  size(pc_partial, n / kSumBlock + 1);
   const std::size_t tool_count_now = state.count(Role::tool);
   size(tools, tool_count_now);
   size(tool_list, tool_count_now * kToolStride);
@@ -45,7 +51,8 @@ std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
          b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial) + b(tools) + b(tool_list) + b(tool_count) +
+         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
+         b(pc_dir) + b(pc_hp) + b(pc_partial) + b(tools) + b(tool_list) + b(tool_count) +
          b(link_start) + b(link_fill) + b(link_tool);
 }
 

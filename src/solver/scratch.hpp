@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "dentsph/state.hpp"
@@ -21,6 +22,18 @@ struct SolverPair {
                        // rest density for boundary and tool; material rows only)
   std::uint32_t j = 0; // the neighbour's index
   Vec3 grad() const { return {real(gx), real(gy), real(gz)}; }
+};
+
+// Sums a pass of the cg pressure solve takes over its rows (pressure_cg.cpp): `sum` added, `max` the
+// largest (-inf over no rows; exact in any order of blocks, so every thread count gives the same).
+struct PressureSums {
+  real sum[6] = {0, 0, 0, 0, 0, 0};
+  real max = -std::numeric_limits<real>::infinity();
+  PressureSums& operator+=(const PressureSums& o) {
+    for (int k = 0; k < 6; ++k) sum[k] += o.sum[k];
+    if (o.max > max) max = o.max;
+    return *this;
+  }
 };
 
 // The iisph solver's scratch, the iisph solver object's own (iisph_solver.cpp), sized by its
@@ -52,6 +65,12 @@ struct IisphScratch {
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
   std::vector<Vec3> partial;         // [n / kSumBlock + 1] sums of fixed blocks of rows (solver/block_sum.hpp)
+  // The cg pressure solve's (pressure_cg.cpp), in its scaled unknowns y = sqrt(H_ii) q:
+  std::vector<real> pc_scale;        // sqrt(H_ii) of each active row
+  std::vector<real> pc_y, pc_g;      // the unknown and the gradient of the quadratic it minimises
+  std::vector<real> pc_dir;          // the search direction, as q (p / rho^2): 0 outside the solve
+  std::vector<real> pc_hp;           // H times the direction, scaled
+  std::vector<PressureSums> pc_partial;  // [n / kSumBlock + 1] its sums of blocks of rows
   static constexpr int kSumBlock = 64;
   // The tool's neighbours, found every step (solver/tool_pairs.cpp): the tool moves farther in a
   // step than the neighbour lists' skin allows, so its particles are left out of the lists and of
