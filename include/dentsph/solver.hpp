@@ -37,8 +37,12 @@ struct SolverStatistics {
   // largest error it stopped at.
   std::uint64_t on_budget_steps = 0;
   double on_budget_residual_max = 0;
-  // The implicit viscosity: its iterations a step and its relative residual (mean, largest).
-  int viscosity_iterations = 0;
+  // The largest density error of a material particle a solve left (StepDiagnostics::pressure_max_error:
+  // the cg solve's; 0 for Jacobi, which does not measure it).
+  double pressure_max_error = 0;
+  // The implicit viscosity: its iterations a step (sum, largest) and its relative residual (mean, largest).
+  double viscosity_iterations_sum = 0;
+  int viscosity_iterations_max = 0;
   double viscosity_residual_sum = 0, viscosity_residual_max = 0;
   // Times the wall field moved a paste particle out of the walls (StepDiagnostics::wall_projections),
   // summed over the run, and in how many steps.
@@ -52,6 +56,7 @@ struct SolverStatistics {
 
   double iterations_mean() const { return steps > 0 ? iterations_sum / double(steps) : 0; }
   double density_error_mean() const { return steps > 0 ? density_error_sum / double(steps) : 0; }
+  double viscosity_iterations_mean() const { return steps > 0 ? viscosity_iterations_sum / double(steps) : 0; }
   double viscosity_residual_mean() const { return steps > 0 ? viscosity_residual_sum / double(steps) : 0; }
 };
 

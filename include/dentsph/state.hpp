@@ -64,7 +64,8 @@ struct StepDiagnostics {
   bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
                                     // iisph.density_error (pressure_residual says how far)
   int viscosity_iterations = 0;     // conjugate-gradient iterations of the implicit viscosity
-  real viscosity_residual = 0;      // its relative residual at the end: sqrt(r.D^-1 r / r0.D^-1 r0)
+  real viscosity_residual = 0;      // its relative residual at the end: sqrt(r.D^-1 r / r0.D^-1 r0) (a fixed
+                                    // count), sqrt(r.D^-1 r / b.D^-1 b) (iisph.viscosity_tolerance)
   std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)

@@ -39,11 +39,14 @@ std::string summary_json(const RunSummary& s) {
     j["solver"].update({{"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
                         {"density_error", {{"mean", st.density_error_mean()}, {"max", st.density_error_max}}},
                         {"pressure_residual_max", st.pressure_residual_max},
+                        // The largest density error a particle was left with (the cg solve; 0: not measured).
+                        {"pressure_max_error", st.pressure_max_error},
                         // Steps whose solve stopped on its budget, not its tolerance, and how far off.
                         {"pressure_on_budget", {{"steps", st.on_budget_steps},
                                                 {"share", st.steps > 0 ? double(st.on_budget_steps) / double(st.steps) : 0.0},
                                                 {"residual_max", st.on_budget_residual_max}}},
-                        {"viscosity", {{"iterations", st.viscosity_iterations},
+                        {"viscosity", {{"iterations", st.viscosity_iterations_mean()},
+                                       {"iterations_max", st.viscosity_iterations_max},
                                        {"residual_mean", st.viscosity_residual_mean()},
                                        {"residual_max", st.viscosity_residual_max}}},
                         {"wall_projections", {{"particles", st.wall_projections}, {"steps", st.wall_projection_steps}}},

@@ -58,7 +58,7 @@ void list_active_rows(State& state, IisphScratch& x);
 // divergence terms of the boundary and tool neighbours, fixed for the step.
 void advect(const Model& model, State& state, IisphScratch& x, int threads);
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
-// iterations.
+// iterations, or fewer where iisph.viscosity_tolerance is reached.
 void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads);
 // The pressure solve, by model.iisph.pressure_solve: relaxed Jacobi (pressure.cpp) or projected
 // conjugate gradients (pressure_cg.cpp). Each leaves every material particle's pressure acceleration

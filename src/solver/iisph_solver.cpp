@@ -91,7 +91,9 @@ class IisphSolver final : public StepSolver {
       ++s.on_budget_steps;
       s.on_budget_residual_max = std::max<double>(s.on_budget_residual_max, d.pressure_residual);
     }
-    s.viscosity_iterations = d.viscosity_iterations;
+    s.pressure_max_error = std::max<double>(s.pressure_max_error, d.pressure_max_error);
+    s.viscosity_iterations_sum += d.viscosity_iterations;
+    s.viscosity_iterations_max = std::max(s.viscosity_iterations_max, d.viscosity_iterations);
     s.viscosity_residual_sum += d.viscosity_residual;
     s.viscosity_residual_max = std::max<double>(s.viscosity_residual_max, d.viscosity_residual);
     s.wall_projections += d.wall_projections;

@@ -15,6 +15,7 @@
 // result.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
@@ -34,23 +35,42 @@ class ViscositySolve {
   ViscositySolve(const Model& model, State& s, IisphScratch& x, int threads)
       : s_(s), x_(x), dt_(model.dt), threads_(threads), n_(std::int64_t(x_.material.size())) {}
 
-  // Conjugate gradients from v' (in v_a, also the right-hand side's v_star), `iterations` of them.
+  // Conjugate gradients from the velocity in v_a (v', also the right-hand side's v_star), until
+  // `iterations` of them or, where tolerance > 0, until the relative residual is at most tolerance.
   // Three parallel passes an iteration, each sum taken in the pass that computes its terms
-  // (block_sum.hpp); z = D^-1 r is kept in cg_p's place only until the direction is updated.
-  // Returns the relative residual left, sqrt(r.D^-1 r / r0.D^-1 r0) (0 for a zero start residual).
-  real run(int iterations) {
+  // (block_sum.hpp); z = D^-1 r is kept in cg_p's place only until the direction is updated. Returns
+  // the relative residual left and the iterations taken. The residual is relative to the start's,
+  // sqrt(r.D^-1 r / r0.D^-1 r0), for a fixed count (tolerance 0), and to the right-hand side's,
+  // sqrt(r.D^-1 r / b.D^-1 b), for a tolerance (a warm start that is already close does not make it
+  // harder to reach).
+  std::pair<real, int> run(int iterations, real tolerance, bool warm) {
     Vec3* v = x_.v_a.data();
     Vec3* p = x_.cg_p.data();
     Vec3* r = x_.cg_r.data();
     Vec3* ap = x_.cg_ap.data();
+    real bb = 0;  // b.D^-1 b
+    if (warm) {
+      // The better start of v' and the last step's velocity (state.vel: a slow, stiff flow's velocity
+      // changes little from step to step, where v' has lost the viscous part of the last step).
+      const Vec3 e = summed([&](std::uint32_t i) {
+        const Vec3 b = rhs(i), rv = b - apply(v, i), rl = b - apply(s_.vel.data(), i);
+        const real d = diagonal(i);
+        return Vec3{dot(b, b) / d, dot(rv, rv) / d, dot(rl, rl) / d};
+      });
+      bb = e.x;
+      if (e.z < e.y) each([&](std::uint32_t i) { v[i] = s_.vel[i]; });
+    }
     Vec3 rz = summed([&](std::uint32_t i) {
-      r[i] = x_.v_star[i] * s_.mass[i] + x_.visc_fixed[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]) - apply(v, i);
+      r[i] = rhs(i) - apply(v, i);
       p[i] = r[i] / diagonal(i);
       return mul(r[i], p[i]);
     });
     const real rz0 = rz.x + rz.y + rz.z;
+    const real reference = tolerance > 0 ? bb : rz0;
     real rz_end = rz0;
-    for (int it = 0; it < iterations; ++it) {
+    int it = 0;
+    auto relative = [&](real rz_now) { return reference > 0 ? std::sqrt(std::max<real>(0, rz_now) / reference) : 0; };
+    while (it < iterations && !(tolerance > 0 && relative(rz_end) <= tolerance)) {
       const Vec3 pap = summed([&](std::uint32_t i) {
         ap[i] = apply(p, i);
         return mul(p[i], ap[i]);
@@ -61,16 +81,21 @@ class ViscositySolve {
         r[i] -= mul(alpha, ap[i]);
         return mul(r[i], r[i] / diagonal(i));
       });
+      ++it;
       rz_end = rz_next.x + rz_next.y + rz_next.z;
-      if (it + 1 == iterations) break;  // the last direction would not be used
+      if (it == iterations || (tolerance > 0 && relative(rz_end) <= tolerance)) break;  // the last direction would not be used
       const Vec3 beta = quotient(rz_next, rz);
       rz = rz_next;
       each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
     }
-    return rz0 > 0 ? std::sqrt(std::max<real>(0, rz_end) / rz0) : 0;
+    return {relative(rz_end), it};
   }
 
  private:
+  // The right-hand side of row i: m_i v'_i and the boundary's and the tool's terms.
+  Vec3 rhs(std::uint32_t i) const {
+    return x_.v_star[i] * s_.mass[i] + x_.visc_fixed[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]);
+  }
   // Row i (material) of the system times v: m_i v_i (1 + dt/rho_i sum_j visc_ij) - dt m_i/rho_i
   // sum_{j material} visc_ij v_j, visc_ij = (mu_i + mu_j)/2 m_j lapW / rho_j (advection.cpp).
   Vec3 apply(const Vec3* v, std::uint32_t i) const {
@@ -103,8 +128,11 @@ class ViscositySolve {
 }  // namespace
 
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads) {
-  s.diagnostics.viscosity_iterations = model.iisph.viscosity_iterations;
-  s.diagnostics.viscosity_residual = ViscositySolve(model, s, x, threads).run(model.iisph.viscosity_iterations);
+  const IisphParams& ip = model.iisph;
+  const auto [residual, iterations] = ViscositySolve(model, s, x, threads)
+                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, ip.viscosity_tolerance > 0);
+  s.diagnostics.viscosity_iterations = iterations;
+  s.diagnostics.viscosity_residual = residual;
 }
 
 }  // namespace dentsph::iisph

@@ -208,6 +208,12 @@ TEST(SceneParse, ReadsTheIisphSolversSettings) {
   EXPECT_EQ(sc.model.iisph.min_iterations, IisphParams{}.min_iterations) << "not given: the default";
   j["simulation"]["iisph"] = {{"gradient", "spiky"}};
   EXPECT_EQ(parse(j).model.iisph.gradient, PressureGradient::spiky);
+  EXPECT_EQ(parse(j).model.iisph.pressure_solve, PressureSolve::jacobi) << "the default";
+  j["simulation"]["iisph"] = {{"pressure_solve", "cg"}, {"max_density_error", 0.005}, {"viscosity_tolerance", 1e-4}};
+  const Scene cg = parse(j);
+  EXPECT_EQ(cg.model.iisph.pressure_solve, PressureSolve::cg);
+  EXPECT_EQ(cg.model.iisph.max_density_error, 0.005);
+  EXPECT_EQ(cg.model.iisph.viscosity_tolerance, 1e-4);
 }
 
 TEST(SceneParse, ReadsGivenSettings) {
@@ -569,6 +575,13 @@ const BrokenCase broken_cases[] = {
      "simulation.iisph.max_iterations", "must be in [2, 1000], got 5000"},
     {"iisph unknown gradient", [](json& j) { j["simulation"]["iisph"] = {{"gradient", "wendland"}}; },
      "simulation.iisph.gradient", "give \"spiky\" (the paper's kernel, lattice-scaled) or \"cubic\""},
+    {"iisph unknown pressure solve", [](json& j) { j["simulation"]["iisph"] = {{"pressure_solve", "multigrid"}}; },
+     "simulation.iisph.pressure_solve", "give \"jacobi\" (relaxed Jacobi, the default) or \"cg\""},
+    {"iisph largest error under the mean's",
+     [](json& j) { j["simulation"]["iisph"] = {{"density_error", 0.01}, {"max_density_error", 0.001}}; },
+     "simulation.iisph.max_density_error", "must be in [density_error, 1)"},
+    {"iisph viscosity tolerance of 1.5", [](json& j) { j["simulation"]["iisph"] = {{"viscosity_tolerance", 1.5}}; },
+     "simulation.iisph.viscosity_tolerance", "must be in [0, 1), got 1.5"},
     {"iisph misspelt", [](json& j) { j["simulation"]["iisph"] = {{"stifness", 1}}; }, "simulation.iisph",
      "stiffness"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},

@@ -135,12 +135,110 @@ TEST(Solvers, TheIisphSolveSaysWhenItStoppedOnItsBudget) {
   EXPECT_GT(tight.on_budget_residual_max, 1e-6);
   EXPECT_EQ(loose.on_budget_steps, 0u);
   EXPECT_EQ(loose.on_budget_residual_max, 0);
-  EXPECT_EQ(tight.viscosity_iterations, 1);
-  EXPECT_EQ(loose.viscosity_iterations, 16);
+  EXPECT_EQ(tight.viscosity_iterations_max, 1);
+  EXPECT_EQ(tight.viscosity_iterations_mean(), 1);
+  EXPECT_EQ(loose.viscosity_iterations_max, 16);
   EXPECT_GT(tight.viscosity_residual_mean(), 0);
   EXPECT_LT(loose.viscosity_residual_mean(), tight.viscosity_residual_mean())
       << "more conjugate-gradient iterations leave less residual";
   EXPECT_LE(loose.viscosity_residual_max, 1.0);
+}
+
+// The two pressure solves (iisph.pressure_solve) solve the same equations: from the same state, run
+// to a tight tolerance, relaxed Jacobi and the projected conjugate gradients give the same pressures
+// (to the tolerance's size, 1e-7 of rho0 Kp / 2 = 3 mPa) and the same step; the cg solve's diagnostics
+// say it met both its targets (mean and largest density error).
+TEST(Solvers, JacobiAndConjugateGradientsSolveTheSamePressure) {
+  Box b = settling_box(Solver::iisph);
+  b.model.dt = 1e-3;
+  const std::unique_ptr<StepSolver> warm = make_solver(Solver::iisph);
+  for (int k = 0; k < 40; ++k) warm->step(b.model, b.state, {});  // settling: the paste has pressure
+  auto one_step = [&](PressureSolve solve) {
+    Box c = b;
+    c.model.iisph.pressure_solve = solve;
+    c.model.iisph.max_iterations = 1000;
+    c.model.iisph.density_error = 1e-9;
+    c.model.iisph.max_density_error = 1e-8;
+    const std::unique_ptr<StepSolver> solver = make_solver(Solver::iisph);
+    solver->step(c.model, c.state, {});
+    return c;
+  };
+  const Box jacobi = one_step(PressureSolve::jacobi), cg = one_step(PressureSolve::cg);
+  EXPECT_FALSE(cg.state.diagnostics.pressure_on_budget);
+  EXPECT_LE(cg.state.diagnostics.pressure_residual, 1e-9);
+  EXPECT_LE(cg.state.diagnostics.pressure_max_error, 1e-8);
+  EXPECT_LT(cg.state.diagnostics.pressure_iterations, jacobi.state.diagnostics.pressure_iterations);
+  real p_max = 0, p_diff = 0, v_diff = 0;
+  ASSERT_EQ(jacobi.state.size(), cg.state.size());
+  for (std::uint32_t i = 0; i < cg.state.size(); ++i) {
+    ASSERT_EQ(jacobi.state.id[i], cg.state.id[i]);
+    p_max = std::max(p_max, cg.state.pressure[i]);
+    p_diff = std::max(p_diff, std::abs(cg.state.pressure[i] - jacobi.state.pressure[i]));
+    v_diff = std::max(v_diff, norm(cg.state.vel[i] - jacobi.state.vel[i]));
+  }
+  EXPECT_GT(p_max, 10) << "Pa: the settling paste has pressure";
+  EXPECT_LT(p_diff, 1e-4 * p_max) << "Pa";
+  EXPECT_LT(v_diff, 1e-6) << "m/s";
+}
+
+// The cg solve stops on its tolerance, not its budget, at every step of a settling box, and says so;
+// with a budget of 1 iteration it says it stopped on it.
+TEST(Solvers, TheConjugateGradientsStopOnTheirTolerance) {
+  for (const int budget : {200, 2}) {
+    Box b = settling_box(Solver::iisph);
+    b.model.dt = 1e-3;
+    b.model.iisph.pressure_solve = PressureSolve::cg;
+    b.model.iisph.max_iterations = budget;
+    b.model.iisph.density_error = 1e-6;
+    b.model.iisph.max_density_error = 1e-5;
+    const std::unique_ptr<StepSolver> solver = make_solver(Solver::iisph);
+    SolverStatistics stats;
+    for (int k = 0; k < 40; ++k) {
+      solver->step(b.model, b.state, {});
+      solver->record(stats, b.state.diagnostics);
+      const StepDiagnostics& d = b.state.diagnostics;
+      ASSERT_EQ(d.non_finite, 0u);
+      if (!d.pressure_on_budget) {
+        EXPECT_LE(d.pressure_residual, 1e-6) << "step " << k;
+        EXPECT_LE(d.pressure_max_error, 1e-5) << "step " << k;
+      }
+    }
+    if (budget == 200) {
+      EXPECT_EQ(stats.on_budget_steps, 0u);
+    } else {
+      EXPECT_GT(stats.on_budget_steps, 0u);
+      EXPECT_GT(stats.pressure_max_error, 1e-5);
+    }
+  }
+}
+
+// iisph.viscosity_tolerance: the viscosity is solved until its relative residual is under the
+// tolerance (each step's, where it did not reach its iteration cap), warm-started, with fewer
+// iterations for a looser tolerance; the run's figures count them.
+TEST(Solvers, TheViscositySolvesToItsTolerance) {
+  auto run = [](real tolerance) {
+    Box b = settling_box(Solver::iisph);
+    b.model.dt = 1e-3;
+    for (std::size_t k = 0; k < b.model.materials.size(); ++k) b.model.materials[MaterialIndex(k)].mu = 1e3;
+    b.state.refresh_materials(b.model);
+    b.model.iisph.viscosity_tolerance = tolerance;
+    b.model.iisph.viscosity_iterations = 500;
+    const std::unique_ptr<StepSolver> solver = make_solver(Solver::iisph);
+    SolverStatistics stats;
+    for (int k = 0; k < 30; ++k) {
+      solver->step(b.model, b.state, {});
+      solver->record(stats, b.state.diagnostics);
+      const StepDiagnostics& d = b.state.diagnostics;
+      if (d.viscosity_iterations < 500) {
+        EXPECT_LE(d.viscosity_residual, tolerance) << "step " << k;
+      }
+    }
+    return stats;
+  };
+  const SolverStatistics tight = run(1e-8), loose = run(1e-2);
+  EXPECT_LT(tight.viscosity_iterations_max, 500) << "reached without the cap";
+  EXPECT_LE(tight.viscosity_residual_max, 1e-8);
+  EXPECT_LT(loose.viscosity_iterations_mean(), tight.viscosity_iterations_mean());
 }
 
 }  // namespace
