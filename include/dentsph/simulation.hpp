@@ -103,6 +103,10 @@ struct SimulationOptions {
   // another program takes a core); fixed: always `threads`. The results are the same bit for bit.
   ThreadPolicy thread_policy = ThreadPolicy::governed;
   CureSchedule cure_schedule = {};
+  // The wall time (s) a step's solves may take from its start, 0 for none (StepOptions::deadline):
+  // `run --realtime` gives a share of dt, so that a step stopped early keeps the haptic loop in
+  // time; the summary counts such steps (solver.on_deadline). Offline runs leave it 0.
+  double solve_budget_s = 0;
 };
 
 class Simulation {

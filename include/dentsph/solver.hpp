@@ -37,6 +37,10 @@ struct SolverStatistics {
   // largest error it stopped at.
   std::uint64_t on_budget_steps = 0;
   double on_budget_residual_max = 0;
+  // Steps a solve of which stopped at the step's deadline (StepDiagnostics::on_deadline; realtime
+  // runs), and the largest pressure error one stopped at.
+  std::uint64_t on_deadline_steps = 0;
+  double on_deadline_residual_max = 0;
   // The largest density error of a material particle a solve left (StepDiagnostics::pressure_max_error:
   // the cg solve's; 0 for Jacobi, which does not measure it).
   double pressure_max_error = 0;

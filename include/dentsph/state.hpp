@@ -63,6 +63,7 @@ struct StepDiagnostics {
   real pressure_max_error = 0;  // the largest of those terms over material particles (cg solve; 0 after jacobi)
   bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
                                     // iisph.density_error (pressure_residual says how far)
+  bool on_deadline = false;         // a solve stopped at StepOptions::deadline, before its tolerance
   int viscosity_iterations = 0;     // conjugate-gradient iterations of the implicit viscosity
   real viscosity_residual = 0;      // its relative residual at the end: sqrt(r.D^-1 r / r0.D^-1 r0) (a fixed
                                     // count), sqrt(r.D^-1 r / b.D^-1 b) (iisph.viscosity_tolerance)

@@ -1,6 +1,7 @@
 // One simulation step: the paper's six stages (MODEL.md, "One step").
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -30,6 +31,11 @@ struct StageTimes {
 struct StepOptions {
   int threads = 1;              // threads for the parallel stages (OpenMP); 1 runs serially
   StageTimes* times = nullptr;  // when set, each stage's wall time is added to it
+  // The iisph solver's solves stop iterating once this time has passed (after their least
+  // iterations), and the step says so (StepDiagnostics::on_deadline): the haptic loop's share of
+  // real time (SimulationOptions::solve_budget_s). The default never comes. A deadline makes the
+  // result depend on the machine's speed; offline runs leave it unset.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 // One step of the model's solver (model.solver; solver.hpp): for the paper's, the grid step: cell

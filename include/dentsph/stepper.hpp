@@ -58,6 +58,9 @@ class Stepper {
   // Bytes its solver object keeps beyond the State (the CPU's: its buffers, solver.hpp; a GPU
   // backend's memory is its own: 0).
   virtual std::size_t solver_bytes() const { return 0; }
+  // The wall time a step's solves may take from the step's start (0: no limit): past it they stop
+  // and the step says so (StepOptions::deadline). The CPU's; a GPU step ignores it.
+  virtual void set_solve_budget(double seconds) { (void)seconds; }
 };
 
 // How the CPU step's thread count is chosen: `threads` for every step, or up to `threads` by a

@@ -45,6 +45,10 @@ std::string summary_json(const RunSummary& s) {
                         {"pressure_on_budget", {{"steps", st.on_budget_steps},
                                                 {"share", st.steps > 0 ? double(st.on_budget_steps) / double(st.steps) : 0.0},
                                                 {"residual_max", st.on_budget_residual_max}}},
+                        // Steps whose solves stopped at the step's deadline (realtime runs), and how far off.
+                        {"on_deadline", {{"steps", st.on_deadline_steps},
+                                         {"share", st.steps > 0 ? double(st.on_deadline_steps) / double(st.steps) : 0.0},
+                                         {"residual_max", st.on_deadline_residual_max}}},
                         {"viscosity", {{"iterations", st.viscosity_iterations_mean()},
                                        {"iterations_max", st.viscosity_iterations_max},
                                        {"residual_mean", st.viscosity_residual_mean()},

@@ -21,6 +21,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   acoustic_violated_ = model_.dt > limits_.acoustic;
   viscous_violated_ = model_.dt > limits_.viscous;
   stepper_ = make_stepper(options.backend, model_, state_, options.threads, options.thread_policy);
+  stepper_->set_solve_budget(options.solve_budget_s);
   lights_ = ActiveLights(scene.events);
   if (!lights_.empty()) start_curing();
 }
@@ -97,6 +98,7 @@ void Simulation::set_paste(const Model& model, const Material& paste) {
 void Simulation::rebuild_stepper() {
   stepper_->sync_to_host(state_);
   stepper_ = make_stepper(options_.backend, model_, state_, options_.threads, options_.thread_policy);
+  stepper_->set_solve_budget(options_.solve_budget_s);
   edited_ = false;
 }
 

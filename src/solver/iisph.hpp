@@ -18,6 +18,7 @@
 // in a fixed order, so every thread count gives the same result bit for bit.
 #pragma once
 
+#include <chrono>
 #include <memory>
 
 #include "dentsph/model.hpp"
@@ -59,17 +60,25 @@ void list_active_rows(State& state, IisphScratch& x);
 void advect(const Model& model, State& state, IisphScratch& x, int threads);
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
 // iterations, or fewer where iisph.viscosity_tolerance is reached.
-void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads);
+void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads,
+                        std::chrono::steady_clock::time_point deadline);
 // The pressure solve, by model.iisph.pressure_solve: relaxed Jacobi (pressure.cpp) or projected
 // conjugate gradients (pressure_cg.cpp). Each leaves every material particle's pressure acceleration
 // in x.accel, v* + dt a_p in x.v_star and x.v_a, and its iterations and errors in state.diagnostics.
-void solve_pressure_jacobi(const Model& model, State& state, IisphScratch& x, int threads);
-void solve_pressure_cg(const Model& model, State& state, IisphScratch& x, int threads);
-inline void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads) {
+// Past `deadline` (StepOptions::deadline) a solve stops after its least iterations and sets
+// state.diagnostics.on_deadline.
+using Deadline = std::chrono::steady_clock::time_point;
+void solve_pressure_jacobi(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline);
+void solve_pressure_cg(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline);
+inline void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline) {
   if (model.iisph.pressure_solve == PressureSolve::cg)
-    solve_pressure_cg(model, state, x, threads);
+    solve_pressure_cg(model, state, x, threads, deadline);
   else
-    solve_pressure_jacobi(model, state, x, threads);
+    solve_pressure_jacobi(model, state, x, threads, deadline);
+}
+// Whether `deadline` has passed (never reads the clock for the default, which never comes).
+inline bool past(Deadline deadline) {
+  return deadline != Deadline::max() && std::chrono::steady_clock::now() > deadline;
 }
 // finish.cpp: v = v** + dt a_p, r += dt v; the tool to its pose; outputs, diagnostics, wrench.
 void finish(const Model& model, State& state, const IisphScratch& x, int threads);

@@ -92,6 +92,10 @@ class IisphSolver final : public StepSolver {
       s.on_budget_residual_max = std::max<double>(s.on_budget_residual_max, d.pressure_residual);
     }
     s.pressure_max_error = std::max<double>(s.pressure_max_error, d.pressure_max_error);
+    if (d.on_deadline) {
+      ++s.on_deadline_steps;
+      s.on_deadline_residual_max = std::max<double>(s.on_deadline_residual_max, d.pressure_residual);
+    }
     s.viscosity_iterations_sum += d.viscosity_iterations;
     s.viscosity_iterations_max = std::max(s.viscosity_iterations_max, d.viscosity_iterations);
     s.viscosity_residual_sum += d.viscosity_residual;

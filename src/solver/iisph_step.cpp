@@ -33,9 +33,10 @@ void one_step(const Model& model, State& state, IisphScratch& x, const StepOptio
   clock.lap(&StageTimes::density_us);
   advect(model, state, x, t);                  // bonds broken past B, adhesion, gravity: v*
   clock.lap(&StageTimes::forces_us);
-  solve_pressure(model, state, x, t);          // the pressure; v* + dt a_p
+  state.diagnostics.on_deadline = false;
+  solve_pressure(model, state, x, t, opt.deadline);  // the pressure; v* + dt a_p
   clock.lap(&StageTimes::pressure_us);
-  implicit_viscosity(model, state, x, t);      // v**
+  implicit_viscosity(model, state, x, t, opt.deadline);  // v**
   clock.lap(&StageTimes::viscosity_us);
   finish(model, state, x, t);                  // velocity, position, tool, diagnostics, wrench
   clock.lap(&StageTimes::integrate_us);

@@ -41,7 +41,7 @@ void start_row(const Model& model, State& s, IisphScratch& x, std::uint32_t i) {
 
 }  // namespace
 
-void solve_pressure_jacobi(const Model& model, State& s, IisphScratch& x, int threads) {
+void solve_pressure_jacobi(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const std::int64_t rows = x.active_count, n_material = std::int64_t(x.material.size());
   const real dt2 = model.dt * model.dt;
   const IisphParams& ip = model.iisph;
@@ -78,6 +78,10 @@ void solve_pressure_jacobi(const Model& model, State& s, IisphScratch& x, int th
     mean_error = n_material > 0 ? sums.x / real(n_material) : 0;
     mean_compression = n_material > 0 ? sums.y / real(n_material) : 0;
     if (it >= ip.min_iterations && mean_error <= ip.density_error) break;
+    if (it >= ip.min_iterations && past(deadline)) {
+      s.diagnostics.on_deadline = true;
+      break;
+    }
     // Relaxed Jacobi converges for omega below 2 / (largest eigenvalue of diag^-1 A), which grows
     // with dt^2 / compliance: where the error grows, the relaxation halves (for the rest of the solve).
     if (last_error >= 0 && mean_error > 1.25 * last_error) omega *= 0.5;

@@ -48,8 +48,8 @@ enum Slot { kBetaBeta, kPhiTildePhi, kPhiHp, kError, kCompression, kPhiPhi };
 
 class PressureCg {
  public:
-  PressureCg(const Model& model, State& s, IisphScratch& x, int threads)
-      : model_(model), s_(s), x_(x), threads_(threads), rows_(x.active_count),
+  PressureCg(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline)
+      : model_(model), s_(s), x_(x), threads_(threads), deadline_(deadline), rows_(x.active_count),
         n_material_(std::int64_t(x.material.size())), dt2_(model.dt * model.dt) {}
 
   // Runs the solve; leaves the pressure in state.pressure and x.q, its diagnostics in state.
@@ -60,6 +60,10 @@ class PressureCg {
     int it = 0;
     while (it < ip.max_iterations) {
       if (it >= ip.min_iterations && converged(st)) break;
+      if (it >= ip.min_iterations && past(deadline_)) {
+        s_.diagnostics.on_deadline = true;
+        break;
+      }
       const real bb = st.sum[kBetaBeta], phi_phi = st.sum[kPhiPhi];
       if (bb == 0 && phi_phi == 0) break;  // the solution, exactly
       ++it;
@@ -248,14 +252,15 @@ class PressureCg {
   State& s_;
   IisphScratch& x_;
   int threads_;
+  Deadline deadline_;
   std::int64_t rows_, n_material_;
   real dt2_;
 };
 
 }  // namespace
 
-void solve_pressure_cg(const Model& model, State& s, IisphScratch& x, int threads) {
-  PressureCg(model, s, x, threads).run();
+void solve_pressure_cg(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
+  PressureCg(model, s, x, threads, deadline).run();
 }
 
 }  // namespace dentsph::iisph

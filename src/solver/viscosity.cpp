@@ -43,7 +43,7 @@ class ViscositySolve {
   // sqrt(r.D^-1 r / r0.D^-1 r0), for a fixed count (tolerance 0), and to the right-hand side's,
   // sqrt(r.D^-1 r / b.D^-1 b), for a tolerance (a warm start that is already close does not make it
   // harder to reach).
-  std::pair<real, int> run(int iterations, real tolerance, bool warm) {
+  std::pair<real, int> run(int iterations, real tolerance, bool warm, Deadline deadline) {
     Vec3* v = x_.v_a.data();
     Vec3* p = x_.cg_p.data();
     Vec3* r = x_.cg_r.data();
@@ -84,6 +84,10 @@ class ViscositySolve {
       ++it;
       rz_end = rz_next.x + rz_next.y + rz_next.z;
       if (it == iterations || (tolerance > 0 && relative(rz_end) <= tolerance)) break;  // the last direction would not be used
+      if (tolerance > 0 && past(deadline)) {  // a fixed count is its own budget
+        s_.diagnostics.on_deadline = true;
+        break;
+      }
       const Vec3 beta = quotient(rz_next, rz);
       rz = rz_next;
       each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
@@ -127,10 +131,11 @@ class ViscositySolve {
 
 }  // namespace
 
-void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads) {
+void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const IisphParams& ip = model.iisph;
   const auto [residual, iterations] = ViscositySolve(model, s, x, threads)
-                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, ip.viscosity_tolerance > 0);
+                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, ip.viscosity_tolerance > 0,
+                                               deadline);
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
 }

@@ -2,6 +2,7 @@
 // so that syncing is nothing; it sizes the solver's buffers for the State it starts from and after
 // every edit (sync_from_host), so that a step allocates nothing.
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
@@ -29,14 +30,15 @@ class CpuStepper final : public Stepper {
   }
   void step(State& host, const Pose& tool_pose) override {
     host.tool_pose = tool_pose;
-    if (!governor_) {
-      solver_->step(model_, host, StepOptions{threads_, nullptr});
-      return;
-    }
     using clock = std::chrono::steady_clock;
-    const auto t0 = clock::now();
-    solver_->step(model_, host, StepOptions{governor_->threads(), nullptr});
-    governor_->record(std::chrono::duration<double>(clock::now() - t0).count());
+    const auto t0 = budget_.count() > 0 || governor_ ? clock::now() : clock::time_point{};
+    StepOptions opt{governor_ ? governor_->threads() : threads_, nullptr};
+    if (budget_.count() > 0) opt.deadline = t0 + std::chrono::duration_cast<clock::duration>(budget_);
+    solver_->step(model_, host, opt);
+    if (governor_) governor_->record(std::chrono::duration<double>(clock::now() - t0).count());
+  }
+  void set_solve_budget(double seconds) override {
+    budget_ = std::chrono::duration<double>(seconds > 0 && std::isfinite(seconds) ? seconds : 0);
   }
   void step_timed(State& host, const Pose& tool_pose, StageTimes& times) override {
     host.tool_pose = tool_pose;
@@ -51,6 +53,7 @@ class CpuStepper final : public Stepper {
   std::unique_ptr<StepSolver> solver_;
   int threads_;
   std::optional<ThreadGovernor> governor_;
+  std::chrono::duration<double> budget_{0};
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <set>
 #include <string>
@@ -239,6 +240,42 @@ TEST(Solvers, TheViscositySolvesToItsTolerance) {
   EXPECT_LT(tight.viscosity_iterations_max, 500) << "reached without the cap";
   EXPECT_LE(tight.viscosity_residual_max, 1e-8);
   EXPECT_LT(loose.viscosity_iterations_mean(), tight.viscosity_iterations_mean());
+}
+
+// StepOptions::deadline: a step whose deadline has passed stops each solve at its least iterations
+// (2 for the pressure, 1 for a viscosity to a tolerance) and says so; the same step without one
+// takes the iterations its tolerance needs and does not. A run counts such steps.
+TEST(Solvers, ASolveStopsAtTheStepsDeadline) {
+  for (const PressureSolve solve : {PressureSolve::jacobi, PressureSolve::cg}) {
+    SCOPED_TRACE(pressure_solve_name(solve));
+    Box b = settling_box(Solver::iisph);
+    b.model.dt = 1e-3;
+    b.model.iisph.pressure_solve = solve;
+    b.model.iisph.max_iterations = 500;
+    b.model.iisph.density_error = 1e-8;
+    b.model.iisph.max_density_error = 1e-7;
+    b.model.iisph.viscosity_tolerance = 1e-12;
+    b.model.iisph.viscosity_iterations = 500;
+    const std::unique_ptr<StepSolver> warm = make_solver(Solver::iisph);
+    for (int k = 0; k < 20; ++k) warm->step(b.model, b.state, {});
+    Box late = b, free = b;
+    StepOptions passed;
+    passed.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    const std::unique_ptr<StepSolver> a = make_solver(Solver::iisph), c = make_solver(Solver::iisph);
+    a->step(late.model, late.state, passed);
+    c->step(free.model, free.state, {});
+    EXPECT_TRUE(late.state.diagnostics.on_deadline);
+    EXPECT_EQ(late.state.diagnostics.pressure_iterations, 2);
+    EXPECT_EQ(late.state.diagnostics.viscosity_iterations, 1);
+    EXPECT_FALSE(free.state.diagnostics.on_deadline);
+    EXPECT_GT(free.state.diagnostics.pressure_iterations, 2);
+    EXPECT_GT(free.state.diagnostics.viscosity_iterations, 1);
+    SolverStatistics stats;
+    a->record(stats, late.state.diagnostics);
+    c->record(stats, free.state.diagnostics);
+    EXPECT_EQ(stats.on_deadline_steps, 1u);
+    EXPECT_GT(stats.on_deadline_residual_max, 1e-8);
+  }
 }
 
 }  // namespace
