@@ -100,11 +100,16 @@ Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const 
   return sc;
 }
 
-int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver, RunOptions opt,
-            bool quiet, cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
+int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver,
+            const std::string& pressure_solve, RunOptions opt, bool quiet, cli::RealtimeCommand& rt,
+            const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
   Scene sc = scene_of(file, dental, solver, opt.backend);
+  if (const std::optional<PressureSolve> ps = pressure_solve_from_name(pressure_solve)) {
+    sc.params.iisph.pressure_solve = *ps;
+    sc.model.iisph.pressure_solve = *ps;
+  }
   session.apply(sc);
   // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
   if (rt.enabled())
@@ -195,6 +200,11 @@ int main(int argc, char** argv) {
       fmt::format("The step: {}; default: the scene's simulation.solver", fmt::join(described, " or "));
   std::string run_solver, replay_solver, bench_solver;
   run->add_option("--solver", run_solver, solver_help)->check(CLI::IsMember(solvers));
+  std::string run_pressure_solve;
+  run->add_option("--pressure-solve", run_pressure_solve,
+                  "The iisph solver's pressure solve: jacobi (relaxed Jacobi) or cg (projected conjugate gradients, "
+                  "docs/model.md); default: the scene's simulation.iisph.pressure_solve")
+      ->check(CLI::IsMember({"jacobi", "cg"}));
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -253,7 +263,7 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
       session.check(opt.out_dir);  // the store, before the session: never lost at its end
-      const int rc = cmd_run(run_scene, run_dental, run_solver, opt, quiet, realtime, session);
+      const int rc = cmd_run(run_scene, run_dental, run_solver, run_pressure_solve, opt, quiet, realtime, session);
       if (rc == 0) session.record(opt.out_dir);
       return rc;
     }

@@ -52,6 +52,11 @@ void RealtimeCommand::add_device_options(CLI::App& run, CLI::Option* rt) {
            ->check(finite_range(-10, 10)));
   need(run.add_option("--stiffness", coupling_.stiffness_N_per_m, "Virtual coupling stiffness (N/m)")->check(finite_range(1, 1e7))->capture_default_str());
   need(run.add_option("--damping", coupling_.damping_N_s_per_m, "Virtual coupling damping (N s/m)")->check(finite_range(0, 1e4))->capture_default_str());
+  need(run.add_option("--solve-deadline", solve_share_,
+                      "Stop a step's solves once this share of dt has passed since it began (0 to 1; 0: no deadline). "
+                      "Keeps a slow step from holding up the haptic loop, but a replay then differs where it cut a "
+                      "solve short (summary.json's solver.on_deadline counts those steps)")
+           ->check(finite_range(0, 1)));
   need(run.add_option("--sim-rate", sim_rate_, "Cap the simulation at this many steps per second (0: no cap)")->check(finite_range(0, 1e7)));
   need(run.add_flag("--free-run", free_run_, "Step as fast as possible (default: never ahead of the wall clock)"));
   need(run.add_option("--snapshot-rate", snapshot_rate_, "Consumer loop rate (Hz, 30 to 60)")->check(finite_range(30.0, 60.0))->capture_default_str());
@@ -68,6 +73,7 @@ RealtimeOptions RealtimeCommand::options(const Scene& scene, double duration_s, 
   o.coupling = coupling_;
   o.pace_realtime = !free_run_;
   o.sim_rate_limit_hz = sim_rate_;
+  o.solve_share = solve_share_;
   o.snapshot_rate_hz = snapshot_rate_;
   // Without --threads the simulation may use every core: its thread governor (ThreadGovernor, the
   // Simulation's default) times the steps and falls back to fewer threads when the haptic loop, the

@@ -36,7 +36,7 @@ class RealtimeCommand {
   bool realtime_ = false, free_run_ = false;
   std::string device_ = "scripted", mode_ = "coupling", profile_ = "falcon", replay_dir_;
   UdpDeviceOptions udp_;
-  double haptic_rate_ = 1000, snapshot_rate_ = 30, sim_rate_ = 0, workspace_scale_ = 1;
+  double haptic_rate_ = 1000, snapshot_rate_ = 30, sim_rate_ = 0, workspace_scale_ = 1, solve_share_ = 0;
   double force_scale_ = 0;  // 0: the scene's
   std::vector<double> origin_;
   CouplingParams coupling_;

@@ -103,8 +103,10 @@ struct RealtimeOptions {
   int threads = 1;                    // threads of the simulation step
   // A step's solves stop once this share of dt has passed since the step began (after their least
   // iterations; SimulationOptions::solve_budget_s), so that a slow step keeps the loop paced; the
-  // summary counts such steps (solver.on_deadline). In (0, 1]; only while pace_realtime.
-  double solve_share = 0.8;
+  // summary counts such steps (solver.on_deadline). In [0, 1], 0 for none (the default: a step cut
+  // short depends on the machine's load, so a replay of the session differs from there on); only
+  // while pace_realtime (`run --realtime --solve-deadline`).
+  double solve_share = 0;
   Backend backend = Backend::cpu;     // where the simulation steps (a GPU: the particles stay there,
                                       // downloaded at the snapshot rate)
   bool realtime_priority = true;      // ask for SCHED_FIFO for the haptic thread and nice -10 for the

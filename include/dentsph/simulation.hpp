@@ -82,6 +82,7 @@ struct RunSummary {
   std::string assessment_report;     // dental scenes: the same, for a person
   int threads = 1;
   Solver solver = Solver::paper;     // the step that ran
+  PressureSolve pressure_solve = PressureSolve::jacobi;  // its pressure solve (the iisph solver's)
   // Its figures over the run (solver.hpp; none recorded by the paper's step).
   SolverStatistics solver_statistics;
   // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it

@@ -59,8 +59,9 @@ void check_options(const RealtimeOptions& o, double force_scale) {
     bad(fmt::format("virtual coupling: stiffness {} N/m must be 1 to 1e7 (stable over that range, tested), damping {} "
                     "N s/m 0 to 1e4",
                     o.coupling.stiffness_N_per_m, o.coupling.damping_N_s_per_m));
-  if (!(o.solve_share > 0 && o.solve_share <= 1))
-    bad(fmt::format("solve share {}: the share of a step's dt its solves may take must be in (0, 1]", o.solve_share));
+  if (!(o.solve_share >= 0 && o.solve_share <= 1))
+    bad(fmt::format("solve share {}: the share of a step's dt its solves may take must be in [0, 1] (0: no deadline)",
+                    o.solve_share));
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
   if (o.duration_s > limits::max_realtime_s)
@@ -80,7 +81,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   check_options(opt, force_scale);
   // The simulation first: it checks dt and starts the backend before any thread starts.
   SimulationOptions sim_options{opt.backend, opt.threads, opt.allow_unstable};
-  if (opt.pace_realtime) sim_options.solve_budget_s = opt.solve_share * double(scene.model.dt);
+  if (opt.pace_realtime && opt.solve_share > 0) sim_options.solve_budget_s = opt.solve_share * double(scene.model.dt);
   Simulation core(scene, sim_options);
   RealtimeResult res;
   haptics::Snapshot empty;

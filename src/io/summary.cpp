@@ -36,7 +36,8 @@ std::string summary_json(const RunSummary& s) {
   j["solver"] = {{"name", solver_name(s.solver)}};
   // The figures its solver recorded over the run (none for the paper's step).
   if (const SolverStatistics& st = s.solver_statistics; st.recorded)
-    j["solver"].update({{"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
+    j["solver"].update({{"pressure_solve", pressure_solve_name(s.pressure_solve)},
+                        {"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
                         {"density_error", {{"mean", st.density_error_mean()}, {"max", st.density_error_max}}},
                         {"pressure_residual_max", st.pressure_residual_max},
                         // The largest density error a particle was left with (the cg solve; 0: not measured).

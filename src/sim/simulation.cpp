@@ -142,6 +142,7 @@ RunSummary Simulation::summary() {
   s.backend = stepper_->name();
   s.threads = options_.threads;
   s.solver = model_.solver;
+  s.pressure_solve = model_.iisph.pressure_solve;
   s.solver_statistics = solver_statistics_;
   if (diverged_) {
     s.status = "diverged";

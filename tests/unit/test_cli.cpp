@@ -124,7 +124,8 @@ TEST(Cli, NumericOptionsOutOfRangeAreRefused) {
                                                 {"--damping", "-inf", "0 to 10000"},
                                                 {"--workspace-scale", "1e308", "0.0001 to 10000"},
                                                 {"--haptic-rate", "nan", "500 to 4000"},
-                                                {"--sim-rate", "nan", "0 to 1e+07"}}) {
+                                                {"--sim-rate", "nan", "0 to 1e+07"},
+                                                {"--solve-deadline", "1.5", "0 to 1"}}) {
     const Result r = dentsph_cli(std::string(rt) + option + " " + value);
     EXPECT_EQ(r.code, 2) << option << " " << value << ": " << r.output;
     EXPECT_NE(r.output.find(option + ": Value " + value + " not in range " + range), std::string::npos)
@@ -267,6 +268,17 @@ TEST(Cli, RealtimeIisphPassesTheToolSwitch) {
 
 // --backend cuda where the CUDA backend cannot run (no GPU, or a build without it): every command
 // that takes it refuses with exit status 2 and the reason, before stepping.
+// --solve-deadline: a realtime session's steps whose solves passed their share of dt stop there and
+// are counted; a share of 1e-6 cuts every solve that needs more than its least iterations.
+TEST(Cli, ARealtimeSolveDeadlineIsCounted) {
+  const fs::path out = dir() / "rt_deadline";
+  const Result r = dentsph_cli("run --realtime --device scripted --duration 2 --solve-deadline 1e-6 -q --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json s = read_json(out / "summary.json");
+  EXPECT_GT(s.at("solver").at("on_deadline").at("steps").get<int>(), 0) << s.at("solver").dump();
+  EXPECT_GT(s.at("solver").at("on_deadline").at("share").get<double>(), 0);
+}
+
 TEST(Cli, TheCudaBackendWithoutAGpuIsRefusedWithTheReason) {
   const fs::path out = dir() / "rt_for_cuda";
   ASSERT_EQ(dentsph_cli("run scenes/tool_press.json --realtime --duration 0.2 --threads 1 -q --out " + out.string()).code, 0);
@@ -363,7 +375,19 @@ TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json sum = read_json(out / "summary.json");
   EXPECT_EQ(sum.at("solver").at("name"), "iisph");
+  EXPECT_EQ(sum.at("solver").at("pressure_solve"), "jacobi") << "the default";
   EXPECT_GE(sum.at("solver").at("pressure_iterations").at("max").get<int>(), 1);
+  // --pressure-solve over the scene's, written to the summary with the largest error it measured;
+  // an unknown one is refused naming the choices.
+  const fs::path cg = dir() / "press_cg";
+  const Result c = dentsph_cli("run scenes/tool_press.json --solver iisph --pressure-solve cg --steps 3 --threads 1 -q --out " +
+                               cg.string());
+  ASSERT_EQ(c.code, 0) << c.output;
+  const nlohmann::json cg_sum = read_json(cg / "summary.json");
+  EXPECT_EQ(cg_sum.at("solver").at("pressure_solve"), "cg");
+  EXPECT_GT(cg_sum.at("solver").at("pressure_max_error").get<double>(), 0);
+  EXPECT_EQ(cg_sum.at("solver").at("on_deadline").at("steps"), 0) << "an offline run has no deadline";
+  expect_refused("run scenes/tool_press.json --pressure-solve multigrid --steps 1 -q", {"--pressure-solve", "jacobi", "cg"});
   EXPECT_EQ(sum.at("stability").at("dt_s"), 5e-4) << "a scene file keeps its dt";
   // The built-in procedure takes the solver's dental time step with it.
   const fs::path dental = dir() / "dental_solver";
