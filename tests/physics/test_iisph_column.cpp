@@ -43,13 +43,8 @@ Column column(real dt, PressureSolve solve, int max_iterations) {
   p.iisph.pressure_solve = solve;
   p.iisph.max_iterations = max_iterations;
   Column c{make_model(p), {}};
-  const real m = lattice_particle_mass(rho0, s, c.model.kernel);
   const Material liquid{mu, Kp, rho0, 0}, wall{mu, 1.5 * Kp, rho0, 0};
-  std::vector<ParticleInit> ps;
-  for (Vec3 x : testing::lattice({0, 0, 0}, s, nx, nx, nz)) ps.push_back(testing::particle(Role::material, x, m, liquid));
-  for (Vec3 x : testing::open_container({0, 0, 0}, s, nx - 1, nx - 1, nz + 2, 2))
-    ps.push_back(testing::particle(Role::boundary, x, m, wall));
-  c.state.add_particles(c.model, ps);
+  c.state.add_particles(c.model, testing::column_in_container(c.model, s, nx, nz, liquid, wall));
   return c;
 }
 

@@ -32,13 +32,8 @@ Column column(real dt, Solver solver = Solver::iisph) {
   ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{nx + 5, nx + 5, nz + 8} * s, dt, {0, 0, -g});
   p.solver = solver;
   Column c{make_model(p), {}};
-  const real m = lattice_particle_mass(rho0, s, c.model.kernel);
   const Material paste{1.0, 10, rho0, 0}, wall{1.0, 15, rho0, 0};
-  std::vector<ParticleInit> ps;
-  for (Vec3 x : testing::lattice({0, 0, 0}, s, nx, nx, nz)) ps.push_back(testing::particle(Role::material, x, m, paste));
-  for (Vec3 x : testing::open_container({0, 0, 0}, s, nx - 1, nx - 1, nz + 2, 2))
-    ps.push_back(testing::particle(Role::boundary, x, m, wall));
-  c.state.add_particles(c.model, ps);
+  c.state.add_particles(c.model, testing::column_in_container(c.model, s, nx, nz, paste, wall));
   return c;
 }
 

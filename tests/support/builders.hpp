@@ -51,6 +51,18 @@ inline std::vector<Vec3> open_container(Vec3 lo, real s, int nx, int ny, int nz,
   return pts;
 }
 
+// A column of `liquid`, nx x nx x nz particles of spacing s from the origin, in an open container of
+// `wall` two layers deep and two spacings taller than it; every particle of the lattice mass of the
+// liquid's rest density (lattice_particle_mass).
+inline std::vector<ParticleInit> column_in_container(const Model& model, real s, int nx, int nz, const Material& liquid,
+                                                     const Material& wall) {
+  const real m = lattice_particle_mass(liquid.rho0, s, model.kernel);
+  std::vector<ParticleInit> ps;
+  for (Vec3 x : lattice({0, 0, 0}, s, nx, nx, nz)) ps.push_back(particle(Role::material, x, m, liquid));
+  for (Vec3 x : open_container({0, 0, 0}, s, nx - 1, nx - 1, nz + 2, 2)) ps.push_back(particle(Role::boundary, x, m, wall));
+  return ps;
+}
+
 inline Vec3 random_in_box(std::mt19937_64& rng, Vec3 lo, Vec3 hi) {
   std::uniform_real_distribution<real> u(0, 1);
   return {lo.x + (hi.x - lo.x) * u(rng), lo.y + (hi.y - lo.y) * u(rng), lo.z + (hi.z - lo.z) * u(rng)};
