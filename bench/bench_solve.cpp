@@ -31,6 +31,7 @@
 #include "dentsph/scene.hpp"
 #include "dentsph/state.hpp"
 #include "dentsph/step.hpp"
+#include "support/builders.hpp"
 
 namespace {
 
@@ -133,49 +134,20 @@ std::int64_t dental_window_steps() { return std::llround(0.4 / double(dental_tim
 // ---- the 100k-particle tank -----------------------------------------------------------------------
 
 constexpr real kSpacing = 1e-3, kRho0 = 1000, kG = 9.81, kKp = 100, kMu = 1.0, kDt = 1e-3;
-constexpr int kNx = 46, kNy = 46, kNz = 48;
+constexpr int kNx = 46, kNy = 46, kNz = 48;  // a square tank: kNy = kNx
 constexpr int kSettleSteps = 50, kTimedSteps = 30;
 constexpr int kTankThreads = 2;
-
-// Points lo + s (i, j, k), 0 <= i < nx etc. (tests/support/builders.hpp's lattice).
-std::vector<Vec3> lattice(Vec3 lo, real s, int nx, int ny, int nz) {
-  std::vector<Vec3> pts;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) pts.push_back(lo + Vec3{i * s, j * s, k * s});
-  return pts;
-}
-
-// A shell of `layers` lattice layers around the box [lo, lo + s n], open at the top (builders.hpp's
-// open_container).
-std::vector<Vec3> open_container(Vec3 lo, real s, int nx, int ny, int nz, int layers) {
-  std::vector<Vec3> pts;
-  for (int k = -layers; k <= nz; ++k)
-    for (int j = -layers; j <= ny + layers; ++j)
-      for (int i = -layers; i <= nx + layers; ++i) {
-        const bool inside = i >= 0 && i <= nx && j >= 0 && j <= ny && k >= 0;
-        if (!inside) pts.push_back(lo + Vec3{i * s, j * s, k * s});
-      }
-  return pts;
-}
 
 struct Tank {
   Model model;
   State state;
 };
 
-// The tank's model (h = 2 s, as builders.hpp's params_for_spacing) with the given solve and budget.
-// Its material table is filled by State::add_particles.
+// The tank's model (h = 2 s: the tests' params_for_spacing) with the given solve and budget. Its
+// material table is filled by State::add_particles.
 Model tank_model(PressureSolve solve, int max_iterations) {
   const real s = kSpacing;
-  ModelParams p;
-  p.dt = kDt;
-  p.h = 2 * s;
-  p.gravity = {0, 0, -kG};
-  p.adhesion.A = 1.2 * s;
-  p.adhesion.B = 3 * s;
-  p.domain_min = Vec3{-5, -5, -5} * s;
-  p.domain_max = Vec3{kNx + 5, kNy + 5, kNz + 8} * s;
+  ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{kNx + 5, kNy + 5, kNz + 8} * s, kDt, {0, 0, -kG});
   p.solver = Solver::iisph;
   p.iisph.pressure_solve = solve;
   p.iisph.max_iterations = max_iterations;
@@ -188,13 +160,8 @@ Model tank_model(PressureSolve solve, int max_iterations) {
 const Tank& settled_tank() {
   static const Tank tank = [] {
     Tank t{tank_model(PressureSolve::cg, 200), {}};
-    const real m = lattice_particle_mass(kRho0, kSpacing, t.model.kernel);
     const Material liquid{kMu, kKp, kRho0, 0}, wall{kMu, 1.5 * kKp, kRho0, 0};
-    std::vector<ParticleInit> ps;
-    for (Vec3 x : lattice({0, 0, 0}, kSpacing, kNx, kNy, kNz)) ps.push_back(make_particle(Role::material, x, m, liquid));
-    for (Vec3 x : open_container({0, 0, 0}, kSpacing, kNx - 1, kNy - 1, kNz + 2, 2))
-      ps.push_back(make_particle(Role::boundary, x, m, wall));
-    t.state.add_particles(t.model, ps);
+    t.state.add_particles(t.model, testing::column_in_container(t.model, kSpacing, kNx, kNz, liquid, wall));
     for (int k = 0; k < kSettleSteps; ++k) step(t.model, t.state, StepOptions{kTankThreads, nullptr});
     return t;
   }();
