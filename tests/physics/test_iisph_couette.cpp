@@ -93,7 +93,7 @@ Measured shear(real mu, real dt_factor) {
   int window = 0;
   while (r.state.time < t_end - 0.5 * dt) {
     r.state.tool_pose = Pose{{}, Quat::from_axis_angle({0, 0, 1}, omega * (r.state.time + dt))};
-    step(r.model, r.state, StepOptions{2, nullptr});
+    step(r.model, r.state, StepOptions{1, nullptr});
     const StepDiagnostics& d = r.state.diagnostics;
     EXPECT_EQ(d.non_finite, 0u);
     out.viscosity_iterations_max = std::max(out.viscosity_iterations_max, d.viscosity_iterations);
