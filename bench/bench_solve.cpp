@@ -110,6 +110,18 @@ void step_along(const Scene& sc, State& st, const StepOptions& opt = {}) {
   step(sc.model, st, opt);
 }
 
+// The benchmark's timed steps (`one` takes a step of `st`), their figures and its counters.
+template <class Step>
+void timed_steps(benchmark::State& bs, const State& st, StageTimes& times, Step one) {
+  times = {};
+  SolveFigures fig(st);
+  for (auto _ : bs) {
+    one();
+    fig.add(st, times);
+  }
+  fig.report(bs);
+}
+
 void dental_solve(benchmark::State& bs, PressureSolve solve) {
   DentalSceneParams dp;
   dp.solver = Solver::iisph;
@@ -119,13 +131,7 @@ void dental_solve(benchmark::State& bs, PressureSolve solve) {
   StageTimes times;
   const StepOptions opt{int(bs.range(0)), &times};
   for (int k = 0; k < 10; ++k) step_along(sc, st, opt);
-  times = {};
-  SolveFigures fig(st);
-  for (auto _ : bs) {
-    step_along(sc, st, opt);
-    fig.add(st, times);
-  }
-  fig.report(bs);
+  timed_steps(bs, st, times, [&] { step_along(sc, st, opt); });
 }
 
 // 0.4 s of the procedure at the iisph solver's dental step (267 steps of 1.5 ms), as BM_DentalIisph.
@@ -177,13 +183,7 @@ void tank_solve(benchmark::State& bs, PressureSolve solve, int max_iterations) {
   StageTimes times;
   const StepOptions opt{int(bs.range(0)), &times};
   step(model, st, opt);  // the solver's buffers sized for this copy; the solve's own warm start
-  times = {};
-  SolveFigures fig(st);
-  for (auto _ : bs) {
-    step(model, st, opt);
-    fig.add(st, times);
-  }
-  fig.report(bs);
+  timed_steps(bs, st, times, [&] { step(model, st, opt); });
   bs.counters["all_particles"] = st.size();
 }
 
