@@ -38,6 +38,15 @@ inline constexpr std::int64_t max_grid_cells = std::int64_t(1) << 22;
 // the particle mass sum and every step's neighbour search run for hours) and at most h.
 inline constexpr real min_spacing_per_h = 0.1;
 
+// ---- forces and masses -----------------------------------------------------------------------------
+
+// The largest gravity, m/s^2 (about 100 g: a centrifuge's, not a clinic's); beyond it the first step's
+// speeds overflow the limits' arithmetic (1e308 made every particle NaN).
+inline constexpr real max_gravity = 1e3;
+// A block's given particle mass: within this factor of the lattice mass either way (5e-324 kg, a
+// denormal, made 1 / m infinite).
+inline constexpr real max_mass_factor = 1e6;
+
 // ---- time ---------------------------------------------------------------------------------------
 
 // The smallest time step, s.

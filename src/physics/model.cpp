@@ -90,6 +90,10 @@ Model make_model(const ModelParams& p) {
                            p.dt, limits::min_dt));
   require_finite_positive(p.h, "h", "give the kernel support in metres, about twice the particle spacing");
   if (!is_finite(p.gravity)) fail("gravity", "must be three finite numbers in m/s^2");
+  if (!(norm(p.gravity) <= limits::max_gravity))
+    fail("gravity", fmt::format("|g| = {:.3g} m/s^2 is over the largest of {:.0f} m/s^2; give it in m/s^2, e.g. "
+                                "[0, 0, -9.81]",
+                                norm(p.gravity), limits::max_gravity));
   const AdhesionParams& a = p.adhesion;
   require_finite_positive(a.A, "adhesion.A", "give the bond-forming distance in metres, a little under h");
   require_finite_positive(a.B, "adhesion.B", "give the bond-breaking distance in metres, a little over h");

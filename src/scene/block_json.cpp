@@ -138,8 +138,14 @@ BlockPlan plan_block(const Reader& b, const BlockContext& ctx) {
   proto.role = ctx.role;
   proto.material = resolve_material(b, ctx.materials, ctx.fallback);
   // Default mass: the one that puts an interior particle of this lattice at rest density.
-  proto.mass = b.optional_number("mass", "the mass of each particle in kg", Range::positive)
-                   .value_or(lattice_particle_mass(proto.material.rho0, plan.spacing, ctx.kernel));
+  const real lattice_mass = lattice_particle_mass(proto.material.rho0, plan.spacing, ctx.kernel);
+  proto.mass = b.optional_number("mass", "the mass of each particle in kg", Range::positive).value_or(lattice_mass);
+  if (!(proto.mass >= lattice_mass / limits::max_mass_factor && proto.mass <= lattice_mass * limits::max_mass_factor))
+    b.fail("mass",
+           fmt::format("{:.3g} kg is more than {:.0e} times from the mass that puts this lattice at its rest density "
+                       "({:.3g} kg)",
+                       proto.mass, limits::max_mass_factor, lattice_mass),
+           "omit \"mass\" to take the lattice's, or give one near it");
   if (b.has("velocity") && ctx.role != Role::material)
     b.fail("velocity", "only material particles move (boundary particles are static)",
            "remove \"velocity\" from this block");
