@@ -69,9 +69,9 @@ enum class PressureGradient { spiky, cubic };
 const char* gradient_name(PressureGradient g);  // "spiky", "cubic"
 std::optional<PressureGradient> gradient_from_name(std::string_view name);
 // How the iisph solver solves its pressure (docs/model.md, "The pressure solve"): relaxed Jacobi
-// (solver/pressure.cpp; a correction travels about one particle layer an iteration) or projected
-// conjugate gradients (solver/pressure_cg.cpp, MPRGP: converges in iterations that grow with the
-// square root of the scene's depth in layers, not its square).
+// (solver/pressure.cpp; a correction travels about one particle layer an iteration, so its iterations
+// grow with the square of the scene's depth in layers) or projected conjugate gradients
+// (solver/pressure_cg.cpp, MPRGP: with the square root of the condition number, about the depth).
 enum class PressureSolve { jacobi, cg };
 const char* pressure_solve_name(PressureSolve s);  // "jacobi", "cg"
 std::optional<PressureSolve> pressure_solve_from_name(std::string_view name);

@@ -216,6 +216,8 @@ class Simulation {
 
  private:
   void rebuild_stepper();
+  // The stepper of the options' backend for model_ and state_, with the options' solve budget.
+  std::unique_ptr<Stepper> new_stepper() const;
   void start_curing();
   void cure_after_step(real t_before);
   // s: until when the tool stands still in the keyframes from `t` (t itself when it moves).

@@ -20,8 +20,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   limits_.force = std::numeric_limits<real>::infinity();
   acoustic_violated_ = model_.dt > limits_.acoustic;
   viscous_violated_ = model_.dt > limits_.viscous;
-  stepper_ = make_stepper(options.backend, model_, state_, options.threads, options.thread_policy);
-  stepper_->set_solve_budget(options.solve_budget_s);
+  stepper_ = new_stepper();
   lights_ = ActiveLights(scene.events);
   if (!lights_.empty()) start_curing();
 }
@@ -95,10 +94,15 @@ void Simulation::set_paste(const Model& model, const Material& paste) {
   rebuild_stepper();
 }
 
+std::unique_ptr<Stepper> Simulation::new_stepper() const {
+  std::unique_ptr<Stepper> s = make_stepper(options_.backend, model_, state_, options_.threads, options_.thread_policy);
+  s->set_solve_budget(options_.solve_budget_s);
+  return s;
+}
+
 void Simulation::rebuild_stepper() {
   stepper_->sync_to_host(state_);
-  stepper_ = make_stepper(options_.backend, model_, state_, options_.threads, options_.thread_policy);
-  stepper_->set_solve_budget(options_.solve_budget_s);
+  stepper_ = new_stepper();
   edited_ = false;
 }
 

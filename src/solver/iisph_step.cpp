@@ -72,17 +72,20 @@ void step(const Model& model, State& state, IisphScratch& x, const StepOptions& 
   const real time = state.time;
   ToolWrench mean;
   std::uint64_t projections = 0;
+  bool on_deadline = false;  // any part's solves cut short
   for (int k = 1; k <= n; ++k) {
     state.tool_pose = k == n ? to : interpolate(from, to, real(k) / real(n));
     one_step(sub, state, x, opt);
     mean.force += state.tool_wrench.force / real(n);
     mean.torque += state.tool_wrench.torque / real(n);
     projections += state.diagnostics.wall_projections;
+    on_deadline = on_deadline || state.diagnostics.on_deadline;
   }
   state.tool_wrench = mean;
   state.steps = steps + 1;
   state.time = time + model.dt;
   state.diagnostics.wall_projections = projections;
+  state.diagnostics.on_deadline = on_deadline;
   state.diagnostics.substeps = n;
 }
 

@@ -43,25 +43,33 @@ class ViscositySolve {
   // sqrt(r.D^-1 r / r0.D^-1 r0), for a fixed count (tolerance 0), and to the right-hand side's,
   // sqrt(r.D^-1 r / b.D^-1 b), for a tolerance (a warm start that is already close does not make it
   // harder to reach).
-  std::pair<real, int> run(int iterations, real tolerance, bool warm, Deadline deadline) {
+  std::pair<real, int> run(int iterations, real tolerance, Deadline deadline) {
     Vec3* v = x_.v_a.data();
     Vec3* p = x_.cg_p.data();
     Vec3* r = x_.cg_r.data();
     Vec3* ap = x_.cg_ap.data();
     real bb = 0;  // b.D^-1 b
-    if (warm) {
-      // The better start of v' and the last step's velocity (state.vel: a slow, stiff flow's velocity
-      // changes little from step to step, where v' has lost the viscous part of the last step).
+    if (tolerance > 0) {
+      // Warm: the better start of v' and the last step's velocity (state.vel: a slow, stiff flow's
+      // velocity changes little from step to step, where v' has lost the viscous part of the last
+      // step). Both residuals are kept (v''s in r, the last velocity's in ap, free until the
+      // iterations), so the start's residual is not computed again.
       const Vec3 e = summed([&](std::uint32_t i) {
-        const Vec3 b = rhs(i), rv = b - apply(v, i), rl = b - apply(s_.vel.data(), i);
+        const Vec3 b = rhs(i);
+        r[i] = b - apply(v, i);
+        ap[i] = b - apply(s_.vel.data(), i);
         const real d = diagonal(i);
-        return Vec3{dot(b, b) / d, dot(rv, rv) / d, dot(rl, rl) / d};
+        return Vec3{dot(b, b) / d, dot(r[i], r[i]) / d, dot(ap[i], ap[i]) / d};
       });
       bb = e.x;
-      if (e.z < e.y) each([&](std::uint32_t i) { v[i] = s_.vel[i]; });
+      if (e.z < e.y)
+        each([&](std::uint32_t i) {
+          v[i] = s_.vel[i];
+          r[i] = ap[i];
+        });
     }
     Vec3 rz = summed([&](std::uint32_t i) {
-      r[i] = rhs(i) - apply(v, i);
+      if (!(tolerance > 0)) r[i] = rhs(i) - apply(v, i);  // a warm start has it already
       p[i] = r[i] / diagonal(i);
       return mul(r[i], p[i]);
     });
@@ -134,8 +142,7 @@ class ViscositySolve {
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const IisphParams& ip = model.iisph;
   const auto [residual, iterations] = ViscositySolve(model, s, x, threads)
-                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, ip.viscosity_tolerance > 0,
-                                               deadline);
+                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
 }
