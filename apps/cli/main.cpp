@@ -140,6 +140,9 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
                100 * st.on_budget_residual_max, st.viscosity_iterations_mean(), st.viscosity_iterations_max,
                st.viscosity_residual_mean(),
                st.viscosity_residual_max);
+  if (const SolverStatistics& st = s.solver_statistics; st.recorded && st.rheology_iterations_max > 0)
+    fmt::print("rheology: {:.2f} Picard iterations a step (at most {}), effective viscosity {:.3g} to {:.3g} Pa s\n",
+               st.rheology_iterations_mean(), st.rheology_iterations_max, st.viscosity_min, st.viscosity_max);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
   if (s.curing)
     fmt::print("\nlight curing: {:.4g} s of light, {:.4g} s of it in {} updates at rest\n{}", s.light_on_s,

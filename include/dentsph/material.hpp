@@ -15,16 +15,27 @@
 
 namespace dentsph {
 
-// Per-particle material parameters.
+// Per-particle material parameters. The viscosity is generalised Newtonian (docs/model.md,
+// "Rheology"): a Herschel-Bulkley paste, tau = yield_stress + mu gammadot^flow_index once it flows,
+// whose effective viscosity tau / gammadot is capped at max_viscosity where it barely flows (the
+// regularisation of the unyielded paste); physics/rheology.hpp. flow_index 1 and yield_stress 0 (the
+// defaults) are the Newtonian liquid of viscosity mu, stepped as before. The iisph solver alone
+// steps a non-Newtonian material; the paper's step and the GPU take mu as a Newtonian viscosity.
 struct Material {
-  real mu = 0;    // viscosity, Pa s
+  real mu = 0;    // viscosity, Pa s (the consistency K, Pa s^n, of a non-Newtonian material)
   real Kp = 0;    // pressure stiffness, m^2/s^2 (P = Kp (rho - rho0))
   real rho0 = 0;  // rest density, kg/m^3
   real Ka = 0;    // adhesion strength, Pa
+  real flow_index = 1;     // n: below 1 shear-thinning, 1 Newtonian
+  real yield_stress = 0;   // Pa, the stress below which the paste holds its shape
+  real max_viscosity = 0;  // Pa s, the unyielded paste's viscosity (non-Newtonian only; 0: 1000 mu)
 };
 inline bool operator==(const Material& a, const Material& b) {
-  return a.mu == b.mu && a.Kp == b.Kp && a.rho0 == b.rho0 && a.Ka == b.Ka;
+  return a.mu == b.mu && a.Kp == b.Kp && a.rho0 == b.rho0 && a.Ka == b.Ka && a.flow_index == b.flow_index &&
+         a.yield_stress == b.yield_stress && a.max_viscosity == b.max_viscosity;
 }
+// Whether the viscosity is mu whatever the flow.
+inline bool newtonian(const Material& m) { return m.flow_index == 1 && m.yield_stress == 0; }
 
 // A particle's material: an index into Model::materials in the low seven bits; the high bit marks
 // paste whose parameters the cure has changed (its values are CureState::cured[id], not the table's).
@@ -74,6 +85,12 @@ class MaterialTable {
   const std::vector<NamedMaterial>& entries() const { return entries_; }
   // The known names, comma-separated (for messages).
   std::string names() const;
+  // The first non-Newtonian entry (docs/model.md, "Rheology"), if any.
+  std::optional<MaterialIndex> first_non_newtonian() const {
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+      if (!newtonian(entries_[i].material)) return MaterialIndex(i);
+    return std::nullopt;
+  }
 
   // The scene's paste (what increments dispense, what the viewer's paste editor changes) and the
   // instruments' material (what a switch of instrument gives the new tool), where the scene names

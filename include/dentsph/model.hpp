@@ -41,6 +41,14 @@ struct KernelCoeffs {
 // that its pressure is the mechanical one.
 inline constexpr real kSpikyLatticeGradient = 0.9470316764699314;
 
+// On the same lattice, the projected viscosity of a non-Newtonian material (solver/rheology.cpp),
+// 2 (d + 2) sum_j V_j ((v_i - v_j) . x_ij) / (r^2 + 0.01 h^2) gradW_ij, gives this share of the
+// Laplacian of a shear flow (v = (y^2, 0, 0)) with the iisph solver's spiky gradient (above) and
+// with the cubic spline's (tests/unit/test_kernels.cpp recomputes both); the solver divides by it so
+// that its viscosity is the paste's.
+inline constexpr real kProjectedShearSpiky = 0.6843967583601716;
+inline constexpr real kProjectedShearCubic = 0.6913551034031142;
+
 // The uniform grid of the broad phase. Cells are cubes of edge `cell_size` starting at `origin`;
 // a particle's neighbours within h lie in the (2 reach + 1)^3 cells around its own, with
 // reach * cell_size >= h. Half-h cells (reach 2, 125 cells) hold 15.6 h^3 of candidates where
@@ -96,6 +104,13 @@ struct IisphParams {
   // was). Above 0: from the last step's velocity, until the relative residual is below this.
   real viscosity_tolerance = 0;
   real cfl = 0.4;                 // velocity Courant number: dt <= cfl h / max|v|
+  // A non-Newtonian material's viscosity (docs/model.md, "Rheology") by Picard iterations: each
+  // takes the shear rates of the latest velocities (the last step's, then each solve's), their
+  // effective viscosities, and solves the viscosity again from the last solution; at most this many
+  // a step, fewer once no material particle's viscosity changed by more than rheology_tolerance
+  // (relative) in the last one.
+  int rheology_iterations = 3;
+  real rheology_tolerance = 0.02;
   // The solve's equation of state is p = stiffness Kp (rho - rho0). The paper's eq. 5 turns half of
   // a pressure field's gradient into force (its (P_i + P_j) / 2 average), so under a load the paper's
   // paste compresses twice what Kp (rho - rho0) with a consistent force gives: 0.5 makes the same Kp

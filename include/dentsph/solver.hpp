@@ -48,6 +48,11 @@ struct SolverStatistics {
   double viscosity_iterations_sum = 0;
   int viscosity_iterations_max = 0;
   double viscosity_residual_sum = 0, viscosity_residual_max = 0;
+  // A non-Newtonian material's Picard iterations a step (sum, largest) and the range of its
+  // effective viscosities over the run, Pa s (StepDiagnostics; all 0 without one).
+  double rheology_iterations_sum = 0;
+  int rheology_iterations_max = 0;
+  double viscosity_min = 0, viscosity_max = 0;
   // Times the wall field moved a paste particle out of the walls (StepDiagnostics::wall_projections),
   // summed over the run, and in how many steps.
   std::uint64_t wall_projections = 0, wall_projection_steps = 0;
@@ -61,6 +66,7 @@ struct SolverStatistics {
   double iterations_mean() const { return steps > 0 ? iterations_sum / double(steps) : 0; }
   double density_error_mean() const { return steps > 0 ? density_error_sum / double(steps) : 0; }
   double viscosity_iterations_mean() const { return steps > 0 ? viscosity_iterations_sum / double(steps) : 0; }
+  double rheology_iterations_mean() const { return steps > 0 ? rheology_iterations_sum / double(steps) : 0; }
   double viscosity_residual_mean() const { return steps > 0 ? viscosity_residual_sum / double(steps) : 0; }
 };
 

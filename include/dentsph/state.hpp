@@ -67,6 +67,13 @@ struct StepDiagnostics {
   int viscosity_iterations = 0;     // conjugate-gradient iterations of the implicit viscosity
   real viscosity_residual = 0;      // its relative residual at the end: sqrt(r.D^-1 r / r0.D^-1 r0) (a fixed
                                     // count), sqrt(r.D^-1 r / b.D^-1 b) (iisph.viscosity_tolerance)
+  // A non-Newtonian material's (docs/model.md, "Rheology"; 0 without one): the viscosity solves
+  // this step took with updated effective viscosities (Picard iterations; viscosity_iterations
+  // counts all their iterations), the largest relative change of a particle's viscosity at the last
+  // update, and the range of the material's effective viscosities, Pa s.
+  int rheology_iterations = 0;
+  real rheology_change = 0;
+  real viscosity_min = 0, viscosity_max = 0;
   std::uint64_t pair_overflow = 0;  // neighbours within h left out of a full pair row (never expected)
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)

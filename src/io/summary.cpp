@@ -53,7 +53,12 @@ std::string summary_json(const RunSummary& s) {
                         {"viscosity", {{"iterations", st.viscosity_iterations_mean()},
                                        {"iterations_max", st.viscosity_iterations_max},
                                        {"residual_mean", st.viscosity_residual_mean()},
-                                       {"residual_max", st.viscosity_residual_max}}},
+                                       {"residual_max", st.viscosity_residual_max},
+                                       // A non-Newtonian material's Picard iterations and viscosities (0 without one).
+                                       {"rheology", {{"iterations", st.rheology_iterations_mean()},
+                                                     {"iterations_max", st.rheology_iterations_max},
+                                                     {"viscosity_min_Pa_s", st.viscosity_min},
+                                                     {"viscosity_max_Pa_s", st.viscosity_max}}}}},
                         {"wall_projections", {{"particles", st.wall_projections}, {"steps", st.wall_projection_steps}}},
                         {"substepped", {{"steps", st.substepped_steps}, {"most", st.substeps_max}}},
                         {"held_outside_domain", st.held_outside_domain}});

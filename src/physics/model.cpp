@@ -78,6 +78,10 @@ void check_iisph_params(const IisphParams& ip) {
   if (ip.viscosity_iterations < 1 || ip.viscosity_iterations > 1000)
     fail("iisph.viscosity_iterations", fmt::format("must be in [1, 1000], got {}", ip.viscosity_iterations));
   require_finite_positive(ip.cfl, "iisph.cfl", "about 0.4 is usual");
+  if (ip.rheology_iterations < 1 || ip.rheology_iterations > 100)
+    fail("iisph.rheology_iterations", fmt::format("must be in [1, 100], got {}; 3 is usual", ip.rheology_iterations));
+  if (!(ip.rheology_tolerance >= 0 && ip.rheology_tolerance < 1))
+    fail("iisph.rheology_tolerance", fmt::format("must be in [0, 1), got {}; 0.02 is usual", ip.rheology_tolerance));
   if (!(ip.stiffness > 0 && ip.stiffness <= 1))
     fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
 }

@@ -27,13 +27,44 @@ constexpr MaterialField material_fields[] = {
      "the adhesion strength Ka in Pa (>= 0; 0 for walls and tools), e.g. 200"},
 };
 
+// The optional fields of a non-Newtonian material (docs/model.md, "Rheology"): Newtonian without them.
+constexpr MaterialField rheology_fields[] = {
+    {"flow_index", &Material::flow_index, Range::positive,
+     "the Herschel-Bulkley flow index n (0.1 to 2; 1 Newtonian, under 1 shear-thinning), e.g. 0.5"},
+    {"yield_stress", &Material::yield_stress, Range::non_negative,
+     "the yield stress in Pa (>= 0; 0: none), e.g. 100"},
+    {"max_viscosity", &Material::max_viscosity, Range::non_negative,
+     "the unyielded paste's viscosity in Pa s (>= viscosity; 0: 1000 times it), e.g. 1e6"},
+};
+
+// Reads the rheology fields `m` has into `mat`, then checks the whole law.
+void read_rheology(const Reader& m, Material& mat) {
+  for (const MaterialField& f : rheology_fields)
+    if (m.has(f.key)) mat.*f.member = m.number(f.key, f.hint, f.range);
+  if (mat.flow_index < 0.1 || mat.flow_index > 2)
+    m.fail("flow_index", fmt::format("{} is outside 0.1 to 2", mat.flow_index), rheology_fields[0].hint);
+  if (mat.yield_stress > 0 && !(mat.mu > 0))
+    m.fail("yield_stress", "a yield stress with no viscosity (the paste would have no law once it flows)",
+           "give \"viscosity\" > 0, the plastic viscosity (Pa s) or consistency (Pa s^n) of the flowing paste");
+  if (mat.yield_stress > 1e7)
+    m.fail("yield_stress", fmt::format("{} Pa is over 1e7 Pa (a solid, not a paste)", mat.yield_stress),
+           "give a yield stress in Pa of at most 1e7, e.g. 100");
+  if (mat.max_viscosity > 0 && mat.max_viscosity < mat.mu)
+    m.fail("max_viscosity", fmt::format("{} Pa s is under the viscosity {} Pa s", mat.max_viscosity, mat.mu),
+           "give the unyielded viscosity at least the flowing one, or 0 for 1000 times it");
+  if (mat.max_viscosity > 1e9 || (mat.max_viscosity == 0 && !newtonian(mat) && mat.mu > 1e6))
+    m.fail("max_viscosity", "the unyielded viscosity is over 1e9 Pa s (the viscosity solve would not converge)",
+           "give max_viscosity at most 1e9 Pa s");
+}
+
 constexpr std::string_view role_keys[] = {"material", "boundary", "tool"};  // indexed by Role
 
-// A complete material: all four fields required.
+// A complete material: all four fields required, the rheology's optional.
 Material read_material(const Reader& m) {
-  m.only({"viscosity", "stiffness", "rest_density", "adhesion"});
+  m.only({"viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress", "max_viscosity"});
   Material mat;
   for (const MaterialField& f : material_fields) mat.*f.member = m.number(f.key, f.hint, f.range);
+  read_rheology(m, mat);
   return mat;
 }
 
@@ -41,7 +72,8 @@ Material read_material(const Reader& m) {
 // Without a base, every field is required.
 Material read_override(const Reader& m, const SceneMaterials& table,
                        const MaterialDefault& fallback) {
-  m.only({"base", "viscosity", "stiffness", "rest_density", "adhesion"});
+  m.only({"base", "viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress",
+          "max_viscosity"});
   std::optional<Material> base = fallback.material;
   if (m.has("base"))
     base = table.lookup(m, "base", m.string("base", "the name of the material to start from"));
@@ -56,6 +88,7 @@ Material read_override(const Reader& m, const SceneMaterials& table,
       mat.*f.member = m.number(f.key, hint, f.range);
     }
   }
+  read_rheology(m, mat);
   return mat;
 }
 

@@ -46,7 +46,8 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
-           "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient"});
+           "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "rheology_iterations",
+           "rheology_tolerance"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
     const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
@@ -82,6 +83,11 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
                                        "the viscosity solve's relative residual, e.g. 1e-3 (0: a fixed count)",
                                        Range::non_negative);
   p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
+  p.rheology_iterations = int(i->integer_or("rheology_iterations", p.rheology_iterations,
+                                            "a non-Newtonian material's viscosity solves a step at most, e.g. 3", 1, 100));
+  p.rheology_tolerance = i->number_or("rheology_tolerance", p.rheology_tolerance,
+                                      "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
+                                      Range::non_negative);
   try {
     check_iisph_params(p);  // make_model does too, but a dental scene's Model is made later
   } catch (const std::invalid_argument& e) {
@@ -299,6 +305,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   const KernelCoeffs kernel = build_model(sc.params, source).kernel;
 
   const SceneMaterials materials = parse_materials(root);
+  if (sc.params.solver != Solver::iisph)
+    for (const auto& [name, material] : materials.by_name)
+      if (!newtonian(material))
+        root.fail(fmt::format("materials.{}", name), "a non-Newtonian material (flow_index or yield_stress) on the paper's step",
+                  "set simulation.solver to \"iisph\" (the solver that steps a rheology; docs/model.md), or drop "
+                  "flow_index and yield_stress");
   // Every block, the tool and every event counted before their particles are made: the blocks'
   // (the most) once every count is in.
   ParticleBudget budget(sc.params.max_bonds_per_particle, sc.params.neighbour_skin > 0);

@@ -25,6 +25,12 @@ constexpr real kMaxWallNodes = 2e6;
 }  // namespace
 
 void select_solver(Scene& scene, Solver solver) {
+  if (solver != Solver::iisph)
+    if (const std::optional<MaterialIndex> m = scene.model.materials.first_non_newtonian())
+      throw std::invalid_argument(fmt::format(
+          "the material \"{}\" is non-Newtonian (flow_index {}, yield_stress {} Pa) and only the iisph solver steps a "
+          "rheology: run it with --solver iisph on the CPU backend (the GPU backends have the paper's step alone)",
+          scene.model.materials.name(*m), scene.model.materials[*m].flow_index, scene.model.materials[*m].yield_stress));
   scene.params.solver = solver;
   MaterialTable materials = std::move(scene.model.materials);  // the scene's, not the parameters'
   scene.model = make_model(scene.params);

@@ -24,7 +24,12 @@ Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i)
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
     const std::uint32_t j = row[e].j;
     pressure += row[e].grad() * (x.q[i] + x.q[j]);
-    viscous += (x.v_a[j] - s.vel[i]) * row[e].visc;  // v** of material, the tool's own velocity
+    if (x.rheology) {  // the projected form (rheology.cpp)
+      const Vec3 g = row[e].grad();
+      viscous += g * (row[e].visc * dot(x.v_a[j] - s.vel[i], g));
+    } else {
+      viscous += (x.v_a[j] - s.vel[i]) * row[e].visc;  // v** of material, the tool's own velocity
+    }
   }
   return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];
 }

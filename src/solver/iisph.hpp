@@ -12,6 +12,7 @@
 //                   step where its equation of state puts it; v* + dt a_p
 //   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
 //   viscosity.cpp   backward-Euler viscosity by conjugate gradients: v**
+//   rheology.cpp    a non-Newtonian material's effective viscosity from its shear rate (Picard)
 //   finish.cpp      velocity and position, the tool's move, diagnostics, the tool wrench
 //
 // Every stage is a loop over rows (or particles) in which each writes only its own entries and sums
@@ -58,6 +59,13 @@ void list_active_rows(State& state, IisphScratch& x);
 // advection.cpp: breaks bonds past B, adhesion, gravity: v* of material rows; the viscosity and
 // divergence terms of the boundary and tool neighbours, fixed for the step.
 void advect(const Model& model, State& state, IisphScratch& x, int threads);
+// Whether a material of the model is non-Newtonian (its viscosity depends on the flow: rheology.cpp).
+inline bool has_rheology(const Model& model) { return model.materials.first_non_newtonian().has_value(); }
+// rheology.cpp: each material particle's effective viscosity at the shear rate of the velocities
+// `v` (material; the boundary and the tool: state.vel), and every row's viscosity weights, their sum
+// and the boundary's and tool's terms weighed with it. Returns the largest relative change of a
+// particle's viscosity (infinity the first time in a step: `first`, which also keeps the unit weights).
+real update_viscosity(const Model& model, State& state, IisphScratch& x, int threads, const Vec3* v, bool first);
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
 // iterations, or fewer where iisph.viscosity_tolerance is reached.
 void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads,

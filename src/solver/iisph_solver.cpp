@@ -21,8 +21,8 @@ class IisphSolver final : public StepSolver {
   const char* name() const override { return "iisph"; }
   const char* description() const override { return "implicit pressure and viscosity; docs/model.md"; }
 
-  void resize(const Model&, const State& state) override {
-    x_.resize(state);
+  void resize(const Model& model, const State& state) override {
+    x_.resize(state, has_rheology(model));
     list_material(state, x_);
     layout_ = state.layout_stamp;
     listed_ = state.order_stamp;
@@ -32,7 +32,7 @@ class IisphSolver final : public StepSolver {
     // Particles were added or removed since the scratch was sized (or this is another State): sized
     // again. The lists of material and tool particles follow the State's order: a State reordered
     // since they were made (another one, or a copy stepped meanwhile) is listed again.
-    if (state.layout_stamp != layout_) {
+    if (state.layout_stamp != layout_ || has_rheology(model) != x_.rheology) {
       resize(model, state);
     } else if (state.order_stamp != listed_) {
       list_material(state, x_);
@@ -100,6 +100,12 @@ class IisphSolver final : public StepSolver {
     s.viscosity_iterations_max = std::max(s.viscosity_iterations_max, d.viscosity_iterations);
     s.viscosity_residual_sum += d.viscosity_residual;
     s.viscosity_residual_max = std::max<double>(s.viscosity_residual_max, d.viscosity_residual);
+    if (d.rheology_iterations > 0) {
+      s.viscosity_min = s.rheology_iterations_sum > 0 ? std::min<double>(s.viscosity_min, d.viscosity_min) : d.viscosity_min;
+      s.viscosity_max = std::max<double>(s.viscosity_max, d.viscosity_max);
+      s.rheology_iterations_sum += d.rheology_iterations;
+      s.rheology_iterations_max = std::max(s.rheology_iterations_max, d.rheology_iterations);
+    }
     s.wall_projections += d.wall_projections;
     s.wall_projection_steps += d.wall_projections > 0;
     s.substepped_steps += d.substeps > 1;

@@ -48,7 +48,8 @@ class RowBuilder {
       : k_(model.kernel), s_(s), x_(x), i_(i), role_(s.role[i]), mi_(s.mass[i]), mu_i_(s.mu[i]),
         A2_(role_ == Role::boundary ? 0 : model.adhesion.A * model.adhesion.A), inv_h_(1 / k_.h),
         grad6_(6 * k_.cubic / k_.h), grad6_over_h_(grad6_ * inv_h_),
-        spiky_(model.iisph.gradient == PressureGradient::spiky), pairs_(x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
+        spiky_(model.iisph.gradient == PressureGradient::spiky), unit_(x.rheology),
+        projected_(10 / (spiky_ ? kProjectedShearSpiky : kProjectedShearCubic)), pairs_(x.pairs.data() + std::size_t(i) * IisphScratch::kPairStride) {}
 
   // Candidate j at d = r_i - r_j, r2 = |d|^2: kept when within h and not i itself.
   void offer(std::uint32_t j, const Vec3& d, real r2) {
@@ -97,7 +98,11 @@ class RowBuilder {
       const auto [g, g_over_r] = radial(r);
       w.f[e] = mj * g_over_r;
       w.g2[e] = mj * g * g;  // |m_j gradW|^2 / m_j
-      w.visc[e] = 0.5 * (mu_i_ + mu[w.j[e]]) * mj * k_.visc_lap * (k_.h - r);
+      // With a non-Newtonian material, the projected form's weight without the viscosity, 2 (d + 2) r /
+      // ((r^2 + 0.01 h^2) m_j |g|) over its lattice share (model.hpp; rheology.cpp weighs it; 0 for
+      // coincident particles, which have no direction).
+      w.visc[e] = unit_ ? (g != 0 ? projected_ * r / ((r2 + 0.01 * k_.h2) * mj * std::abs(g)) : 0)
+                        : 0.5 * (mu_i_ + mu[w.j[e]]) * mj * k_.visc_lap * (k_.h - r);
     }
   }
 
@@ -169,7 +174,8 @@ class RowBuilder {
   std::uint32_t i_;
   Role role_;
   real mi_, mu_i_, A2_, inv_h_, grad6_, grad6_over_h_;
-  bool spiky_;
+  bool spiky_, unit_;
+  real projected_;
   SolverPair* pairs_;
   std::uint32_t front_ = 0, back_ = IisphScratch::kPairStride;
   real rho_sum_ = 0, g2_ = 0;

@@ -4,7 +4,7 @@
 
 namespace dentsph {
 
-void IisphScratch::resize(const State& state) {
+void IisphScratch::resize(const State& state, bool with_rheology) {
   const std::size_t n = state.size();
   auto size = [](auto& v, std::size_t k) {
     v.resize(k);
@@ -31,6 +31,10 @@ void IisphScratch::resize(const State& state) {
   size(cg_p, n);
   size(cg_r, n);
   size(cg_ap, n);
+  rheology = with_rheology;
+  size(visc_unit, with_rheology ? n * kPairStride : 0);
+  size(mu_eff, with_rheology ? n : 0);
+  size(visc_block, with_rheology ? n : 0);
   size(partial, n / kSumBlock + 1);
   size(pc_scale, n);
   size(pc_y, n);
@@ -51,7 +55,7 @@ std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
          b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
+         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(visc_unit) + b(mu_eff) + b(visc_block) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
          b(pc_dir) + b(pc_hp) + b(pc_partial) + b(tools) + b(tool_list) + b(tool_count) +
          b(link_start) + b(link_fill) + b(link_tool);
 }

@@ -19,7 +19,8 @@ namespace dentsph {
 struct SolverPair {
   float gx = 0, gy = 0, gz = 0;  // m_j gradW_cubic(r_i - r_j), kg/m^4
   float visc = 0;      // (mu_i + mu_j)/2 m_j lapW_visc(r) / rho_j, Pa s / m^5 (rho_j: the pair pass's density,
-                       // rest density for boundary and tool; material rows only)
+                       // rest density for boundary and tool; material rows only); with a non-Newtonian
+                       // material, c_ij of the projected form (rheology.cpp)
   std::uint32_t j = 0; // the neighbour's index
   Vec3 grad() const { return {real(gx), real(gy), real(gz)}; }
 };
@@ -64,6 +65,12 @@ struct IisphScratch {
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
+  // A non-Newtonian material's (rheology.cpp), sized only where the model has one (`rheology`):
+  bool rheology = false;
+  std::vector<float> visc_unit;      // [n * kPairStride] each row entry's weight without the viscosity:
+                                     // 2 (d + 2) r / ((r^2 + 0.01 h^2) m_j |W'(r)| rho_j), d = 3
+  std::vector<real> mu_eff;          // [n] Pa s, each material particle's effective viscosity
+  std::vector<Vec3> visc_block;      // [n] material rows: sum_j c_ij g_ij,k^2 per component k
   std::vector<Vec3> partial;         // [n / kSumBlock + 1] sums of fixed blocks of rows (solver/block_sum.hpp)
   // The cg pressure solve's (pressure_cg.cpp), in its scaled unknowns y = sqrt(H_ii) q:
   std::vector<real> pc_scale;        // sqrt(H_ii) of each active row
@@ -83,8 +90,9 @@ struct IisphScratch {
   std::vector<std::uint32_t> link_fill;      // [n]     are link_tool[link_start[i], link_start[i + 1])
   std::vector<std::uint32_t> link_tool;      // [tool * kToolStride]
 
-  // Sizes every array for the particles of `state` (scratch.cpp).
-  void resize(const State& state);
+  // Sizes every array for the particles of `state` (scratch.cpp), those of a non-Newtonian material
+  // where `with_rheology`.
+  void resize(const State& state, bool with_rheology);
   std::size_t bytes() const;
 };
 

@@ -30,6 +30,10 @@ inline Vec3 quotient(const Vec3& a, const Vec3& b) {
   return {b.x != 0 ? a.x / b.x : 0, b.y != 0 ? a.y / b.y : 0, b.z != 0 ? a.z / b.z : 0};
 }
 
+// Projected: the rotation-invariant form of a non-Newtonian material (rheology.cpp), one system
+// coupling the three components (one step length a direction); otherwise the paper's Laplacian,
+// three independent systems.
+template <bool Projected>
 class ViscositySolve {
  public:
   ViscositySolve(const Model& model, State& s, IisphScratch& x, int threads)
@@ -58,8 +62,13 @@ class ViscositySolve {
         const Vec3 b = rhs(i);
         r[i] = b - apply(v, i);
         ap[i] = b - apply(s_.vel.data(), i);
-        const real d = diagonal(i);
-        return Vec3{dot(b, b) / d, dot(r[i], r[i]) / d, dot(ap[i], ap[i]) / d};
+        if constexpr (Projected) {
+          const Vec3 d = diagonal3(i);
+          return Vec3{dot(b, quotient(b, d)), dot(r[i], quotient(r[i], d)), dot(ap[i], quotient(ap[i], d))};
+        } else {
+          const real d = diagonal(i);
+          return Vec3{dot(b, b) / d, dot(r[i], r[i]) / d, dot(ap[i], ap[i]) / d};
+        }
       });
       bb = e.x;
       if (e.z < e.y)
@@ -70,7 +79,7 @@ class ViscositySolve {
     }
     Vec3 rz = summed([&](std::uint32_t i) {
       if (!(tolerance > 0)) r[i] = rhs(i) - apply(v, i);  // a warm start has it already
-      p[i] = r[i] / diagonal(i);
+      p[i] = precondition(r[i], i);
       return mul(r[i], p[i]);
     });
     const real rz0 = rz.x + rz.y + rz.z;
@@ -83,11 +92,11 @@ class ViscositySolve {
         ap[i] = apply(p, i);
         return mul(p[i], ap[i]);
       });
-      const Vec3 alpha = quotient(rz, pap);
+      const Vec3 alpha = step_length(rz, pap);
       const Vec3 rz_next = summed([&](std::uint32_t i) {
         v[i] += mul(alpha, p[i]);
         r[i] -= mul(alpha, ap[i]);
-        return mul(r[i], r[i] / diagonal(i));
+        return mul(r[i], precondition(r[i], i));
       });
       ++it;
       rz_end = rz_next.x + rz_next.y + rz_next.z;
@@ -96,9 +105,9 @@ class ViscositySolve {
         s_.diagnostics.on_deadline = true;
         break;
       }
-      const Vec3 beta = quotient(rz_next, rz);
+      const Vec3 beta = step_length(rz_next, rz);
       rz = rz_next;
-      each([&](std::uint32_t i) { p[i] = r[i] / diagonal(i) + mul(beta, p[i]); });
+      each([&](std::uint32_t i) { p[i] = precondition(r[i], i) + mul(beta, p[i]); });
     }
     return {relative(rz_end), it};
   }
@@ -108,16 +117,54 @@ class ViscositySolve {
   Vec3 rhs(std::uint32_t i) const {
     return x_.v_star[i] * s_.mass[i] + x_.visc_fixed[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]);
   }
-  // Row i (material) of the system times v: m_i v_i (1 + dt/rho_i sum_j visc_ij) - dt m_i/rho_i
-  // sum_{j material} visc_ij v_j, visc_ij = (mu_i + mu_j)/2 m_j lapW / rho_j (advection.cpp).
+  // Row i (material) of the system times v.
   Vec3 apply(const Vec3* v, std::uint32_t i) const {
     const SolverPair* row = x_.pairs.data() + std::size_t(i) * IisphScratch::kPairStride;
-    Vec3 neighbours;
-    for (std::uint32_t q = 0; q < x_.n_material[i]; ++q) neighbours += v[row[q].j] * row[q].visc;
     const real a = dt_ * s_.mass[i] * x_.inv_rho[i];
-    return v[i] * (s_.mass[i] + a * x_.visc_diag[i]) - neighbours * a;
+    if constexpr (Projected) {
+      // m_i v_i + dt m_i / rho_i sum_j c_ij ((v_i - v_j) . g_ij) g_ij, v_j of the boundary and the tool
+      // on the right-hand side (rheology.cpp).
+      Vec3 sum;
+      const Vec3 vi = v[i];
+      for (std::uint32_t q = 0; q < x_.n_material[i]; ++q) {
+        const Vec3 g = row[q].grad();
+        sum += g * (row[q].visc * dot(vi - v[row[q].j], g));
+      }
+      for (std::uint32_t q = IisphScratch::kPairStride - x_.n_other[i]; q < IisphScratch::kPairStride; ++q) {
+        const Vec3 g = row[q].grad();
+        sum += g * (row[q].visc * dot(vi, g));
+      }
+      return vi * s_.mass[i] + sum * a;
+    } else {
+      // m_i v_i (1 + dt/rho_i sum_j visc_ij) - dt m_i/rho_i sum_{j material} visc_ij v_j,
+      // visc_ij = (mu_i + mu_j)/2 m_j lapW / rho_j (advection.cpp).
+      Vec3 neighbours;
+      for (std::uint32_t q = 0; q < x_.n_material[i]; ++q) neighbours += v[row[q].j] * row[q].visc;
+      return v[i] * (s_.mass[i] + a * x_.visc_diag[i]) - neighbours * a;
+    }
   }
   real diagonal(std::uint32_t i) const { return s_.mass[i] * (1 + dt_ * x_.inv_rho[i] * x_.visc_diag[i]); }
+  // The projected system's diagonal: m_i + dt m_i / rho_i sum_j c_ij g_ij,k^2 per component.
+  Vec3 diagonal3(std::uint32_t i) const {
+    return Vec3{1, 1, 1} * s_.mass[i] + x_.visc_block[i] * (dt_ * s_.mass[i] * x_.inv_rho[i]);
+  }
+  // D^-1 r.
+  Vec3 precondition(const Vec3& r, std::uint32_t i) const {
+    if constexpr (Projected)
+      return quotient(r, diagonal3(i));
+    else
+      return r / diagonal(i);
+  }
+  // a / b: per component for three systems, the sums' for one.
+  static Vec3 step_length(const Vec3& a, const Vec3& b) {
+    if constexpr (Projected) {
+      const real den = b.x + b.y + b.z;
+      const real l = den != 0 ? (a.x + a.y + a.z) / den : 0;
+      return {l, l, l};
+    } else {
+      return quotient(a, b);
+    }
+  }
   // fn(i) for every material particle, in parallel.
   template <class F>
   void each(F&& fn) const {
@@ -141,10 +188,39 @@ class ViscositySolve {
 
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const IisphParams& ip = model.iisph;
-  const auto [residual, iterations] = ViscositySolve(model, s, x, threads)
-                                          .run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+  if (!x.rheology) {
+    ViscositySolve<false> solve(model, s, x, threads);
+    const auto [residual, iterations] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    s.diagnostics.viscosity_iterations = iterations;
+    s.diagnostics.viscosity_residual = residual;
+    s.diagnostics.rheology_iterations = 0;
+    s.diagnostics.rheology_change = 0;
+    return;
+  }
+  // A non-Newtonian material: Picard iterations. The first takes the viscosities at the shear rates
+  // of the last step's velocities; each later one those of the last solve's, and stops before
+  // solving again once they changed by at most rheology_tolerance (that solve had them, within it).
+  ViscositySolve<true> solve(model, s, x, threads);
+  int solves = 0, iterations = 0;
+  real residual = 0, change = 0;
+  const int most = std::max(1, ip.rheology_iterations);
+  for (;;) {
+    change = update_viscosity(model, s, x, threads, solves == 0 ? s.vel.data() : x.v_a.data(), solves == 0);
+    if (solves > 0 && change <= ip.rheology_tolerance) break;
+    if (solves == most) break;  // the weights have the last solve's viscosities, the velocities the one before
+    const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    residual = r;
+    iterations += it;
+    ++solves;
+    if (past(deadline)) {
+      s.diagnostics.on_deadline = true;
+      break;
+    }
+  }
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
+  s.diagnostics.rheology_iterations = solves;
+  s.diagnostics.rheology_change = std::isfinite(change) ? change : 0;  // infinite: cut by the deadline before an update
 }
 
 }  // namespace dentsph::iisph

@@ -67,6 +67,22 @@ std::set<std::tuple<long, long, long>> indices(const std::vector<Vec3>& pts, Vec
 
 bool near(const Vec3& a, const Vec3& b, real tol = 1e-12) { return norm(a - b) <= tol; }
 
+// A non-Newtonian material's fields reach the Model's table (docs/model.md, "Rheology").
+TEST(SceneMaterials, RheologyFieldsReachTheTable) {
+  json j = base_scene();
+  j["simulation"]["solver"] = "iisph";
+  j["materials"]["paste"]["flow_index"] = 0.6;
+  j["materials"]["paste"]["yield_stress"] = 150;
+  const Scene sc = parse(j);
+  const MaterialIndex m = *sc.model.materials.find("paste");
+  EXPECT_EQ(sc.model.materials[m].flow_index, 0.6);
+  EXPECT_EQ(sc.model.materials[m].yield_stress, 150);
+  EXPECT_EQ(sc.model.materials[m].max_viscosity, 0) << "0: 1000 times the viscosity";
+  EXPECT_FALSE(newtonian(sc.model.materials[m]));
+  EXPECT_TRUE(newtonian(sc.model.materials[*sc.model.materials.find("wall")]));
+  EXPECT_EQ(sc.model.materials.first_non_newtonian(), m);
+}
+
 // ---- shapes
 // ----------------------------------------------------------------------------------------
 
@@ -589,6 +605,36 @@ const BrokenCase broken_cases[] = {
     {"iisph misspelt", [](json& j) { j["simulation"]["iisph"] = {{"stifness", 1}}; }, "simulation.iisph",
      "stiffness"},
     {"not an object", [](json& j) { j["blocks"][0] = 3; }, "blocks[0]", "object"},
+    {"a flow index of 5",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["flow_index"] = 5;
+     },
+     "materials.paste.flow_index", "5 is outside 0.1 to 2"},
+    {"a yield stress with no viscosity",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["viscosity"] = 0;
+       j["materials"]["paste"]["yield_stress"] = 100;
+     },
+     "materials.paste.yield_stress", "a yield stress with no viscosity"},
+    {"an unyielded viscosity under the flowing one",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["yield_stress"] = 100;
+       j["materials"]["paste"]["max_viscosity"] = 0.1;
+     },
+     "materials.paste.max_viscosity", "under the viscosity"},
+    {"a negative yield stress",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["yield_stress"] = -1;
+     },
+     "materials.paste.yield_stress", ">= 0"},
+    {"a non-Newtonian paste on the paper's step", [](json& j) { j["materials"]["paste"]["flow_index"] = 0.5; },
+     "materials.paste", "set simulation.solver to \"iisph\""},
+    {"iisph rheology iterations 0", [](json& j) { j["simulation"]["iisph"] = {{"rheology_iterations", 0}}; },
+     "simulation.iisph.rheology_iterations", "[1, 100]"},
 };
 
 class BrokenScene : public ::testing::TestWithParam<BrokenCase> {};
