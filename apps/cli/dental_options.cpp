@@ -4,6 +4,9 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "dentsph/paste_presets.hpp"
 
 namespace dentsph::cli {
 
@@ -26,6 +29,10 @@ void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool wit
   if (with_procedure)
     add(app.add_option("--procedure", procedure_,
                        "Run this filling procedure (JSON, mm in the tooth frame) instead of the built-in one"));
+  add(app.add_option("--material", material_,
+                     fmt::format("Fill with this paste in SI units, its force rendered at scale 1: {} (docs/model.md, "
+                                 "\"Presets\"); default: the paper's 1 Pa s paste at force scale {:.3g}",
+                                 fmt::join(paste_preset_names(), ", "), dental_force_scale)));
   add(app.add_option("--cavity", kind_, "The cavity: class1 (occlusal) or class2 (occlusal and a proximal box)"));
   add(app.add_option("--cavity-side", side_, "Class II: the proximal box's side, mesial (default) or distal"));
   values_.assign(cavity_fields().size(), 0.0);
@@ -114,7 +121,17 @@ Scene with_cavity_options(Build build) {
 
 Scene DentalOptions::procedure_scene() const {
   const ToothSpec spec = tooth();
-  return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+  if (material_.empty()) return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+  PastePreset preset;
+  try {
+    preset = paste_preset(material_);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("--material {}: {}", material_, e.what()));
+  }
+  Scene sc = with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(preset)); });
+  sc.force_scale = 1;
+  sc.paste_preset = preset.name;
+  return sc;
 }
 
 Scene DentalOptions::filled_scene() const {

@@ -83,6 +83,9 @@ struct Scene {
   // haptic runtime uses it as its default scale; the leak test presses with the device's largest
   // force divided by it.
   real force_scale = 1;
+  // The paste preset the scene is filled with (paste_presets.hpp, `run --material`); empty: the
+  // scene's own paste.
+  std::string paste_preset;
   // Who ran it and which exercise it is, when a scene file or the command line says (the
   // report's title, the session store's index; docs/report.md).
   std::string student, exercise;

@@ -59,6 +59,7 @@ struct CureSchedule {
 // knows (Simulation::summary); each loop adds its own (wall time, snapshots, assessment, ...).
 struct RunSummary {
   std::string scene, status = "completed";  // status: completed | diverged
+  std::string paste_preset;                 // Scene::paste_preset (`run --material`); empty: the scene's own paste
   std::string message;                      // why a run diverged
   std::string backend = "cpu";              // the stepper's: cpu | cuda | cuda-emulation
   std::uint64_t steps = 0;

@@ -143,6 +143,7 @@ RunSummary Simulation::summary() {
   const State& st = synced();
   RunSummary s;
   s.scene = scene_.name;
+  s.paste_preset = scene_.paste_preset;
   s.backend = stepper_->name();
   s.threads = options_.threads;
   s.solver = model_.solver;

@@ -191,6 +191,29 @@ TEST(Cli, AClassTwoRunOnTheBuiltInCrown) {
   EXPECT_GE(cavity.at("thinnest_wall_mm").get<double>(), 1.0);
 }
 
+// `run --material` fills the built-in procedure with a paste preset in SI units at force scale 1
+// (docs/model.md, "Presets"); an unknown preset and the paper's step are refused.
+TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
+  const fs::path out = dir() / "universal";
+  const Result r = dentsph_cli("run --material universal --steps 5 --threads 1 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json s = read_json(out / "summary.json");
+  EXPECT_EQ(s.at("material"), "universal");
+  EXPECT_DOUBLE_EQ(s.at("tool").at("force_scale").get<double>(), 1.0);
+  EXPECT_GT(s.at("solver").at("viscosity").at("rheology").at("iterations").get<double>(), 0) << "the paste is non-Newtonian";
+  EXPECT_NE(r.output.find("rheology:"), std::string::npos) << r.output;
+  const nlohmann::json own = [&] {
+    const fs::path plain = dir() / "paper_paste";
+    const Result p = dentsph_cli("run --steps 5 --threads 1 --out " + plain.string());
+    EXPECT_EQ(p.code, 0) << p.output;
+    return read_json(plain / "summary.json");
+  }();
+  EXPECT_TRUE(own.at("material").is_null()) << "the scene's own paste";
+  EXPECT_GT(own.at("tool").at("force_scale").get<double>(), 1000.0);
+  expect_refused("run --material putty --steps 1", {"--material putty", "choose flowable, universal, packable, amalgam"});
+  expect_refused("run --material packable --solver paper --steps 1", {"non-Newtonian", "--solver iisph"});
+}
+
 // `dentsph replay` without a scene file replays into the procedure that `dentsph run --realtime`
 // ran, with the same tooth options.
 TEST(Cli, ReplayTakesTheCavityOptionsOfTheRun) {

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/simulation.hpp"
 #include "dentsph/step.hpp"
@@ -290,6 +292,43 @@ TEST(MaterialTable, SceneFileWithTooManyMaterialsIsRefused) {
     EXPECT_NE(msg.find("many.json"), std::string::npos) << msg;
     EXPECT_NE(msg.find("materials"), std::string::npos) << msg;
     EXPECT_NE(msg.find("at most 128"), std::string::npos) << msg;
+  }
+}
+
+// The paste presets (docs/model.md, "Presets"): non-Newtonian pastes in SI units whose viscosity at
+// 10 /s sits in its published range (chosen there: a calibration, not a prediction) and whose
+// viscosity and yield stress rise from flowable to universal to packable (Lee, Son & Um 2003's
+// order); an unknown name is refused with the choices.
+TEST(PastePresets, AnchoredToTheirPublishedViscosityAndOrdered) {
+  const std::vector<std::string>& names = paste_preset_names();
+  ASSERT_EQ(names.size(), 4u);
+  real last_viscosity = 0, last_yield = -1;
+  for (const std::string name : {"flowable", "universal", "packable"}) {
+    const PastePreset p = paste_preset(name);
+    EXPECT_EQ(p.name, name);
+    EXPECT_FALSE(newtonian(p.paste)) << name;
+    EXPECT_GE(p.paste.rho0, 1900) << name << ": composites are 2.0 to 2.2 g/cm^3";
+    EXPECT_LE(p.paste.rho0, 2200) << name;
+    EXPECT_GE(p.viscosity_at_10, p.published_low) << name << ": " << p.source;
+    EXPECT_LE(p.viscosity_at_10, p.published_high) << name << ": " << p.source;
+    EXPECT_NEAR(p.viscosity_at_10, p.paste.mu * std::pow(10.0, p.paste.flow_index - 1), 1e-9 * p.viscosity_at_10);
+    EXPECT_GT(p.viscosity_at_10, last_viscosity) << name;
+    EXPECT_GT(p.paste.yield_stress, last_yield) << name;
+    last_viscosity = p.viscosity_at_10;
+    last_yield = p.paste.yield_stress;
+    const DentalSceneParams dp = dental_params_for(p);
+    EXPECT_EQ(dp.paste, p.paste);
+    EXPECT_GE(dp.wall.Kp, dp.paste.Kp) << "walls at least as stiff as the paste";
+    EXPECT_EQ(dp.solver, Solver::iisph);
+  }
+  const PastePreset amalgam = paste_preset("amalgam");
+  EXPECT_EQ(amalgam.cure, "amalgam");
+  EXPECT_NEAR(amalgam.paste.rho0, 11600, 1);
+  try {
+    (void)paste_preset("putty");
+    FAIL() << "an unknown preset is refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("choose flowable, universal, packable, amalgam"), std::string::npos) << e.what();
   }
 }
 

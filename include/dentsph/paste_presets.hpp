@@ -1,0 +1,35 @@
+// The filling pastes a dental scene can be filled with (docs/model.md, "Presets"): each a
+// generalised Newtonian paste in SI units (material.hpp), its cure preset and the published figure
+// its viscosity is anchored to. `run --material NAME` fills the built-in procedure with one and
+// renders its force at scale 1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dentsph/dental.hpp"
+#include "dentsph/material.hpp"
+
+namespace dentsph {
+
+struct PastePreset {
+  std::string name;
+  Material paste;              // SI: consistency K (Pa s^n), flow index, yield stress, density, stiffness, adhesion
+  std::string cure;            // its cure preset (cure_material.hpp): "composite" or "amalgam"
+  real viscosity_at_10 = 0;    // Pa s, its viscosity at a shear rate of 10 /s (23 C)
+  real published_low = 0, published_high = 0;  // Pa s, the published range that figure sits in
+  std::string source;          // the publication of that range, and which constants are assumed
+};
+
+// "flowable", "universal", "packable", "amalgam".
+const std::vector<std::string>& paste_preset_names();
+// The preset of that name; std::invalid_argument naming the choices for another.
+PastePreset paste_preset(const std::string& name);
+
+// The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
+// solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of
+// iterations leaves a stiff paste's viscosity far from solved). The iisph solver alone: the preset
+// is non-Newtonian.
+DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
+
+}  // namespace dentsph

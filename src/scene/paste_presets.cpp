@@ -1,0 +1,78 @@
+// The filling pastes (include/dentsph/paste_presets.hpp; constants and sources in docs/model.md,
+// "Presets").
+#include "dentsph/paste_presets.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace dentsph {
+
+namespace {
+
+// A composite of viscosity eta10 at 10 /s with flow index n: the consistency K = eta10 10^(1 - n).
+Material composite(real eta10, real n, real yield_stress, real rho0) {
+  Material m;
+  m.mu = eta10 * std::pow(10.0, 1 - n);
+  m.flow_index = n;
+  m.yield_stress = yield_stress;
+  m.max_viscosity = 1e6;
+  m.rho0 = rho0;
+  m.Kp = 1e5;
+  m.Ka = 50;
+  return m;
+}
+
+}  // namespace
+
+const std::vector<std::string>& paste_preset_names() {
+  static const std::vector<std::string> names = {"flowable", "universal", "packable", "amalgam"};
+  return names;
+}
+
+PastePreset paste_preset(const std::string& name) {
+  PastePreset p;
+  p.name = name;
+  p.cure = "composite";
+  if (name == "flowable") {
+    p.paste = composite(1700, 0.5, 0, 2000);
+    p.published_low = 1310;
+    p.published_high = 2200;
+    p.source = "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C";
+  } else if (name == "universal") {
+    p.paste = composite(5300, 0.5, 200, 2100);
+    p.published_low = 6750 / 2.158;
+    p.published_high = 19100 / 2.158;
+    p.source = "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and "
+               "packables 6.75 to 19.1 kPa s (Loumprinis et al., Dent Mater 2021)";
+  } else if (name == "packable") {
+    p.paste = composite(11400, 0.5, 1000, 2200);
+    p.published_low = 6750;
+    p.published_high = 19100;
+    p.source = "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C";
+  } else if (name == "amalgam") {
+    p.paste = composite(20000, 0.5, 1e4, 11600);
+    p.cure = "amalgam";
+    p.source = "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)";
+  } else {
+    throw std::invalid_argument(
+        fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
+  }
+  p.viscosity_at_10 = p.paste.mu * std::pow(10.0, p.paste.flow_index - 1);
+  return p;
+}
+
+DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams dp) {
+  dp.paste = preset.paste;
+  dp.wall.Kp = 1.5 * preset.paste.Kp;
+  dp.wall.rho0 = preset.paste.rho0;
+  dp.iisph.viscosity_tolerance = 1e-3;
+  dp.iisph.viscosity_iterations = 100;
+  dp.iisph.pressure_solve = PressureSolve::cg;
+  dp.iisph.max_iterations = 50;
+  return dp;
+}
+
+}  // namespace dentsph
