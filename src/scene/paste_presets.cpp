@@ -20,7 +20,7 @@ Material composite(real eta10, real n, real yield_stress, real rho0) {
   m.yield_stress = yield_stress;
   m.max_viscosity = 1e6;
   m.rho0 = rho0;
-  m.Kp = 1e5;
+  m.Kp = 1e4;
   m.Ka = 50;
   return m;
 }
