@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "dentsph/step.hpp"
@@ -183,12 +184,17 @@ namespace {
 // plate, the second half of 1.5 s at 5 mm/s and of 3 s at 2.5 mm/s.
 constexpr real turn = 1.5;  // s at the rim's speed
 
+// The paste sheared at half the rim's speed and at it, each over the same turn of the plate.
+std::pair<Measured, Measured> two_speeds(const Material& paste) {
+  const real dt = limit_step(rim_speed);
+  return {shear(paste, 0.5 * rim_speed, dt, 2 * turn, turn), shear(paste, rim_speed, dt, turn, 0.5 * turn)};
+}
+
 TEST(CouetteRheology, PowerLawTorqueGrowsAsTheSpeedToTheFlowIndex) {
   Material paste{1e3, Kp, rho0, 0};
   paste.flow_index = 0.5;
   paste.max_viscosity = 1e7;
-  const real dt = limit_step(rim_speed);
-  const Measured slow = shear(paste, 0.5 * rim_speed, dt, 2 * turn, turn), fast = shear(paste, rim_speed, dt, turn, 0.5 * turn);
+  const auto [slow, fast] = two_speeds(paste);
   const real n = paste.flow_index;
   const real analytic = 2 * pi * paste.mu * std::pow(rim_speed / R / H, n) * std::pow(R, n + 3) / (n + 3);
   std::printf("power law n 0.5: torque ratio %.4f (analytic %.4f); fast torque %.4g of the law's\n",
@@ -206,8 +212,7 @@ TEST(CouetteRheology, BinghamTorque) {
   Material paste{100, Kp, rho0, 0};
   paste.yield_stress = 200;
   paste.max_viscosity = 1e6;
-  const real dt = limit_step(rim_speed);
-  const Measured slow = shear(paste, 0.5 * rim_speed, dt, 2 * turn, turn), fast = shear(paste, rim_speed, dt, turn, 0.5 * turn);
+  const auto [slow, fast] = two_speeds(paste);
   auto law = [&](real speed) {
     return 2 * pi * paste.yield_stress * std::pow(R, 3) / 3 + pi * paste.mu * (speed / R) * std::pow(R, 4) / (2 * H);
   };
@@ -230,8 +235,7 @@ TEST(CouetteRheology, NewtonianOnTheProjectedForm) {
   Material liquid{1e3, Kp, rho0, 0};
   liquid.yield_stress = 1e-9;
   liquid.max_viscosity = 1e7;
-  const real dt = limit_step(rim_speed);
-  const Measured slow = shear(liquid, 0.5 * rim_speed, dt, 2 * turn, turn), fast = shear(liquid, rim_speed, dt, turn, 0.5 * turn);
+  const auto [slow, fast] = two_speeds(liquid);
   const real analytic = pi * liquid.mu * (rim_speed / R) * std::pow(R, 4) / (2 * H);
   std::printf("newtonian, projected: torque ratio %.4f; fast torque %.4g of the formula\n", fast.torque / slow.torque,
               fast.torque / analytic);

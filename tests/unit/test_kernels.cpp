@@ -72,18 +72,27 @@ TEST(Kernels, SpikyGradientMatchesFiniteDifferenceIn3D) {
 // The discrete gradient sum_j V_j (f_j - f_i) gradW(r_i - r_j) of the linear field f = x at a
 // particle inside a simple cubic lattice of spacing h / 2 whose particles have the poly6 lattice
 // mass (V = m / rho0): the share of the true gradient (1) each iisph pressure gradient gives.
-real lattice_gradient(const KernelCoeffs& k, const std::function<real(real)>& radial) {
+// fn(V, x_j) for the neighbours x_j within h of a particle at the origin of a simple cubic lattice
+// of spacing h / 2 whose particles have the poly6 lattice mass (V = m / rho0); returns their sum.
+real lattice_sum(const KernelCoeffs& k, const std::function<real(real, const Vec3&)>& fn) {
   const real spacing = k.h / 2;
   const real V = lattice_particle_mass(1000, spacing, k) / 1000;
   real sum = 0;
   for (int i = -2; i <= 2; ++i)
     for (int j = -2; j <= 2; ++j)
       for (int l = -2; l <= 2; ++l) {
-        const real x = i * spacing, r = spacing * std::sqrt(real(i * i + j * j + l * l));
-        if (r == 0 || r >= k.h) continue;
-        sum += V * x * radial(r) * (-x / r);  // f_j - f_i = x_j; d/dx of W at r_i - r_j = -x_j
+        const Vec3 xj{i * spacing, j * spacing, l * spacing};
+        const real r = norm(xj);
+        if (r > 0 && r < k.h) sum += fn(V, xj);
       }
   return sum;
+}
+
+real lattice_gradient(const KernelCoeffs& k, const std::function<real(real)>& radial) {
+  return lattice_sum(k, [&](real V, const Vec3& xj) {
+    const real x = xj.x, r = norm(xj);
+    return V * x * radial(r) * (-x / r);  // f_j - f_i = x_j; d/dx of W at r_i - r_j = -x_j
+  });
 }
 
 TEST(Kernels, TheIisphGradientsAreExactOnTheRestLattice) {
@@ -101,20 +110,13 @@ TEST(Kernels, TheIisphGradientsAreExactOnTheRestLattice) {
 // lattice, over 2: the share of the viscous force a non-Newtonian paste's form gives with each
 // iisph gradient (solver/rheology.cpp divides by it).
 real projected_shear(const KernelCoeffs& k, const std::function<real(real)>& radial) {
-  const real spacing = k.h / 2;
-  const real V = lattice_particle_mass(1000, spacing, k) / 1000;
-  real sum = 0;
-  for (int i = -2; i <= 2; ++i)
-    for (int j = -2; j <= 2; ++j)
-      for (int l = -2; l <= 2; ++l) {
-        const Vec3 xj{i * spacing, j * spacing, l * spacing};
-        const real r = norm(xj);
-        if (r == 0 || r >= k.h) continue;
-        const Vec3 x_ij = -xj, v_ij{-xj.y * xj.y, 0, 0};  // v_i = 0 at the origin
-        const Vec3 grad = x_ij * (radial(r) / r);
-        sum += 10 * V * dot(v_ij, x_ij) / (r * r + 0.01 * k.h2) * grad.x;
-      }
-  return sum / 2;
+  return lattice_sum(k, [&](real V, const Vec3& xj) {
+           const real r = norm(xj);
+           const Vec3 x_ij = -xj, v_ij{-xj.y * xj.y, 0, 0};  // v_i = 0 at the origin
+           const Vec3 grad = x_ij * (radial(r) / r);
+           return 10 * V * dot(v_ij, x_ij) / (r * r + 0.01 * k.h2) * grad.x;
+         }) /
+         2;
 }
 
 TEST(Kernels, TheProjectedViscosityIsItsLatticeShareOfTheLaplacian) {
