@@ -1,5 +1,6 @@
 #include "dental_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -33,6 +34,9 @@ void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool wit
                      fmt::format("Fill with this paste in SI units, its force rendered at scale 1: {} (docs/model.md, "
                                  "\"Presets\"); default: the paper's 1 Pa s paste at force scale {:.3g}",
                                  fmt::join(paste_preset_names(), ", "), dental_force_scale)));
+  add(app.add_option("--temperature", temperature_,
+                     "With --material: the paste's temperature in C, 10 to 70 (default 23, a room; 37 the mouth, 54 a "
+                     "composite warmer): warmer paste is less viscous (docs/model.md, \"Presets\")"));
   add(app.add_option("--cavity", kind_, "The cavity: class1 (occlusal) or class2 (occlusal and a proximal box)"));
   add(app.add_option("--cavity-side", side_, "Class II: the proximal box's side, mesial (default) or distal"));
   values_.assign(cavity_fields().size(), 0.0);
@@ -121,16 +125,29 @@ Scene with_cavity_options(Build build) {
 
 Scene DentalOptions::procedure_scene() const {
   const ToothSpec spec = tooth();
-  if (material_.empty()) return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+  const bool warmed = std::any_of(options_.begin(), options_.end(),
+                                  [](const CLI::Option* o) { return o->get_name() == "--temperature" && o->count() > 0; });
+  if (material_.empty()) {
+    if (warmed)
+      throw std::invalid_argument(fmt::format(
+          "--temperature {}: the paper's paste has no temperature law; add --material (e.g. --material universal)",
+          temperature_));
+    return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+  }
   PastePreset preset;
   try {
-    preset = paste_preset(material_);
+    preset = paste_preset(material_, temperature_);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(fmt::format("--material {}: {}", material_, e.what()));
+    throw std::invalid_argument(fmt::format("{}: {}",
+                                            std::string(e.what()).find("temperature") != std::string::npos
+                                                ? fmt::format("--temperature {}", temperature_)
+                                                : fmt::format("--material {}", material_),
+                                            e.what()));
   }
   Scene sc = with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(preset)); });
   sc.force_scale = 1;
   sc.paste_preset = preset.name;
+  sc.paste_temperature_c = preset.temperature_c;
   return sc;
 }
 

@@ -35,6 +35,7 @@ class DentalOptions {
  private:
   std::string mesh_, units_ = "mm", procedure_, kind_, side_;
   std::string material_;  // --material: a paste preset (paste_presets.hpp); empty: the paper's paste
+  double temperature_ = 23;  // --temperature: the preset's temperature, C
   std::vector<double> values_;  // one per cavity_fields() entry; given where its option was used
   std::vector<double> long_axis_, mesial_;
   std::vector<CLI::Option*> options_;

@@ -14,6 +14,7 @@ namespace dentsph {
 
 struct PastePreset {
   std::string name;
+  real temperature_c = 23;     // C, the paste's temperature (the consistency below is at it)
   Material paste;              // SI: consistency K (Pa s^n), flow index, yield stress, density, stiffness, adhesion
   std::string cure;            // its cure preset (cure_material.hpp): "composite" or "amalgam"
   real viscosity_at_10 = 0;    // Pa s, its viscosity at a shear rate of 10 /s (23 C)
@@ -23,8 +24,15 @@ struct PastePreset {
 
 // "flowable", "universal", "packable", "amalgam".
 const std::vector<std::string>& paste_preset_names();
-// The preset of that name; std::invalid_argument naming the choices for another.
-PastePreset paste_preset(const std::string& name);
+// The preset of that name at `temperature_c` (10 to 70 C; 23 room, 37 mouth, 54 a pre-warmed
+// composite): its consistency times paste_temperature_factor. std::invalid_argument naming the
+// choices for another name, and the range for another temperature.
+PastePreset paste_preset(const std::string& name, real temperature_c = 23);
+
+// A composite's viscosity at `temperature_c` over its viscosity at 23 C: the Arrhenius factor
+// exp(E/R (1/T - 1/T23)) with E/R = kPasteActivation (docs/model.md, "Presets").
+inline constexpr real kPasteActivation = 3462;  // K
+real paste_temperature_factor(real temperature_c);
 
 // The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
 // solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of

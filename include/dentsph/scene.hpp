@@ -86,6 +86,7 @@ struct Scene {
   // The paste preset the scene is filled with (paste_presets.hpp, `run --material`); empty: the
   // scene's own paste.
   std::string paste_preset;
+  real paste_temperature_c = 23;  // C, the preset's temperature
   // Who ran it and which exercise it is, when a scene file or the command line says (the
   // report's title, the session store's index; docs/report.md).
   std::string student, exercise;

@@ -60,6 +60,7 @@ struct CureSchedule {
 struct RunSummary {
   std::string scene, status = "completed";  // status: completed | diverged
   std::string paste_preset;                 // Scene::paste_preset (`run --material`); empty: the scene's own paste
+  double paste_temperature_c = 23;          // Scene::paste_temperature_c
   std::string message;                      // why a run diverged
   std::string backend = "cpu";              // the stepper's: cpu | cuda | cuda-emulation
   std::uint64_t steps = 0;

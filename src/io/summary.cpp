@@ -19,8 +19,10 @@ nlohmann::json seconds(real v) { return std::isfinite(v) ? nlohmann::json(v) : n
 std::string summary_json(const RunSummary& s) {
   nlohmann::json j;
   j["scene"] = s.scene;
-  // The paste preset the scene was filled with (`run --material`), null for the scene's own paste.
-  j["material"] = s.paste_preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.paste_preset);
+  // The paste preset the scene was filled with (`run --material`) and its temperature, null for the
+  // scene's own paste.
+  j["material"] = s.paste_preset.empty() ? nlohmann::json(nullptr)
+                                         : nlohmann::json{{"preset", s.paste_preset}, {"temperature_c", s.paste_temperature_c}};
   j["status"] = s.status;
   if (!s.message.empty()) j["message"] = s.message;
   j["steps"] = s.steps;

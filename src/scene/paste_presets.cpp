@@ -32,9 +32,19 @@ const std::vector<std::string>& paste_preset_names() {
   return names;
 }
 
-PastePreset paste_preset(const std::string& name) {
+real paste_temperature_factor(real temperature_c) {
+  constexpr real kelvin = 273.15;
+  return std::exp(kPasteActivation * (1 / (temperature_c + kelvin) - 1 / (23 + kelvin)));
+}
+
+PastePreset paste_preset(const std::string& name, real temperature_c) {
+  if (!(temperature_c >= 10 && temperature_c <= 70))
+    throw std::invalid_argument(fmt::format("a paste temperature of {} C is outside 10 to 70 C; give 23 (a room), 37 "
+                                            "(the mouth) or 54 (a composite warmer)",
+                                            temperature_c));
   PastePreset p;
   p.name = name;
+  p.temperature_c = temperature_c;
   p.cure = "composite";
   if (name == "flowable") {
     p.paste = composite(1700, 0.5, 0, 2000);
@@ -60,6 +70,7 @@ PastePreset paste_preset(const std::string& name) {
     throw std::invalid_argument(
         fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
   }
+  p.paste.mu *= paste_temperature_factor(temperature_c);  // the published ranges are at 23 C
   p.viscosity_at_10 = p.paste.mu * std::pow(10.0, p.paste.flow_index - 1);
   return p;
 }

@@ -144,6 +144,7 @@ RunSummary Simulation::summary() {
   RunSummary s;
   s.scene = scene_.name;
   s.paste_preset = scene_.paste_preset;
+  s.paste_temperature_c = scene_.paste_temperature_c;
   s.backend = stepper_->name();
   s.threads = options_.threads;
   s.solver = model_.solver;

@@ -198,7 +198,8 @@ TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
   const Result r = dentsph_cli("run --material universal --steps 5 --threads 1 --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json s = read_json(out / "summary.json");
-  EXPECT_EQ(s.at("material"), "universal");
+  EXPECT_EQ(s.at("material").at("preset"), "universal");
+  EXPECT_DOUBLE_EQ(s.at("material").at("temperature_c").get<double>(), 23);
   EXPECT_DOUBLE_EQ(s.at("tool").at("force_scale").get<double>(), 1.0);
   EXPECT_GT(s.at("solver").at("viscosity").at("rheology").at("iterations").get<double>(), 0) << "the paste is non-Newtonian";
   EXPECT_NE(r.output.find("rheology:"), std::string::npos) << r.output;
@@ -212,6 +213,12 @@ TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
   EXPECT_GT(own.at("tool").at("force_scale").get<double>(), 1000.0);
   expect_refused("run --material putty --steps 1", {"--material putty", "choose flowable, universal, packable, amalgam"});
   expect_refused("run --material packable --solver paper --steps 1", {"non-Newtonian", "--solver iisph"});
+  expect_refused("run --material flowable --temperature 80 --steps 1", {"--temperature 80", "outside 10 to 70 C"});
+  expect_refused("run --temperature 37 --steps 1", {"--temperature 37", "add --material"});
+  const fs::path warm = dir() / "warm";
+  const Result w = dentsph_cli("run --material universal --temperature 54 --steps 2 --threads 1 --out " + warm.string());
+  ASSERT_EQ(w.code, 0) << w.output;
+  EXPECT_DOUBLE_EQ(read_json(warm / "summary.json").at("material").at("temperature_c").get<double>(), 54);
 }
 
 // `dentsph replay` without a scene file replays into the procedure that `dentsph run --realtime`

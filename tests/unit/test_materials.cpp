@@ -321,6 +321,24 @@ TEST(PastePresets, AnchoredToTheirPublishedViscosityAndOrdered) {
     EXPECT_GE(dp.wall.Kp, dp.paste.Kp) << "walls at least as stiff as the paste";
     EXPECT_EQ(dp.solver, Solver::iisph);
   }
+  // Warmer paste is less viscous (Arrhenius, E/R = 3462 K): fitted to the lower end of the
+  // published 41 to 92% drop from 23 to 37 C, it predicts 0.33 of the viscosity at 54 C, inside the
+  // 0.32 to 0.39 of Loumprinis et al. 2021's unplugging forces (2.9 to 6.2 N at 54 C over 7.5 to
+  // 19.2 N at 23 C, the force taken proportional to the consistency).
+  EXPECT_DOUBLE_EQ(paste_temperature_factor(23), 1.0);
+  EXPECT_NEAR(paste_temperature_factor(37), 0.59, 0.005);
+  EXPECT_GT(paste_temperature_factor(54), 6.2 / 19.2);  // the strongest product's ratio, 0.323
+  EXPECT_LT(paste_temperature_factor(54), 2.9 / 7.5);   // the weakest's, 0.387
+  EXPECT_NEAR(paste_preset("universal", 37).viscosity_at_10, 0.59 * paste_preset("universal").viscosity_at_10,
+              0.005 * paste_preset("universal").viscosity_at_10);
+  EXPECT_EQ(paste_preset("universal", 37).paste.yield_stress, paste_preset("universal").paste.yield_stress);
+  for (const real t : {9.9, 70.1})
+    try {
+      (void)paste_preset("universal", t);
+      ADD_FAILURE() << t << " C is refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("outside 10 to 70 C"), std::string::npos) << e.what();
+    }
   const PastePreset amalgam = paste_preset("amalgam");
   EXPECT_EQ(amalgam.cure, "amalgam");
   EXPECT_NEAR(amalgam.paste.rho0, 11600, 1);
