@@ -111,6 +111,11 @@ struct IisphParams {
   // (relative) in the last one.
   int rheology_iterations = 3;
   real rheology_tolerance = 0.02;
+  // A wall particle's density target is the larger of its rest density and its walls' own density
+  // (where walls overlap, as paste that set against the tooth's lining): without it a stiff paste
+  // (Kp 1e4) is pushed off overlapping walls with megapascals and the run diverges; with it the
+  // paper's soft paste compresses more near them (docs/model.md, "Presets"). The presets set it.
+  bool wall_rest_density = false;
   // The solve's equation of state is p = stiffness Kp (rho - rho0). The paper's eq. 5 turns half of
   // a pressure field's gradient into force (its (P_i + P_j) / 2 average), so under a load the paper's
   // paste compresses twice what Kp (rho - rho0) with a consistent force gives: 0.5 makes the same Kp

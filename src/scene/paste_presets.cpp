@@ -83,6 +83,7 @@ DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams
   dp.iisph.viscosity_iterations = 100;
   dp.iisph.pressure_solve = PressureSolve::cg;
   dp.iisph.max_iterations = 50;
+  dp.iisph.wall_rest_density = true;
   return dp;
 }
 

@@ -47,7 +47,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
            "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "rheology_iterations",
-           "rheology_tolerance"});
+           "rheology_tolerance", "wall_rest_density"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
     const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
@@ -88,6 +88,8 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   p.rheology_tolerance = i->number_or("rheology_tolerance", p.rheology_tolerance,
                                       "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
                                       Range::non_negative);
+  p.wall_rest_density = i->boolean_or("wall_rest_density", p.wall_rest_density,
+                                   "true: a wall's density target is the larger of rho0 and its walls' own (for stiff pastes)");
   try {
     check_iisph_params(p);  // make_model does too, but a dental scene's Model is made later
   } catch (const std::invalid_argument& e) {

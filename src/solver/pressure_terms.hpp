@@ -4,6 +4,8 @@
 // derives the system.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 
 #include "dentsph/model.hpp"
@@ -41,7 +43,11 @@ inline real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool
 }
 
 // Row i's right-hand side, rho0 - rho_adv (rho_adv: the density at the end of the step without
-// pressure, from v* in x.v_a), into x.source.
+// pressure, from v* in x.v_a), into x.source. With iisph.wall_rest_density, a boundary particle's
+// target is the larger of rho0 and its walls' own density (rho_static): where walls overlap (paste
+// that set against the tooth's lining) the walls alone are denser than rho0, which no motion of the
+// paste can undo, and a stiff paste's solve pushes it away with the whole excess's pressure (Kp 1e4:
+// megapascals; docs/model.md, "Presets").
 inline void pressure_source(const Model& model, const State& s, IisphScratch& x, std::uint32_t i) {
   const real dt = model.dt;
   const Vec3* v = x.v_a.data();  // v* (boundary, tool: their velocity)
@@ -51,7 +57,10 @@ inline void pressure_source(const Model& model, const State& s, IisphScratch& x,
   // material neighbours' motion alone (what the solve can change).
   real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad());
-  x.source[i] = s.rho0[i] - (s.rho[i] + dt * div);
+  const real target = s.role[i] == Role::boundary && model.iisph.wall_rest_density
+                          ? std::max(s.rho0[i], s.rho_static[s.id[i]])
+                          : s.rho0[i];
+  x.source[i] = target - (s.rho[i] + dt * div);
 }
 
 // 1 / (stiffness Kp_i): kg/m^3 per Pa, rho - rho0 = p / (stiffness Kp).
