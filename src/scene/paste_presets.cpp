@@ -25,10 +25,37 @@ Material composite(real eta10, real n, real yield_stress, real rho0) {
   return m;
 }
 
+// The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C), flow index,
+// yield stress (Pa), density (kg/m^3), cure preset, the published range of the viscosity and its
+// source.
+struct PresetRow {
+  const char* name;
+  real eta10, n, yield_stress, rho0;
+  const char* cure;
+  real low, high;
+  const char* source;
+};
+
+constexpr PresetRow kPresets[] = {
+    {"flowable", 1700, 0.5, 0, 2000, "composite", 1310, 2200,
+     "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C"},
+    {"universal", 5300, 0.5, 200, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
+     "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and packables 6.75 to "
+     "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
+    {"packable", 11400, 0.5, 1000, 2200, "composite", 6750, 19100,
+     "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C"},
+    {"amalgam", 20000, 0.5, 1e4, 11600, "amalgam", 0, 0,
+     "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
+};
+
 }  // namespace
 
 const std::vector<std::string>& paste_preset_names() {
-  static const std::vector<std::string> names = {"flowable", "universal", "packable", "amalgam"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const PresetRow& r : kPresets) v.emplace_back(r.name);
+    return v;
+  }();
   return names;
 }
 
@@ -42,37 +69,21 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     throw std::invalid_argument(fmt::format("a paste temperature of {} C is outside 10 to 70 C; give 23 (a room), 37 "
                                             "(the mouth) or 54 (a composite warmer)",
                                             temperature_c));
-  PastePreset p;
-  p.name = name;
-  p.temperature_c = temperature_c;
-  p.cure = "composite";
-  if (name == "flowable") {
-    p.paste = composite(1700, 0.5, 0, 2000);
-    p.published_low = 1310;
-    p.published_high = 2200;
-    p.source = "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C";
-  } else if (name == "universal") {
-    p.paste = composite(5300, 0.5, 200, 2100);
-    p.published_low = 6750 / 2.158;
-    p.published_high = 19100 / 2.158;
-    p.source = "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and "
-               "packables 6.75 to 19.1 kPa s (Loumprinis et al., Dent Mater 2021)";
-  } else if (name == "packable") {
-    p.paste = composite(11400, 0.5, 1000, 2200);
-    p.published_low = 6750;
-    p.published_high = 19100;
-    p.source = "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C";
-  } else if (name == "amalgam") {
-    p.paste = composite(20000, 0.5, 1e4, 11600);
-    p.cure = "amalgam";
-    p.source = "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)";
-  } else {
-    throw std::invalid_argument(
-        fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
+  for (const PresetRow& r : kPresets) {
+    if (name != r.name) continue;
+    PastePreset p;
+    p.name = name;
+    p.temperature_c = temperature_c;
+    p.paste = composite(r.eta10, r.n, r.yield_stress, r.rho0);
+    p.paste.mu *= paste_temperature_factor(temperature_c);  // the published ranges are at 23 C
+    p.cure = r.cure;
+    p.published_low = r.low;
+    p.published_high = r.high;
+    p.source = r.source;
+    p.viscosity_at_10 = p.paste.mu * std::pow(10.0, p.paste.flow_index - 1);
+    return p;
   }
-  p.paste.mu *= paste_temperature_factor(temperature_c);  // the published ranges are at 23 C
-  p.viscosity_at_10 = p.paste.mu * std::pow(10.0, p.paste.flow_index - 1);
-  return p;
+  throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
 }
 
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams dp) {
