@@ -123,6 +123,16 @@ Scene with_cavity_options(Build build) {
 
 }  // namespace
 
+void DentalOptions::take_material(const std::string& preset, double temperature_c) {
+  auto given = [&](std::string_view name) {
+    return std::any_of(options_.begin(), options_.end(),
+                       [&](const CLI::Option* o) { return o->get_name() == name && o->count() > 0; });
+  };
+  if (preset.empty() || given("--material")) return;
+  material_ = preset;
+  if (!given("--temperature")) temperature_ = temperature_c;
+}
+
 Scene DentalOptions::procedure_scene() const {
   const ToothSpec spec = tooth();
   const bool warmed = std::any_of(options_.begin(), options_.end(),

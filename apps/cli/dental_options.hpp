@@ -31,6 +31,9 @@ class DentalOptions {
   Scene procedure_scene() const;
   // The dental scene of the tooth (paste in the cavity, a ball pressing): what the viewer opens.
   Scene filled_scene() const;
+  // A replay's: the recording's paste preset and temperature where --material and --temperature
+  // were not given.
+  void take_material(const std::string& preset, double temperature_c);
 
  private:
   std::string mesh_, units_ = "mm", procedure_, kind_, side_;

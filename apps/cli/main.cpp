@@ -275,10 +275,16 @@ int main(int argc, char** argv) {
     if (material_test.chosen()) return material_test.run();
     bench_opt.backend = parse_backend(bench_backend);
     if (!bench_solver.empty()) bench_opt.solver = *solver_from_name(bench_solver);
-    if (*replay)
-      // The step is chosen by replay_recording: --solver, or else the recording's.
+    if (*replay) {
+      // The step is chosen by replay_recording: --solver, or else the recording's; the paste, by
+      // --material, or else the recording's.
+      if (replay_scene.empty()) {
+        const Recording rec = load_recording(replay_dir);
+        replay_dental.take_material(rec.material, rec.material_temperature_c);
+      }
       return cli::replay_recording(scene_of(replay_scene, replay_dental, "", Backend::cpu), replay_dir, replay_threads,
                                    parse_backend(replay_backend), replay_out, replay_solver);
+    }
     if (*bench) return cmd_bench(bench_opt, bench_json_file, bench_quick);
   } catch (const std::exception& e) {
     return cli::failed(e);

@@ -136,6 +136,7 @@ void save_recording(const std::filesystem::path& dir, const Recording& r) {
                               {"dispense_volume", r.dispense_volume},
                               {"backend", r.backend}};
     if (!r.solver.empty()) session["solver"] = r.solver;  // none: not known (replay takes the scene's)
+    if (!r.material.empty()) session["material"] = {{"preset", r.material}, {"temperature_c", r.material_temperature_c}};
     fmt::print(f.f, "{}\n", session.dump());
   }
 }
@@ -211,6 +212,16 @@ Recording load_recording(const std::filesystem::path& dir) {
                                              "damaged: record the session again",
                                              file, s["solver"].dump().substr(0, 40)));
       r.solver = s["solver"].get<std::string>();
+    }
+    if (s.contains("material")) {
+      const nlohmann::json& m = s["material"];
+      if (!m.is_object() || !m.contains("preset") || !m["preset"].is_string() || !m.contains("temperature_c") ||
+          !m["temperature_c"].is_number())
+        throw std::runtime_error(fmt::format("{}: material: expected {{\"preset\": name, \"temperature_c\": C}}, got {}; "
+                                             "the recording is damaged: record the session again",
+                                             file, m.dump().substr(0, 60)));
+      r.material = m["preset"].get<std::string>();
+      r.material_temperature_c = m["temperature_c"].get<double>();
     }
   }
   return r;

@@ -157,6 +157,8 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   res.recording.dispense_volume = increment_volume_or_default(scene, opt.dispense_volume);
   res.recording.backend = backend_name(opt.backend);
   res.recording.solver = solver_name(scene.model.solver);
+  res.recording.material = scene.paste_preset;
+  res.recording.material_temperature_c = scene.paste_temperature_c;
   res.recording.haptic_dropped = haptic.recording_dropped();
   res.recording.haptic = haptic.take_recording();
   res.recording.steps = std::move(sim.steps);

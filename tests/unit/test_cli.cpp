@@ -219,6 +219,19 @@ TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
   const Result w = dentsph_cli("run --material universal --temperature 54 --steps 2 --threads 1 --out " + warm.string());
   ASSERT_EQ(w.code, 0) << w.output;
   EXPECT_DOUBLE_EQ(read_json(warm / "summary.json").at("material").at("temperature_c").get<double>(), 54);
+  // A realtime session's recording names its paste, and `replay` takes it: bit for bit without the
+  // options, and another temperature differs.
+  const fs::path rt = dir() / "warm_realtime";
+  const Result session = dentsph_cli("run --realtime --device scripted --duration 0.3 --material universal --temperature 37 "
+                                     "--threads 1 -q --out " + rt.string());
+  ASSERT_EQ(session.code, 0) << session.output;
+  const nlohmann::json recorded = read_json(rt / "recording" / "session.json").at("material");
+  EXPECT_EQ(recorded.at("preset"), "universal");
+  EXPECT_DOUBLE_EQ(recorded.at("temperature_c").get<double>(), 37);
+  const Result same = dentsph_cli("replay " + (rt / "recording").string());
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find(" 0 tool forces differ"), std::string::npos) << same.output;
+  EXPECT_EQ(dentsph_cli("replay " + (rt / "recording").string() + " --temperature 23").code, 4) << "a colder paste differs";
 }
 
 // `dentsph replay` without a scene file replays into the procedure that `dentsph run --realtime`

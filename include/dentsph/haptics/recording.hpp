@@ -70,6 +70,8 @@ struct Recording {
   double dispense_volume = 0;  // m^3 of a button increment (session.json; 0: the scene's default)
   std::string backend = "cpu"; // the backend that stepped the session (session.json; older: cpu)
   std::string solver;          // the step that ran it, "paper" or "iisph" (session.json; older: none)
+  std::string material;        // the paste preset it was filled with (`--material`; session.json; none: the scene's)
+  double material_temperature_c = 23;  // C, that preset's temperature
   std::vector<HapticSample> haptic;
   std::vector<StepSample> steps;
   std::vector<EventSample> events;
