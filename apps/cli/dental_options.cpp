@@ -123,30 +123,27 @@ Scene with_cavity_options(Build build) {
 
 }  // namespace
 
+bool DentalOptions::given(std::string_view name) const {
+  return std::any_of(options_.begin(), options_.end(),
+                     [&](const CLI::Option* o) { return o->get_name() == name && o->count() > 0; });
+}
+
 void DentalOptions::take_material(const std::string& preset, double temperature_c) {
-  auto given = [&](std::string_view name) {
-    return std::any_of(options_.begin(), options_.end(),
-                       [&](const CLI::Option* o) { return o->get_name() == name && o->count() > 0; });
-  };
   if (preset.empty() || given("--material")) return;
   material_ = preset;
   if (!given("--temperature")) temperature_ = temperature_c;
 }
 
-Scene DentalOptions::procedure_scene() const {
-  const ToothSpec spec = tooth();
-  const bool warmed = std::any_of(options_.begin(), options_.end(),
-                                  [](const CLI::Option* o) { return o->get_name() == "--temperature" && o->count() > 0; });
+std::optional<PastePreset> DentalOptions::preset() const {
   if (material_.empty()) {
-    if (warmed)
+    if (given("--temperature"))
       throw std::invalid_argument(fmt::format(
           "--temperature {}: the paper's paste has no temperature law; add --material (e.g. --material universal)",
           temperature_));
-    return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+    return std::nullopt;
   }
-  PastePreset preset;
   try {
-    preset = paste_preset(material_, temperature_);
+    return paste_preset(material_, temperature_);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(fmt::format("{}: {}",
                                             std::string(e.what()).find("temperature") != std::string::npos
@@ -154,19 +151,35 @@ Scene DentalOptions::procedure_scene() const {
                                                 : fmt::format("--material {}", material_),
                                             e.what()));
   }
-  Scene sc = with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(preset)); });
+}
+
+namespace {
+
+// The scene filled with `preset`: its force at scale 1, the preset named.
+Scene filled_with(Scene sc, const PastePreset& preset) {
   sc.force_scale = 1;
   sc.paste_preset = preset.name;
   sc.paste_temperature_c = preset.temperature_c;
   return sc;
 }
 
+}  // namespace
+
+Scene DentalOptions::procedure_scene() const {
+  const ToothSpec spec = tooth();
+  const std::optional<PastePreset> p = preset();
+  if (!p) return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
+  return filled_with(with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(*p)); }), *p);
+}
+
 Scene DentalOptions::filled_scene() const {
   const ToothSpec spec = tooth();
-  return with_cavity_options([&] {
-    return dental_scene(prepare_tooth(spec), DentalSceneParams{},
+  const std::optional<PastePreset> p = preset();
+  Scene sc = with_cavity_options([&] {
+    return dental_scene(prepare_tooth(spec), p ? dental_params_for(*p) : DentalSceneParams{},
                         spec.mesh.empty() ? std::string("dental_default") : spec.mesh.stem().string(), tooth_name(spec));
   });
+  return p ? filled_with(std::move(sc), *p) : sc;
 }
 
 }  // namespace dentsph::cli

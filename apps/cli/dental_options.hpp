@@ -4,12 +4,15 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/paste_presets.hpp"
 
 namespace dentsph::cli {
 
@@ -34,8 +37,13 @@ class DentalOptions {
   // A replay's: the recording's paste preset and temperature where --material and --temperature
   // were not given.
   void take_material(const std::string& preset, double temperature_c);
+  // The paste preset --material and --temperature name (none without --material). Throws
+  // std::invalid_argument naming the option for an unknown preset, a temperature out of range, or
+  // --temperature without --material.
+  std::optional<PastePreset> preset() const;
 
  private:
+  bool given(std::string_view option) const;  // the option was on the command line
   std::string mesh_, units_ = "mm", procedure_, kind_, side_;
   std::string material_;  // --material: a paste preset (paste_presets.hpp); empty: the paper's paste
   double temperature_ = 23;  // --temperature: the preset's temperature, C

@@ -296,6 +296,27 @@ TEST(ViewerGui, RendersAndStepsOnTheCudaEmulation) {
   EXPECT_FALSE(fs::exists(report / "tool_force.csv")) << "under a device the recording holds the forces";
 }
 
+// --material fills the viewer's scene with a paste preset at force scale 1 (docs/model.md,
+// "Presets"): the picture shows the tooth and the paste, the assessment's scale is 1; an unknown
+// preset is refused before the window opens.
+TEST(ViewerGui, AMaterialPresetFillsTheViewersScene) {
+  REQUIRE_XVFB();
+  const fs::path png = temp("packable.png"), sum = temp("packable.json");
+  fs::remove(png);
+  Result r = run_viewer(fmt::format("--material packable --frames 20 --screenshot '{}' --summary '{}'", png.string(),
+                                    sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const Image img(png);
+  EXPECT_GT(img.share(tooth_pixel), 0.05);
+  EXPECT_GT(img.share(paste_pixel), 0.005);
+  const auto j = nlohmann::json::parse(slurp(sum));
+  EXPECT_DOUBLE_EQ(j["assessment"]["force_scale"].get<double>(), 1.0);
+  EXPECT_GT(j["sim"]["steps"].get<int>(), 0);
+  r = run_viewer("--material putty --frames 1");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("choose flowable, universal, packable, amalgam"), std::string::npos) << r.err;
+}
+
 // --backend cuda where it cannot run: exit status 2 and the reason, no window.
 TEST(ViewerGui, TheCudaBackendWithoutAGpuIsAClearError) {
   REQUIRE_XVFB();
