@@ -2,10 +2,12 @@
 // mesh, or the built-in crown) with a cavity, each part checked with the file, the field and the
 // fix named.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <stdexcept>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "scene/parse.hpp"
 
 namespace dentsph::scene {
@@ -66,8 +68,40 @@ CavityParams read_cavity(const Reader& c) {
   return p;
 }
 
+namespace {
+
+// "material": a paste preset's name, or {"preset": name, "temperature_c": C} (docs/model.md,
+// "Presets"); none: the paper's paste.
+std::optional<PastePreset> read_paste_preset(const Reader& root) {
+  const Json* v = root.find("material");
+  if (v == nullptr) return std::nullopt;
+  std::string name;
+  real temperature = 23;
+  const std::string choices = fmt::format("{}", fmt::join(paste_preset_names(), ", "));
+  if (v->is_string()) {
+    name = v->get<std::string>();
+  } else if (v->is_object()) {
+    const Reader m(*v, root.path_of("material"), root.source(), "a paste preset");
+    m.only({"preset", "temperature_c"});
+    name = m.string("preset", fmt::format("the preset's name: {}", choices));
+    temperature = m.number_or("temperature_c", temperature, "the paste's temperature in C, 10 to 70, e.g. 37");
+  } else {
+    root.fail("material", fmt::format("expected a preset's name or an object, got {}", describe(*v)),
+              fmt::format("give \"material\": \"universal\" or {{\"preset\": \"universal\", \"temperature_c\": 37}} ({})",
+                          choices));
+  }
+  try {
+    return paste_preset(name, temperature);
+  } catch (const std::invalid_argument& e) {
+    root.fail("material", e.what(), fmt::format("give one of {} at 10 to 70 C", choices));
+  }
+}
+
+}  // namespace
+
 Scene parse_dental_scene(const Reader& root) {
-  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise", "simulation"});
+  root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise", "simulation",
+             "material"});
   const std::string name = root.string("name", "the scene's name, e.g. \"class2_fill\"");
   if (name.empty()) root.fail("name", "is empty", "give the scene a name");
   (void)root.optional_string("description", "a description of the scene");
@@ -107,13 +141,24 @@ Scene parse_dental_scene(const Reader& root) {
   }
   // The step that runs it; its time step is the solver's for dental scenes (dental_time_step).
   DentalSceneParams params;
+  const std::optional<PastePreset> preset = read_paste_preset(root);
+  if (preset) params = dental_params_for(*preset, params);
   if (const std::optional<Reader> sim = root.optional_object(
           "simulation", "the simulation settings of a dental scene: {\"solver\": \"iisph\"}")) {
     sim->only({"solver", "iisph"});
     params.solver = read_solver(*sim, params.solver);
     params.iisph = read_iisph(*sim, params.iisph);
   }
+  if (preset && params.solver != Solver::iisph)
+    root.fail("material", fmt::format("the preset \"{}\" is a non-Newtonian paste, which the paper's step cannot step",
+                                      preset->name),
+              "set simulation.solver to \"iisph\" or leave it out, or drop \"material\" for the paper's paste");
   Scene sc = procedure_or_built_in(*tooth, procedure, params);
+  if (preset) {  // its force in newtons (a file's haptics.force_scale, read below, still wins)
+    sc.force_scale = 1;
+    sc.paste_preset = preset->name;
+    sc.paste_temperature_c = preset->temperature_c;
+  }
   sc.name = name;
   sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
   read_haptics(root, sc);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "test_tooth_support.hpp"
 
 namespace dentsph {
@@ -131,6 +132,37 @@ TEST(DentalSceneFile, TheIisphSolversSettings) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("scene.json: simulation.iisph.stiffness: must be in (0, 1], got 2; "), std::string::npos) << msg;
   }
+}
+
+// "material" fills the scene with a paste preset at force scale 1 (docs/model.md, "Presets"), its
+// iisph settings still the file's to change; a wrong one names the field and the choices.
+TEST(DentalSceneFile, AMaterialPresetFillsIt) {
+  const Scene sc = parse(R"({"name": "u", "tooth": {}, "material": {"preset": "universal", "temperature_c": 37},
+                             "simulation": {"iisph": {"max_iterations": 80}}})");
+  EXPECT_EQ(sc.paste_preset, "universal");
+  EXPECT_EQ(sc.paste_temperature_c, 37);
+  EXPECT_EQ(sc.force_scale, 1);
+  const Material paste = sc.model.materials[*sc.model.materials.paste];
+  EXPECT_EQ(paste, paste_preset("universal", 37).paste);
+  EXPECT_TRUE(sc.model.iisph.wall_rest_density) << "the preset's settings";
+  EXPECT_EQ(sc.model.iisph.max_iterations, 80) << "the file's own over the preset's";
+  EXPECT_EQ(parse(R"({"name": "f", "tooth": {}, "material": "flowable"})").paste_preset, "flowable");
+  EXPECT_TRUE(parse(R"({"name": "d", "tooth": {}})").paste_preset.empty());
+  const std::vector<std::pair<std::string, std::string>> broken = {
+      {R"({"name": "x", "tooth": {}, "material": "putty"})", "choose flowable, universal, packable, amalgam"},
+      {R"({"name": "x", "tooth": {}, "material": {"preset": "universal", "temperature_c": 90}})", "outside 10 to 70 C"},
+      {R"({"name": "x", "tooth": {}, "material": 3})", "expected a preset's name or an object"},
+      {R"({"name": "x", "tooth": {}, "material": "packable", "simulation": {"solver": "paper"}})", "set simulation.solver"},
+  };
+  for (const auto& [text, phrase] : broken)
+    try {
+      parse(text);
+      ADD_FAILURE() << text << " is refused";
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("scene.json: material"), std::string::npos) << msg;
+      EXPECT_NE(msg.find(phrase), std::string::npos) << msg;
+    }
 }
 
 TEST(DentalSceneFile, TheShippedExampleIsAClassTwo) {
