@@ -87,9 +87,12 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
     float f = float(v);
     if (ImGui::DragFloat(label, &f, std::max(1e-6f, 0.005f * std::abs(f)), lo, hi, fmt_str)) v = f;
   };
-  field("Kp (m^2/s^2)", m.Kp, 0.1f, 1e4f, "%.3g");
+  field("Kp (m^2/s^2)", m.Kp, 0.1f, 1e6f, "%.3g");
   field("Ka (Pa)", m.Ka, 0.f, 1e5f, "%.3g");
-  field("mu (Pa s)", m.mu, 0.f, 1e3f, "%.3g");
+  const bool newtonian = m.flow_index == 1 && m.yield_stress == 0;
+  field(newtonian ? "mu (Pa s)" : "K (Pa s^n)", m.mu, 0.f, 1e6f, "%.3g");
+  if (!newtonian)  // a preset's rheology (docs/model.md, "Rheology"): kept by an edit
+    ImGui::TextDisabled("n %.2f, yield stress %.3g Pa", double(m.flow_index), double(m.yield_stress));
   float a_mm = float(m.A * 1e3), b_mm = float(m.B * 1e3);
   if (ImGui::DragFloat("A (mm)", &a_mm, 0.002f, 0.f, 5.f, "%.3f")) m.A = a_mm * 1e-3;
   if (ImGui::DragFloat("B (mm)", &b_mm, 0.002f, 0.f, 5.f, "%.3f")) m.B = b_mm * 1e-3;

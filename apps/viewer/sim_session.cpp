@@ -261,7 +261,7 @@ void SimSession::publish(Simulation& sim, bool with_assessment, double steps_per
   s.limits = stability_limits(model, st);
   s.dt = model.dt;
   s.material = {paste_.Kp, paste_.Ka, paste_.mu, model.adhesion.A, model.adhesion.B, model.adhesion.eps,
-                model.adhesion.zeta};
+                model.adhesion.zeta, paste_.flow_index, paste_.yield_stress};
   s.tool_name = tool_name_;
   s.message = message_;
   s.paused = paused_;

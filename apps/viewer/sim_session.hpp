@@ -31,8 +31,9 @@ namespace dentsph::viewer {
 
 // Paste parameters a user may change while the simulation runs (MODEL.md's names).
 struct MaterialEdit {
-  real Kp = 0, Ka = 0, mu = 0;          // paste: m^2/s^2, Pa, Pa s
+  real Kp = 0, Ka = 0, mu = 0;          // paste: m^2/s^2, Pa, Pa s (a non-Newtonian paste's consistency, Pa s^n)
   real A = 0, B = 0, eps = 0, zeta = 0;  // adhesion kernel: m, m, -, -
+  real flow_index = 1, yield_stress = 0;  // the paste's rheology, shown, not edited (an edit keeps them)
 };
 
 struct Command {
