@@ -59,11 +59,6 @@ void DentalOptions::add_options(CLI::App& app, CLI::Option* scene_file, bool wit
 ToothSpec DentalOptions::tooth() const {
   ToothSpec spec;
   spec.mesh = mesh_;
-  auto given = [&](std::string_view name) {
-    for (const CLI::Option* o : options_)
-      if (o->get_name() == name) return o->count() > 0;
-    return false;
-  };
   if (given("--mesh-units")) {
     if (mesh_.empty())
       throw std::invalid_argument(fmt::format("--mesh-units {}: the built-in crown has no units to give; add --mesh", units_));

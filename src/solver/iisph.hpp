@@ -62,8 +62,8 @@ void advect(const Model& model, State& state, IisphScratch& x, int threads);
 // Whether a material of the model is non-Newtonian (its viscosity depends on the flow: rheology.cpp).
 inline bool has_rheology(const Model& model) { return model.materials.first_non_newtonian().has_value(); }
 // rheology.cpp: each material particle's effective viscosity at the shear rate of the velocities
-// `v` (material; the boundary and the tool: state.vel), and every row's viscosity weights, their sum
-// and the boundary's and tool's terms weighed with it. Returns the largest relative change of a
+// `v` of its material neighbours, and every row's viscosity weights, their diagonal (visc_block) and
+// the boundary's and tool's terms (at state.vel) weighed with it. Returns the largest relative change of a
 // particle's viscosity (infinity the first time in a step: `first`, which also keeps the unit weights).
 real update_viscosity(const Model& model, State& state, IisphScratch& x, int threads, const Vec3* v, bool first);
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient

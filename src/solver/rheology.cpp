@@ -1,6 +1,7 @@
 // A non-Newtonian material's viscosity in the iisph solver (docs/model.md, "Rheology"). Where the
 // model has one, the pair pass leaves each row's viscosity weight without the viscosity (the unit
-// weight m_j lapW_visc(r) / rho_j, kept here the first time in a step), and each Picard iteration
+// weight of the projected form below, over rho_j; kept here the first time in a step: the advection
+// pass's sums of the unit weights are replaced here), and each Picard iteration
 // of the viscosity solve (viscosity.cpp) calls update_viscosity: every material particle's velocity
 // gradient from its material neighbours, L_i = A_i M_i^-1 with A_i = sum_j (v_j - v_i) (x) V_j gradW_ij
 // and M_i = sum_j (x_j - x_i) (x) V_j gradW_ij (the row's pressure gradient; the correction of Bonet &
