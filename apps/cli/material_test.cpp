@@ -1,15 +1,24 @@
-// `dentsph material-test depth-of-cure [--material PRESET] [--irradiance MW_PER_CM2] [--time S]`.
+// `dentsph material-test depth-of-cure [--material PRESET] [--irradiance MW_PER_CM2] [--time S]`,
+// `dentsph material-test rheometer|slump [--material NAME] [--temperature C] [--out DIR]`.
 #include "material_test.hpp"
 
+#include <algorithm>
+#include <thread>
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "dentsph/cure_material.hpp"
 #include "dentsph/curing_light.hpp"
+#include "dentsph/handling.hpp"
+#include "dentsph/paste_presets.hpp"
+#include "output_dir.hpp"
 
 namespace dentsph::cli {
 
 void MaterialTestCommand::add_to(CLI::App& app) {
-  command_ = app.add_subcommand("material-test", "Virtual material tests: depth-of-cure (ISO 4049)");
+  command_ = app.add_subcommand(
+      "material-test", "Virtual material tests: depth-of-cure (ISO 4049); the pastes' handling tests rheometer, slump");
   command_->require_subcommand(1);
   depth_of_cure_ = command_->add_subcommand(
       "depth-of-cure",
@@ -30,11 +39,53 @@ void MaterialTestCommand::add_to(CLI::App& app) {
   depth_of_cure_->add_option("--mould-length", length_mm_, "The mould's length, mm")
       ->check(CLI::Range(1.0, 50.0))
       ->capture_default_str();
+  add_handling(*command_, "rheometer",
+               "Parallel-plate rheometer in steady shear: the flow curve, the viscosity at 10 /s beside the published "
+               "range",
+               rheometer_);
+  add_handling(*command_, "slump",
+               "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio "
+               "height / diameter",
+               slump_);
+}
+
+void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& name, const std::string& description,
+                                       Handling& h) {
+  h.command = parent.add_subcommand(name, description);
+  h.command->add_option("--material", h.material, fmt::format("The paste: {}", fmt::join(paste_preset_names(), ", ")))
+      ->check(CLI::IsMember(paste_preset_names()))
+      ->capture_default_str();
+  h.command->add_option("--temperature", h.temperature_c, "The paste's temperature, C (10 to 70)")
+      ->check(CLI::Range(10.0, 70.0))
+      ->capture_default_str();
+  h.command->add_option("--out", h.out, "Write result.json and the plots (SVG) into this folder");
+  h.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  h.command->add_option("--threads", h.threads, "Threads for the parallel stages")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+}
+
+int MaterialTestCommand::run_handling(const std::string& name, const Handling& h) const {
+  if (!h.out.empty()) prepare_output_dir(h.out, "--out");  // before the test: never lost at its end
+  HandlingRunOptions run;
+  run.threads = h.threads;
+  run.progress = [](const std::string& line) { fmt::print("{}\n", line); };
+  const HandlingResult r = run_handling_test(name, paste_preset(h.material, h.temperature_c), run);
+  fmt::print("{}", handling_report(r));
+  if (!h.out.empty()) {
+    write_handling_outputs(h.out, r);
+    fmt::print("wrote {}/result.json", h.out);
+    for (const HandlingCurve& c : r.curves) fmt::print(", {}.svg", c.file);
+    fmt::print("\n");
+  }
+  return 0;
 }
 
 bool MaterialTestCommand::chosen() const { return command_ != nullptr && command_->parsed(); }
 
 int MaterialTestCommand::run() const {
+  if (rheometer_.command->parsed()) return run_handling("rheometer", rheometer_);
+  if (slump_.command->parsed()) return run_handling("slump", slump_);
   DepthOfCureOptions o = options_;
   o.irradiance = irradiance_mw_ * W_per_m2_per_mW_per_cm2;
   o.spacing = spacing_mm_ * 1e-3;

@@ -1,6 +1,9 @@
 // `dentsph material-test`: virtual material tests. depth-of-cure: the ISO 4049 depth of cure of a
-// cure preset (include/dentsph/depth_of_cure.hpp).
+// cure preset (include/dentsph/depth_of_cure.hpp); rheometer and slump: the paste presets' handling
+// tests (include/dentsph/handling.hpp), each figure beside its published range.
 #pragma once
+
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -10,18 +13,31 @@ namespace dentsph::cli {
 
 class MaterialTestCommand {
  public:
-  // Adds the "material-test" subcommand (with "depth-of-cure") to `app`.
+  // Adds the "material-test" subcommand (with "depth-of-cure", "rheometer" and "slump") to `app`.
   void add_to(CLI::App& app);
   // Whether the command line chose it.
   bool chosen() const;
-  // Runs it: prints the report; exit status 0.
+  // Runs it: prints the report (and with --out writes result.json and the plots); exit status 0.
+  // Throws std::invalid_argument for a refused option (an output folder that cannot be written).
   int run() const;
 
  private:
+  // The options of a handling test's subcommand.
+  struct Handling {
+    CLI::App* command = nullptr;
+    std::string material = "universal";
+    double temperature_c = 23;
+    std::string out;
+    int threads = 1;
+  };
+  void add_handling(CLI::App& parent, const std::string& name, const std::string& description, Handling& h);
+  int run_handling(const std::string& name, const Handling& h) const;
+
   CLI::App* command_ = nullptr;
   CLI::App* depth_of_cure_ = nullptr;
   DepthOfCureOptions options_;
   double irradiance_mw_ = 1000, spacing_mm_ = 0.1, length_mm_ = 10;
+  Handling rheometer_, slump_;
 };
 
 }  // namespace dentsph::cli

@@ -12,13 +12,15 @@ namespace dentsph {
 
 namespace {
 
-// A composite of viscosity eta10 at 10 /s with flow index n: the consistency K = eta10 10^(1 - n).
-Material composite(real eta10, real n, real yield_stress, real rho0) {
+// A composite of viscosity eta10 at 10 /s with flow index n: the consistency K = eta10 10^(1 - n);
+// its viscosity capped at `plateau` (a low-shear Newtonian plateau), or at 1e6 Pa s where that is 0
+// (the cap of a paste that stands: docs/model.md, "Rheology").
+Material composite(real eta10, real n, real yield_stress, real plateau, real rho0) {
   Material m;
   m.mu = eta10 * std::pow(10.0, 1 - n);
   m.flow_index = n;
   m.yield_stress = yield_stress;
-  m.max_viscosity = 1e6;
+  m.max_viscosity = plateau > 0 ? plateau : 1e6;
   m.rho0 = rho0;
   m.Kp = 1e4;
   m.Ka = 50;
@@ -26,25 +28,25 @@ Material composite(real eta10, real n, real yield_stress, real rho0) {
 }
 
 // The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C), flow index,
-// yield stress (Pa), density (kg/m^3), cure preset, the published range of the viscosity and its
-// source.
+// yield stress (Pa), low-shear plateau (Pa s at 23 C; 0: none), density (kg/m^3), cure preset, the
+// published range of the viscosity and its source.
 struct PresetRow {
   const char* name;
-  real eta10, n, yield_stress, rho0;
+  real eta10, n, yield_stress, plateau, rho0;
   const char* cure;
   real low, high;
   const char* source;
 };
 
 constexpr PresetRow kPresets[] = {
-    {"flowable", 1700, 0.5, 0, 2000, "composite", 1310, 2200,
+    {"flowable", 1700, 0.5, 0, 1700, 2000, "composite", 1310, 2200,
      "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C"},
-    {"universal", 5300, 0.5, 200, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
+    {"universal", 5300, 0.5, 200, 0, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
      "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and packables 6.75 to "
      "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
-    {"packable", 11400, 0.5, 1000, 2200, "composite", 6750, 19100,
+    {"packable", 11400, 0.5, 1000, 0, 2200, "composite", 6750, 19100,
      "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C"},
-    {"amalgam", 20000, 0.5, 1e4, 11600, "amalgam", 0, 0,
+    {"amalgam", 20000, 0.5, 1e4, 0, 11600, "amalgam", 0, 0,
      "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
 };
 
@@ -74,8 +76,9 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     PastePreset p;
     p.name = name;
     p.temperature_c = temperature_c;
-    p.paste = composite(r.eta10, r.n, r.yield_stress, r.rho0);
+    p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0);
     p.paste.mu *= paste_temperature_factor(temperature_c);  // the published ranges are at 23 C
+    if (r.plateau > 0) p.paste.max_viscosity *= paste_temperature_factor(temperature_c);
     p.cure = r.cure;
     p.published_low = r.low;
     p.published_high = r.high;

@@ -1,0 +1,103 @@
+// Virtual handling tests of the filling pastes (docs/model.md, "Handling tests"): each reproduces a
+// published protocol on particles (its geometry, speed and the quantity measured) with a preset
+// (paste_presets.hpp) and gives its figures beside the published range and source.
+// `dentsph material-test rheometer|slump --material NAME [--out DIR]` runs them; with --out each
+// writes result.json and its curves as SVG plots.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dentsph/paste_presets.hpp"
+
+namespace dentsph {
+
+// One measured figure beside what was published.
+struct HandlingFigure {
+  std::string name;                       // e.g. "viscosity at 10 /s"
+  real value = 0;
+  std::string unit;                       // e.g. "Pa s"
+  std::optional<std::array<real, 2>> range;  // the published range [low, high], where one is published
+  std::string source;                     // where the range comes from, or why there is none
+  // Whether the value lies in the range (true where there is none).
+  bool in_range() const { return !range || (value >= (*range)[0] && value <= (*range)[1]); }
+};
+
+// A curve the test measured (plotted as `file`.svg), with the model's own law or the published
+// points as further series.
+struct HandlingSeries {
+  std::string name;
+  std::vector<real> x, y;
+  bool dashed = false;  // drawn dashed: a law or a reference, not a measurement
+};
+struct HandlingCurve {
+  std::string file;     // the plot's file name without its extension, e.g. "flow_curve"
+  std::string title;
+  std::string x_label, y_label;  // with their units
+  bool log_x = false, log_y = false;
+  std::vector<HandlingSeries> series;
+  // A published range drawn as a bar at x: [x, low, high] (none where x is NaN).
+  std::optional<std::array<real, 3>> range_bar;
+};
+
+struct HandlingResult {
+  std::string test;      // "rheometer", "slump"
+  std::string material;  // the preset's name
+  real temperature_c = 23;
+  std::vector<HandlingFigure> figures;
+  std::vector<HandlingCurve> curves;
+  std::vector<std::string> notes;  // what a reader must know to read the figures (calibrations, departures)
+  const HandlingFigure& figure(const std::string& name) const;  // std::out_of_range naming it
+};
+
+// What every test takes besides its geometry.
+struct HandlingRunOptions {
+  int threads = 1;
+  std::function<void(const std::string&)> progress;  // a line per stage, where set
+};
+
+// The parallel-plate rheometer in steady shear (the flow curve): a disc of paste between a fixed
+// plate and a turning one; at each rim shear rate the torque over the same quarter turn of the
+// plate, divided by the rheometer's constant measured, as a real rheometer's is, with a Newtonian
+// standard of the same form, and read as the viscosity at the rim's shear rate with the
+// Weissenberg-Rabinowitsch correction for parallel plates.
+struct RheometerOptions {
+  HandlingRunOptions run;
+  std::vector<real> shear_rates{1, 2, 5, 10, 20, 50, 100};  // 1/s at the rim, ascending, at least two
+  real spacing = 0.3e-3;       // m (the dental paste's)
+  int radius_spacings = 14;    // the disc's radius R
+  int gap_layers = 6;          // the paste's layers; the gap H between the plates' first layers is one more
+};
+HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions& options = {});
+
+// The slump test of Lee et al. (Dent Mater 2010): a fixed volume of paste (here a cylinder as tall
+// as it is wide) let go on a glass plate, slumping for 10 s under gravity; the aspect ratio
+// height / diameter at the end.
+struct SlumpOptions {
+  HandlingRunOptions run;
+  real diameter = 3e-3;   // m, of the cylinder (its height is the same)
+  real duration = 10;     // s
+  real spacing = 0.3e-3;  // m
+  real dt = 10e-3;        // s, at most (the velocity limit may take smaller steps)
+};
+HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& options = {});
+
+// The test named `test` ("rheometer", "slump") with default options but `run`.
+// std::invalid_argument naming the choices for another name.
+HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run);
+const std::vector<std::string>& handling_test_names();
+
+// The figures as a table for people: name, value, published range, in range or not, source.
+std::string handling_report(const HandlingResult& result);
+// {"test", "material", "temperature_c", "figures": [{"name", "value", "unit", "range": [low, high] or
+// null, "in_range", "source"}], "curves": [{"file", ...}], "notes": [...]}.
+std::string handling_result_json(const HandlingResult& result);
+// Writes result.json and each curve's SVG plot into `dir` (created). std::runtime_error naming a
+// file that cannot be written.
+void write_handling_outputs(const std::filesystem::path& dir, const HandlingResult& result);
+
+}  // namespace dentsph
