@@ -305,5 +305,36 @@ TEST(ReportBrowser, StoreFindsAStudentsSessionsWithoutFolders) {
   EXPECT_NE(dom.find("data-charts=\""), std::string::npos);
 }
 
+// A handling test's plot as a person sees it (`material-test rheometer --out`): flow_curve.svg in
+// Chromium shows the measured curve (blue), the preset's law (red, dashed) and the published range
+// (an orange bar), on white with dark axes and labels.
+TEST(ReportBrowser, AHandlingTestsPlotShowsItsCurveLawAndPublishedRange) {
+  NEED_CHROMIUM();
+  const fs::path out = work() / "rheometer";
+  const Result r = dentsph("material-test rheometer --material universal --threads 2 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Png png = screenshot(out / "flow_curve.svg", work() / "flow_curve.png", 640, 420);
+  ASSERT_EQ(png.w, 640);
+  auto near = [](const std::array<int, 3>& c, int r, int g, int b) {
+    return std::abs(c[0] - r) < 30 && std::abs(c[1] - g) < 30 && std::abs(c[2] - b) < 30;
+  };
+  int white = 0, dark = 0, blue = 0, red = 0, orange = 0;
+  for (int y = 0; y < png.h; ++y)
+    for (int x = 0; x < png.w; ++x) {
+      const auto c = png.at(x, y);
+      white += c[0] > 245 && c[1] > 245 && c[2] > 245;
+      dark += c[0] < 80 && c[1] < 80 && c[2] < 80;
+      blue += near(c, 31, 95, 168);
+      red += near(c, 192, 57, 43);
+      orange += near(c, 249, 211, 150);
+    }
+  const int all = png.w * png.h;
+  EXPECT_GT(white, all / 2) << "a white page";
+  EXPECT_GT(dark, 500) << "axes, ticks and labels";
+  EXPECT_GT(blue, 400) << "the measured curve";
+  EXPECT_GT(red, 200) << "the preset's law";
+  EXPECT_GT(orange, 200) << "the published range";
+}
+
 }  // namespace
 }  // namespace dentsph::report

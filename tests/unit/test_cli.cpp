@@ -388,6 +388,53 @@ TEST(Cli, TheDepthOfCureTest) {
   expect_refused("material-test depth-of-cure --irradiance 0", {"--irradiance"});
 }
 
+// The presets' handling tests (docs/model.md, "Handling tests"): the figures printed beside their
+// published range, and with --out result.json (each figure's name, value, unit, range or null,
+// source) and the plot; an unknown paste, a temperature out of range and an output folder that is
+// a file are refused.
+TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
+  const fs::path out = dir() / "rheometer";
+  const Result r = dentsph_cli("material-test rheometer --material flowable --out " + out.string() + " --threads 2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("viscosity at 10 /s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(published 1310 to 2200 Pa s: in range)"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "result.json"));
+  EXPECT_EQ(j.at("test"), "rheometer");
+  EXPECT_EQ(j.at("material"), "flowable");
+  bool eta = false, index = false;
+  for (const nlohmann::json& f : j.at("figures")) {
+    ASSERT_TRUE(f.contains("name") && f.contains("value") && f.contains("unit") && f.contains("range") &&
+                f.contains("source"))
+        << f.dump();
+    if (f.at("name") == "viscosity at 10 /s") {
+      eta = true;
+      EXPECT_EQ(f.at("unit"), "Pa s");
+      EXPECT_EQ(f.at("range"), nlohmann::json::array({1310.0, 2200.0}));
+      EXPECT_GE(f.at("value").get<double>(), 1310.0);
+      EXPECT_LE(f.at("value").get<double>(), 2200.0);
+      EXPECT_EQ(f.at("in_range"), true);
+      EXPECT_NE(f.at("source").get<std::string>().find("Loumprinis"), std::string::npos);
+    }
+    if (f.at("name") == "flow index") {
+      index = true;
+      EXPECT_TRUE(f.at("range").is_null()) << "no published range: none claimed";
+    }
+  }
+  EXPECT_TRUE(eta && index) << j.dump(2);
+  ASSERT_EQ(j.at("curves").size(), 1u);
+  EXPECT_EQ(j.at("curves")[0].at("file"), "flow_curve.svg");
+  std::ifstream svg(out / "flow_curve.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("<polyline"), std::string::npos);
+  EXPECT_NE(text.find("viscosity (Pa s)"), std::string::npos);
+
+  expect_refused("material-test slump --material putty", {"--material", "putty"});
+  expect_refused("material-test rheometer --temperature 80", {"--temperature"});
+  write(dir() / "a_file", "x");
+  expect_refused("material-test slump --out " + (dir() / "a_file").string(), {"--out", "a_file"});
+}
+
 TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
   // validate says which limits hold: the paper's acoustic and viscous, or the iisph velocity CFL.
   const Result paper = dentsph_cli("validate scenes/tool_press.json");
