@@ -47,6 +47,10 @@ void MaterialTestCommand::add_to(CLI::App& app) {
                "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio "
                "height / diameter",
                slump_);
+  add_handling(*command_, "packing",
+               "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the "
+               "stress under the probe",
+               packing_);
 }
 
 void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& name, const std::string& description,
@@ -86,6 +90,7 @@ bool MaterialTestCommand::chosen() const { return command_ != nullptr && command
 int MaterialTestCommand::run() const {
   if (rheometer_.command->parsed()) return run_handling("rheometer", rheometer_);
   if (slump_.command->parsed()) return run_handling("slump", slump_);
+  if (packing_.command->parsed()) return run_handling("packing", packing_);
   DepthOfCureOptions o = options_;
   o.irradiance = irradiance_mw_ * W_per_m2_per_mW_per_cm2;
   o.spacing = spacing_mm_ * 1e-3;

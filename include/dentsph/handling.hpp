@@ -86,7 +86,24 @@ struct SlumpOptions {
 };
 HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& options = {});
 
-// The test named `test` ("rheometer", "slump") with default options but `run`.
+// The packing test: a flat probe driven at 0.5 mm/s 2 mm deep into paste filling a mould 7 mm
+// across and 5 mm deep, then held still for 10 s; the stress under the probe (its force over its
+// face's area) at its peak and as it relaxes over the hold, for a 3 mm and a 6 mm probe (the 6 mm
+// one leaves the paste half a millimetre to the mould's wall: the wall effect).
+struct PackingOptions {
+  HandlingRunOptions run;
+  std::vector<real> probe_diameters{3e-3, 6e-3};  // m
+  real mould_diameter = 7e-3;  // m
+  real mould_depth = 5e-3;     // m, filled level with its rim
+  real speed = 0.5e-3;         // m/s
+  real depth = 2e-3;           // m below the paste's surface
+  real hold = 10;              // s
+  real spacing = 0.3e-3;       // m
+  real dt = 0.02;              // s
+};
+HandlingResult packing_test(const PastePreset& preset, const PackingOptions& options = {});
+
+// The test named `test` ("rheometer", "slump", "packing") with default options but `run`.
 // std::invalid_argument naming the choices for another name.
 HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run);
 const std::vector<std::string>& handling_test_names();

@@ -17,7 +17,7 @@ struct PastePreset {
   real temperature_c = 23;     // C, the paste's temperature (the consistency below is at it)
   Material paste;              // SI: consistency K (Pa s^n), flow index, yield stress, density, stiffness, adhesion
   std::string cure;            // its cure preset (cure_material.hpp): "composite" or "amalgam"
-  real viscosity_at_10 = 0;    // Pa s, its viscosity at a shear rate of 10 /s (23 C)
+  real viscosity_at_10 = 0;    // Pa s, its viscosity at a shear rate of 10 /s (its yield stress's share included)
   real published_low = 0, published_high = 0;  // Pa s, the published range that figure sits in
   std::string source;          // the publication of that range, and which constants are assumed
 };

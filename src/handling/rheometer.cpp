@@ -167,10 +167,14 @@ HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions&
                          "Lee, Son & Um (Dent Mater 2003): flowables 0.04 to 0.56 of a conventional hybrid (Z-100) at "
                          "10 rad/s; here over the universal preset's viscosity at 10 /s"});
   }
+  const real law_slope = std::log(law[n - 1] * rates[n - 1] / (law[n - 2] * rates[n - 2])) /
+                         std::log(rates[n - 1] / rates[n - 2]);
   r.figures.push_back({"flow index", flow_index, "", std::nullopt,
-                       fmt::format("the preset's flow index is {:g} (assumed: docs/model.md, \"Presets\"); every "
-                                   "composite Lee, Son & Um (Dent Mater 2003) measured thins under shear",
-                                   preset.paste.flow_index)});
+                       fmt::format("the slope of the stress over the shear rate (log-log) between {:g} and {:g} /s; the "
+                                   "preset's law gives {:.3f} there (flow index {:g}, assumed: docs/model.md, "
+                                   "\"Presets\"; every composite Lee, Son & Um, Dent Mater 2003, measured thins under "
+                                   "shear)",
+                                   rates[n - 2], rates[n - 1], law_slope, preset.paste.flow_index)});
   r.figures.push_back({"rig constant", cal, "", std::nullopt,
                        "the torque of a Newtonian standard over pi mu Omega R^4 / (2 H): divided out of every torque"});
   HandlingCurve curve;

@@ -8,16 +8,19 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "physics/rheology.hpp"
+
 namespace dentsph {
 
 namespace {
 
-// A composite of viscosity eta10 at 10 /s with flow index n: the consistency K = eta10 10^(1 - n);
-// its viscosity capped at `plateau` (a low-shear Newtonian plateau), or at 1e6 Pa s where that is 0
+// A composite whose viscosity at 10 /s is eta10 (the yield stress's share, yield_stress / 10 s,
+// included) with flow index n: the consistency K = (eta10 - yield_stress / 10 s) 10^(1 - n); its
+// viscosity capped at `plateau` (a low-shear Newtonian plateau), or at 1e6 Pa s where that is 0
 // (the cap of a paste that stands: docs/model.md, "Rheology").
 Material composite(real eta10, real n, real yield_stress, real plateau, real rho0) {
   Material m;
-  m.mu = eta10 * std::pow(10.0, 1 - n);
+  m.mu = (eta10 - yield_stress / 10) * std::pow(10.0, 1 - n);
   m.flow_index = n;
   m.yield_stress = yield_stress;
   m.max_viscosity = plateau > 0 ? plateau : 1e6;
@@ -27,8 +30,8 @@ Material composite(real eta10, real n, real yield_stress, real plateau, real rho
   return m;
 }
 
-// The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C), flow index,
-// yield stress (Pa), low-shear plateau (Pa s at 23 C; 0: none), density (kg/m^3), cure preset, the
+// The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C, its yield
+// stress's share included), flow index, yield stress (Pa), low-shear plateau (Pa s at 23 C; 0: none), density (kg/m^3), cure preset, the
 // published range of the viscosity and its source.
 struct PresetRow {
   const char* name;
@@ -41,12 +44,12 @@ struct PresetRow {
 constexpr PresetRow kPresets[] = {
     {"flowable", 1700, 0.5, 0, 1700, 2000, "composite", 1310, 2200,
      "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C"},
-    {"universal", 5300, 0.5, 200, 0, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
+    {"universal", 5300, 0.5, 2e4, 0, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
      "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and packables 6.75 to "
      "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
-    {"packable", 11400, 0.5, 1000, 0, 2200, "composite", 6750, 19100,
+    {"packable", 11400, 0.5, 1e5, 0, 2200, "composite", 6750, 19100,
      "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C"},
-    {"amalgam", 20000, 0.5, 1e4, 0, 11600, "amalgam", 0, 0,
+    {"amalgam", 40000, 0.5, 2e5, 0, 11600, "amalgam", 0, 0,
      "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
 };
 
@@ -77,13 +80,17 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     p.name = name;
     p.temperature_c = temperature_c;
     p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0);
-    p.paste.mu *= paste_temperature_factor(temperature_c);  // the published ranges are at 23 C
-    if (r.plateau > 0) p.paste.max_viscosity *= paste_temperature_factor(temperature_c);
+    // The published ranges are at 23 C; warmer, the whole flow curve is lower by the same factor
+    // (its consistency, yield stress and plateau).
+    const real warm = paste_temperature_factor(temperature_c);
+    p.paste.mu *= warm;
+    p.paste.yield_stress *= warm;
+    if (r.plateau > 0) p.paste.max_viscosity *= warm;
     p.cure = r.cure;
     p.published_low = r.low;
     p.published_high = r.high;
     p.source = r.source;
-    p.viscosity_at_10 = p.paste.mu * std::pow(10.0, p.paste.flow_index - 1);
+    p.viscosity_at_10 = rheology::effective_viscosity(p.paste, 10);
     return p;
   }
   throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));

@@ -1,0 +1,126 @@
+// The packing test (include/dentsph/handling.hpp; docs/model.md, "Handling tests"): a flat probe
+// (the tool: a cylinder 3 mm tall, its face two layers and its side two layers deep) is driven down
+// at a constant speed into paste filling a cylindrical mould level with its rim, to a depth below
+// the surface, and held there. The paste's force on the probe over the probe's face is the packing
+// stress. The mould's floor and wall are boundary particles two layers deep; gravity acts.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "dentsph/handling.hpp"
+#include "dentsph/scene.hpp"
+#include "handling/rig.hpp"
+
+namespace dentsph {
+
+namespace {
+
+constexpr real pi = 3.14159265358979323846;
+
+struct Run {
+  std::vector<real> t, stress;  // s, MPa
+  real peak = 0;                // MPa
+  real end = 0;                 // MPa, over the hold's second half
+};
+
+Run press(const PastePreset& preset, real probe_diameter, const PackingOptions& o) {
+  const real s = o.spacing, Rm = 0.5 * o.mould_diameter, a = 0.5 * probe_diameter;
+  const int nz = int(std::lround(o.mould_depth / s));
+  const int reach = int(std::ceil(Rm / s)) + 3;
+  const int probe_layers = int(std::lround(3e-3 / s));
+  const real L = reach + 2;
+  ModelParams p = handling::rig_params(s, Vec3{-L, -L, -6} * s, Vec3{L, L, nz + probe_layers + 12.0} * s, o.dt,
+                                       Vec3{0, 0, -9.81});
+  Model model = make_model(p);
+  const Material& paste = preset.paste;
+  const Material steel = handling::wall_beside(paste);
+  const real m = lattice_particle_mass(paste.rho0, s, model.kernel);
+  std::vector<ParticleInit> ps;
+  for (int k = -2; k < nz + 2; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const Vec3 x{i * s, j * s, (k + 0.5) * s};
+        const real r = std::hypot(x.x, x.y);
+        const bool floor = k < 0 && r < Rm + 2 * s, wall = k >= 0 && r >= Rm && r < Rm + 2 * s;
+        if (floor || wall) ps.push_back(make_particle(Role::boundary, x, m, steel));
+        if (k >= 0 && k < nz && r < Rm) ps.push_back(make_particle(Role::material, x, m, paste));
+      }
+  // The probe: its first layer two spacings (the kernel's support) above the paste's top layer, so
+  // that it starts out of reach; its face half a spacing under that layer, a spacing above the
+  // paste's surface.
+  const real face0 = nz * s + s;
+  for (int k = 0; k < probe_layers; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const Vec3 x{i * s, j * s, face0 + (k + 0.5) * s};
+        const real r = std::hypot(x.x, x.y);
+        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, steel));
+      }
+  State st;
+  st.add_particles(model, ps);
+
+  const real travel = s + o.depth, t_stop = travel / o.speed, t_end = t_stop + o.hold;
+  const real area = pi * a * a;
+  Run r;
+  real end_sum = 0;
+  int end_count = 0;
+  while (st.time < t_end - 0.5 * o.dt) {
+    const real next = st.time + o.dt;
+    st.tool_pose = Pose{Vec3{0, 0, -std::min(travel, o.speed * next)}, Quat{}};
+    handling::rig_step(model, st, o.run, "packing");
+    const real stress = st.tool_wrench.force.z / area * 1e-6;
+    r.t.push_back(st.time);
+    r.stress.push_back(stress);
+    r.peak = std::max(r.peak, stress);
+    if (st.time > t_stop + 0.5 * o.hold + 1e-9) end_sum += stress, ++end_count;  // the hold's second half
+  }
+  r.end = end_count > 0 ? end_sum / end_count : 0;
+  if (o.run.progress)
+    o.run.progress(fmt::format("packing: {} under a {:g} mm probe: peak {:.3g} MPa, {:.3g} MPa after the hold",
+                               preset.name, probe_diameter * 1e3, r.peak, r.end));
+  return r;
+}
+
+}  // namespace
+
+HandlingResult packing_test(const PastePreset& preset, const PackingOptions& o) {
+  if (o.probe_diameters.empty() || !(o.spacing > 0) || !(o.speed > 0) || !(o.depth > 0) || !(o.hold >= 0) ||
+      !(o.dt > 0) || !(o.mould_depth > o.depth))
+    throw std::invalid_argument(
+        "packing: give at least one probe, a positive spacing, speed, depth and dt, and a mould deeper than the press");
+  for (real d : o.probe_diameters)
+    if (!(d > 2 * o.spacing) || !(d < o.mould_diameter - 2 * o.spacing))
+      throw std::invalid_argument(fmt::format(
+          "packing: a {:g} mm probe must be wider than two spacings and narrower than the mould less two", d * 1e3));
+  HandlingResult r;
+  r.test = "packing";
+  r.material = preset.name;
+  r.temperature_c = preset.temperature_c;
+  HandlingCurve curve;
+  curve.file = "packing";
+  curve.title = fmt::format("Packing: {} at {:g} C, {:g} mm/s to {:g} mm, held {:g} s", preset.name,
+                            preset.temperature_c, o.speed * 1e3, o.depth * 1e3, o.hold);
+  curve.x_label = "time (s)";
+  curve.y_label = "stress under the probe (MPa)";
+  for (real d : o.probe_diameters) {
+    const Run run = press(preset, d, o);
+    const std::string probe = fmt::format("{:g} mm probe", d * 1e3);
+    r.figures.push_back({"peak stress, " + probe, run.peak, "MPa", std::array<real, 2>{0.12, 4.21},
+                         "flat-probe packing stresses of resin composites, 0.12 to 4.21 MPa, packables high and "
+                         "flowables low (e.g. Elbishari, Satterthwaite & Silikas, Int J Mol Sci 2011)"});
+    r.figures.push_back({"stress after the hold over the peak, " + probe, run.peak > 0 ? run.end / run.peak : 0, "",
+                         std::nullopt,
+                         "published: the stress relaxes over the hold (a viscoelastic paste); a purely viscous "
+                         "paste's falls at once to what its yield stress and weight hold"});
+    curve.series.push_back({probe, run.t, run.stress, false});
+  }
+  r.curves.push_back(curve);
+  r.notes.push_back(fmt::format("a mould {:g} mm across and {:g} mm deep filled level with its rim ({:g} mm spacing); "
+                                "the stress is the paste's force on the probe over its face's area",
+                                o.mould_diameter * 1e3, o.mould_depth * 1e3, o.spacing * 1e3));
+  return r;
+}
+
+}  // namespace dentsph
