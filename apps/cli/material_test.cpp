@@ -51,6 +51,10 @@ void MaterialTestCommand::add_to(CLI::App& app) {
                "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the "
                "stress under the probe",
                packing_);
+  add_handling(*command_, "tack",
+               "Probe tack: a 6 mm steel probe pressed onto the paste at 1 N for 1 s, withdrawn at 2, 4, 6 and 8 mm/s: "
+               "the peak pull and the work of separation",
+               tack_);
 }
 
 void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& name, const std::string& description,
@@ -91,6 +95,7 @@ int MaterialTestCommand::run() const {
   if (rheometer_.command->parsed()) return run_handling("rheometer", rheometer_);
   if (slump_.command->parsed()) return run_handling("slump", slump_);
   if (packing_.command->parsed()) return run_handling("packing", packing_);
+  if (tack_.command->parsed()) return run_handling("tack", tack_);
   DepthOfCureOptions o = options_;
   o.irradiance = irradiance_mw_ * W_per_m2_per_mW_per_cm2;
   o.spacing = spacing_mm_ * 1e-3;

@@ -37,7 +37,7 @@ class MaterialTestCommand {
   CLI::App* depth_of_cure_ = nullptr;
   DepthOfCureOptions options_;
   double irradiance_mw_ = 1000, spacing_mm_ = 0.1, length_mm_ = 10;
-  Handling rheometer_, slump_, packing_;
+  Handling rheometer_, slump_, packing_, tack_;
 };
 
 }  // namespace dentsph::cli

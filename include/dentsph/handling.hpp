@@ -40,6 +40,7 @@ struct HandlingCurve {
   std::string x_label, y_label;  // with their units
   bool log_x = false, log_y = false;
   std::vector<HandlingSeries> series;
+  bool legend_right = false;  // the legend in the upper right corner (else the upper left)
   // A published range drawn as a bar at x: [x, low, high] (none where x is NaN).
   std::optional<std::array<real, 3>> range_bar;
 };
@@ -103,7 +104,26 @@ struct PackingOptions {
 };
 HandlingResult packing_test(const PastePreset& preset, const PackingOptions& options = {});
 
-// The test named `test` ("rheometer", "slump", "packing") with default options but `run`.
+// The probe-tack test of Kaleem, Satterthwaite & Watts: a 6 mm steel probe pressed onto paste
+// filling the packing test's mould until it bears `press_force`, held there `press_time`, then
+// withdrawn at each speed; the peak pull-off force and the work of separation (the pull's force
+// integrated over the probe's travel) at each speed.
+struct TackOptions {
+  HandlingRunOptions run;
+  std::vector<real> speeds{2e-3, 4e-3, 6e-3, 8e-3};  // m/s
+  real probe_diameter = 6e-3;  // m
+  real mould_diameter = 7e-3;  // m
+  real mould_depth = 5e-3;     // m
+  real press_force = 1;        // N
+  real press_speed = 0.5e-3;   // m/s, down onto the paste and on until the probe bears press_force (at most 2 mm in)
+  real press_time = 1;         // s, the probe held where it bore press_force
+  real pull_distance = 1.5e-3;  // m (the adhesion's reach is 0.9 mm)
+  real spacing = 0.3e-3;       // m
+  real dt = 5e-3;              // s
+};
+HandlingResult tack_test(const PastePreset& preset, const TackOptions& options = {});
+
+// The test named `test` ("rheometer", "slump", "packing", "tack") with default options but `run`.
 // std::invalid_argument naming the choices for another name.
 HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run);
 const std::vector<std::string>& handling_test_names();

@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "dentsph/handling.hpp"
-#include "dentsph/scene.hpp"
 #include "handling/rig.hpp"
 
 namespace dentsph {
@@ -26,42 +25,12 @@ struct Run {
 };
 
 Run press(const PastePreset& preset, real probe_diameter, const PackingOptions& o) {
-  const real s = o.spacing, Rm = 0.5 * o.mould_diameter, a = 0.5 * probe_diameter;
-  const int nz = int(std::lround(o.mould_depth / s));
-  const int reach = int(std::ceil(Rm / s)) + 3;
-  const int probe_layers = int(std::lround(3e-3 / s));
-  const real L = reach + 2;
-  ModelParams p = handling::rig_params(s, Vec3{-L, -L, -6} * s, Vec3{L, L, nz + probe_layers + 12.0} * s, o.dt,
-                                       Vec3{0, 0, -9.81});
-  Model model = make_model(p);
-  const Material& paste = preset.paste;
-  const Material steel = handling::wall_beside(paste);
-  const real m = lattice_particle_mass(paste.rho0, s, model.kernel);
-  std::vector<ParticleInit> ps;
-  for (int k = -2; k < nz + 2; ++k)
-    for (int j = -reach; j <= reach; ++j)
-      for (int i = -reach; i <= reach; ++i) {
-        const Vec3 x{i * s, j * s, (k + 0.5) * s};
-        const real r = std::hypot(x.x, x.y);
-        const bool floor = k < 0 && r < Rm + 2 * s, wall = k >= 0 && r >= Rm && r < Rm + 2 * s;
-        if (floor || wall) ps.push_back(make_particle(Role::boundary, x, m, steel));
-        if (k >= 0 && k < nz && r < Rm) ps.push_back(make_particle(Role::material, x, m, paste));
-      }
-  // The probe: its first layer two spacings (the kernel's support) above the paste's top layer, so
-  // that it starts out of reach; its face half a spacing under that layer, a spacing above the
-  // paste's surface.
-  const real face0 = nz * s + s;
-  for (int k = 0; k < probe_layers; ++k)
-    for (int j = -reach; j <= reach; ++j)
-      for (int i = -reach; i <= reach; ++i) {
-        const Vec3 x{i * s, j * s, face0 + (k + 0.5) * s};
-        const real r = std::hypot(x.x, x.y);
-        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, steel));
-      }
-  State st;
-  st.add_particles(model, ps);
+  handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, probe_diameter, o.dt);
+  Model& model = rig.model;
+  State& st = rig.state;
+  const real a = 0.5 * probe_diameter;
 
-  const real travel = s + o.depth, t_stop = travel / o.speed, t_end = t_stop + o.hold;
+  const real travel = rig.face_gap + o.depth, t_stop = travel / o.speed, t_end = t_stop + o.hold;
   const real area = pi * a * a;
   Run r;
   real end_sum = 0;

@@ -19,7 +19,7 @@ const HandlingFigure& HandlingResult::figure(const std::string& name) const {
 }
 
 const std::vector<std::string>& handling_test_names() {
-  static const std::vector<std::string> names{"rheometer", "slump", "packing"};
+  static const std::vector<std::string> names{"rheometer", "slump", "packing", "tack"};
   return names;
 }
 
@@ -38,6 +38,11 @@ HandlingResult run_handling_test(const std::string& test, const PastePreset& pre
     PackingOptions o;
     o.run = run;
     return packing_test(preset, o);
+  }
+  if (test == "tack") {
+    TackOptions o;
+    o.run = run;
+    return tack_test(preset, o);
   }
   throw std::invalid_argument(
       fmt::format("unknown handling test \"{}\"; choose {}", test, fmt::join(handling_test_names(), ", ")));

@@ -1,10 +1,14 @@
 // The handling tests' rigs (rig.hpp).
 #include "handling/rig.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
 
 namespace dentsph::handling {
@@ -33,6 +37,42 @@ void rig_step(const Model& model, State& state, const HandlingRunOptions& run, c
   if (state.diagnostics.non_finite != 0)
     throw std::runtime_error(fmt::format("the {} test: {} particles' state is not finite at t = {:.3f} s", test,
                                          state.diagnostics.non_finite, state.time));
+}
+
+MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real mould_depth, real probe_diameter,
+                   real dt) {
+  const real Rm = 0.5 * mould_diameter, a = 0.5 * probe_diameter;
+  const int nz = int(std::lround(mould_depth / s));
+  const int reach = int(std::ceil(Rm / s)) + 3;
+  const int probe_layers = int(std::lround(3e-3 / s));
+  const real L = reach + 2;
+  MouldRig rig{make_model(rig_params(s, Vec3{-L, -L, -6} * s, Vec3{L, L, nz + probe_layers + 12.0} * s, dt,
+                                     Vec3{0, 0, -9.81})),
+               {}, s};
+  const Material& paste = preset.paste;
+  const Material steel = wall_beside(paste);
+  const real m = lattice_particle_mass(paste.rho0, s, rig.model.kernel);
+  std::vector<ParticleInit> ps;
+  for (int k = -2; k < nz + 2; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const Vec3 x{i * s, j * s, (k + 0.5) * s};
+        const real r = std::hypot(x.x, x.y);
+        const bool floor = k < 0 && r < Rm + 2 * s, wall = k >= 0 && r >= Rm && r < Rm + 2 * s;
+        if (floor || wall) ps.push_back(make_particle(Role::boundary, x, m, steel));
+        if (k >= 0 && k < nz && r < Rm) ps.push_back(make_particle(Role::material, x, m, paste));
+      }
+  // The probe's face a spacing above the paste's surface (z = nz s).
+  const real face0 = nz * s + s;
+  for (int k = 0; k < probe_layers; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const Vec3 x{i * s, j * s, face0 + (k + 0.5) * s};
+        const real r = std::hypot(x.x, x.y);
+        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, steel));
+      }
+  rig.state.add_particles(rig.model, ps);
+  return rig;
 }
 
 }  // namespace dentsph::handling

@@ -22,3 +22,19 @@ Material wall_beside(const Material& paste);
 void rig_step(const Model& model, State& state, const HandlingRunOptions& run, const std::string& test);
 
 }  // namespace dentsph::handling
+
+namespace dentsph::handling {
+
+// Paste filling a cylindrical mould level with its rim (floor and wall boundary particles two
+// layers deep), and a flat probe above it: the tool, a cylinder 3 mm tall whose face and side are
+// two layers deep, its first layer two spacings (the kernel's support) above the paste's top layer,
+// so that it starts out of reach. The packing and tack tests' rig; gravity acts.
+struct MouldRig {
+  Model model;
+  State state;
+  real face_gap = 0;  // m from the probe's face (half a spacing under its first layer) to the paste's surface
+};
+MouldRig mould_rig(const PastePreset& preset, real spacing, real mould_diameter, real mould_depth,
+                   real probe_diameter, real dt);
+
+}  // namespace dentsph::handling

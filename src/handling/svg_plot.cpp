@@ -136,9 +136,10 @@ std::string svg_plot(const HandlingCurve& curve) {
   int legend = 0;
   auto legend_entry = [&](const std::string& name, const std::string& colour, const std::string& dash) {
     const double ly = kTop + 14 + 18 * legend++;
+    const double lx = curve.legend_right ? kWidth - kRight - 190 : kLeft + 12;
     svg += fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"{}\" stroke-width=\"2.5\"{}/>\n",
-                       kLeft + 12, ly, kLeft + 40, ly, colour, dash);
-    svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", kLeft + 46, ly + 4, escape(name));
+                       lx, ly, lx + 28, ly, colour, dash);
+    svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", lx + 34, ly + 4, escape(name));
   };
   if (curve.range_bar && x.usable((*curve.range_bar)[0]) && y.usable((*curve.range_bar)[1]) &&
       y.usable((*curve.range_bar)[2])) {
