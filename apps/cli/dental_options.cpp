@@ -129,6 +129,18 @@ void DentalOptions::take_material(const std::string& preset, double temperature_
   if (!given("--temperature")) temperature_ = temperature_c;
 }
 
+PastePreset DentalOptions::preset_named(const std::string& name) const {
+  try {
+    return paste_preset(name, temperature_);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: {}",
+                                            std::string(e.what()).find("temperature") != std::string::npos
+                                                ? fmt::format("--temperature {}", temperature_)
+                                                : fmt::format("--material {}", name),
+                                            e.what()));
+  }
+}
+
 std::optional<PastePreset> DentalOptions::preset() const {
   if (material_.empty()) {
     if (given("--temperature"))
@@ -137,15 +149,7 @@ std::optional<PastePreset> DentalOptions::preset() const {
           temperature_));
     return std::nullopt;
   }
-  try {
-    return paste_preset(material_, temperature_);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(fmt::format("{}: {}",
-                                            std::string(e.what()).find("temperature") != std::string::npos
-                                                ? fmt::format("--temperature {}", temperature_)
-                                                : fmt::format("--material {}", material_),
-                                            e.what()));
-  }
+  return preset_named(material_);
 }
 
 namespace {
@@ -162,7 +166,13 @@ Scene filled_with(Scene sc, const PastePreset& preset) {
 
 Scene DentalOptions::procedure_scene() const {
   const ToothSpec spec = tooth();
-  const std::optional<PastePreset> p = preset();
+  // --material, or else the procedure file's "material" (at --temperature where given).
+  std::optional<PastePreset> p;
+  const std::optional<PastePreset> named = given("--material") ? std::nullopt : procedure_paste_preset(procedure_);
+  if (named)
+    p = given("--temperature") ? preset_named(named->name) : *named;
+  else
+    p = preset();
   if (!p) return with_cavity_options([&] { return dental_run_scene(spec, procedure_); });
   return filled_with(with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(*p)); }), *p);
 }

@@ -44,6 +44,8 @@ class DentalOptions {
 
  private:
   bool given(std::string_view option) const;  // the option was on the command line
+  // The preset `name` at --temperature; std::invalid_argument naming the option.
+  PastePreset preset_named(const std::string& name) const;
   std::string mesh_, units_ = "mm", procedure_, kind_, side_;
   std::string material_;  // --material: a paste preset (paste_presets.hpp); empty: the paper's paste
   double temperature_ = 23;  // --temperature: the preset's temperature, C

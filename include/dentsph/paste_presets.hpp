@@ -4,6 +4,8 @@
 // renders its force at scale 1.
 #pragma once
 
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,12 @@ PastePreset paste_preset(const std::string& name, real temperature_c = 23);
 // exp(E/R (1/T - 1/T23)) with E/R = kPasteActivation (docs/model.md, "Presets").
 inline constexpr real kPasteActivation = 3462;  // K
 real paste_temperature_factor(real temperature_c);
+
+// The paste preset a procedure file names in its "material" (docs/procedure-format.md), if any; none
+// for an empty path (the built-in procedure names none). What fills a procedure is the caller's
+// choice: `run --material` or a dental scene's "material" over the procedure's. Throws SceneError
+// naming the file and the field.
+std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& file);
 
 // The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
 // solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of

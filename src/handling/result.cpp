@@ -23,27 +23,24 @@ const std::vector<std::string>& handling_test_names() {
   return names;
 }
 
+namespace {
+
+// A test's default options with `run`.
+template <class Options>
+HandlingResult with_run(HandlingResult (*test)(const PastePreset&, const Options&), const PastePreset& preset,
+                        const HandlingRunOptions& run) {
+  Options o;
+  o.run = run;
+  return test(preset, o);
+}
+
+}  // namespace
+
 HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run) {
-  if (test == "rheometer") {
-    RheometerOptions o;
-    o.run = run;
-    return rheometer_test(preset, o);
-  }
-  if (test == "slump") {
-    SlumpOptions o;
-    o.run = run;
-    return slump_test(preset, o);
-  }
-  if (test == "packing") {
-    PackingOptions o;
-    o.run = run;
-    return packing_test(preset, o);
-  }
-  if (test == "tack") {
-    TackOptions o;
-    o.run = run;
-    return tack_test(preset, o);
-  }
+  if (test == "rheometer") return with_run(&rheometer_test, preset, run);
+  if (test == "slump") return with_run(&slump_test, preset, run);
+  if (test == "packing") return with_run(&packing_test, preset, run);
+  if (test == "tack") return with_run(&tack_test, preset, run);
   throw std::invalid_argument(
       fmt::format("unknown handling test \"{}\"; choose {}", test, fmt::join(handling_test_names(), ", ")));
 }

@@ -160,7 +160,7 @@ std::string svg_plot(const HandlingCurve& curve) {
       if (!x.usable(s.x[i]) || !y.usable(s.y[i])) continue;
       const double px = x.to_px(s.x[i]), py = y.to_px(s.y[i]);
       points += fmt::format("{:.1f},{:.1f} ", px, py);
-      if (!s.dashed && s.x.size() <= 40) dots += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"/>\n", px, py, c);
+      if (!s.dashed && s.x.size() <= 12) dots += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"/>\n", px, py, c);
     }
     const std::string dash = s.dashed ? " stroke-dasharray=\"7 5\"" : "";
     svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"{}/>\n", points, c, dash);

@@ -113,7 +113,8 @@ Scene dental_procedure(const ToothScene& tooth, const std::string& procedure_jso
                        const DentalSceneParams& dp) {
   const scene::Json json = scene::parse_json(procedure_json, source);
   const Reader root(json, "", source, "a procedure");
-  root.only({"name", "description", "tool", "keyframes", "events", "duration"});
+  root.only({"name", "description", "tool", "keyframes", "events", "duration", "material"});
+  (void)scene::read_paste_preset(root);  // checked here; the caller fills with it (procedure_paste_preset)
   const std::string name = root.string("name", "the procedure's name, e.g. \"three_increments\"");
   (void)root.optional_string("description", "a description of the procedure");
 
@@ -180,6 +181,13 @@ Scene dental_run_scene(const ToothSpec& spec, const std::filesystem::path& proce
   Scene sc = procedure_or_built_in(prepare_tooth(spec), procedure_file, dp);
   sc.source = fmt::format("{} on {}", sc.source, tooth_name(spec));
   return sc;
+}
+
+std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& file) {
+  if (file.empty()) return std::nullopt;
+  const std::string source = file.string();
+  const scene::Json json = scene::parse_json(scene::read_text_file(file, "the procedure file"), source);
+  return scene::read_paste_preset(Reader(json, "", source, "a procedure"));
 }
 
 }  // namespace dentsph

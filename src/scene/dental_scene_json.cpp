@@ -68,8 +68,6 @@ CavityParams read_cavity(const Reader& c) {
   return p;
 }
 
-namespace {
-
 // "material": a paste preset's name, or {"preset": name, "temperature_c": C} (docs/model.md,
 // "Presets"); none: the paper's paste.
 std::optional<PastePreset> read_paste_preset(const Reader& root) {
@@ -96,8 +94,6 @@ std::optional<PastePreset> read_paste_preset(const Reader& root) {
     root.fail("material", e.what(), fmt::format("give one of {} at 10 to 70 C", choices));
   }
 }
-
-}  // namespace
 
 Scene parse_dental_scene(const Reader& root) {
   root.only({"name", "description", "tooth", "cavity", "procedure", "haptics", "student", "exercise", "simulation",
@@ -141,7 +137,9 @@ Scene parse_dental_scene(const Reader& root) {
   }
   // The step that runs it; its time step is the solver's for dental scenes (dental_time_step).
   DentalSceneParams params;
-  const std::optional<PastePreset> preset = read_paste_preset(root);
+  // The scene's "material", or its procedure file's.
+  std::optional<PastePreset> preset = read_paste_preset(root);
+  if (!preset) preset = procedure_paste_preset(procedure);
   if (preset) params = dental_params_for(*preset, params);
   if (const std::optional<Reader> sim = root.optional_object(
           "simulation", "the simulation settings of a dental scene: {\"solver\": \"iisph\"}")) {

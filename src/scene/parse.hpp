@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dentsph/model.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/state.hpp"
 #include "scene/budget.hpp"
@@ -45,6 +46,9 @@ Solver read_solver(const Reader& simulation, Solver fallback);
 IisphParams read_iisph(const Reader& simulation, IisphParams defaults);
 // Reads one; paths in it are relative to the folder of root.source().
 Scene parse_dental_scene(const Reader& root);
+// "material" of a dental scene or a procedure: a paste preset's name, or {"preset": name,
+// "temperature_c": C} (docs/model.md, "Presets"); none: the paper's paste. Refusals name the field.
+std::optional<PastePreset> read_paste_preset(const Reader& root);
 // A "cavity" object into CavityParams (missing fields keep the defaults).
 CavityParams read_cavity(const Reader& cavity);
 

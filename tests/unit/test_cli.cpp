@@ -388,6 +388,32 @@ TEST(Cli, TheDepthOfCureTest) {
   expect_refused("material-test depth-of-cure --irradiance 0", {"--irradiance"});
 }
 
+// A procedure file's "material" fills the run with that preset at force scale 1; --material takes
+// precedence, and --temperature warms the procedure's preset.
+TEST(Cli, AProcedureFilesMaterialFillsTheRun) {
+  const fs::path proc = dir() / "flowable_procedure.json";
+  write(proc, R"({"name": "flowable_press", "material": "flowable",
+                  "keyframes": [{"t": 0, "position": [0, 0, 3]}, {"t": 0.01, "position": [0, 0, 2.9]}],
+                  "events": [{"t": 0, "dispense": {"volume": 5, "at": [0, 0, -2]}}]})");
+  auto material_of = [&](const std::string& options, const std::string& name) {
+    const fs::path out = dir() / name;
+    const Result r = dentsph_cli("run --procedure " + proc.string() + " --steps 2 --threads 1 -q " + options +
+                                 " --out " + out.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return read_json(out / "summary.json");
+  };
+  const nlohmann::json own = material_of("", "procedure_material");
+  EXPECT_EQ(own.at("material").at("preset"), "flowable");
+  EXPECT_DOUBLE_EQ(own.at("tool").at("force_scale").get<double>(), 1.0);
+  EXPECT_EQ(material_of("--material packable", "procedure_material_over").at("material").at("preset"), "packable");
+  const nlohmann::json warm = material_of("--temperature 37", "procedure_material_warm");
+  EXPECT_EQ(warm.at("material").at("preset"), "flowable");
+  EXPECT_DOUBLE_EQ(warm.at("material").at("temperature_c").get<double>(), 37);
+  write(dir() / "putty_procedure.json", R"({"name": "p", "material": "putty", "keyframes": [{"t": 0, "position": [0, 0, 3]}]})");
+  expect_refused("run --procedure " + (dir() / "putty_procedure.json").string() + " --steps 1",
+                 {"putty_procedure.json", "material", "choose flowable"});
+}
+
 // The presets' handling tests (docs/model.md, "Handling tests"): the figures printed beside their
 // published range, and with --out result.json (each figure's name, value, unit, range or null,
 // source) and the plot; an unknown paste, a temperature out of range and an output folder that is

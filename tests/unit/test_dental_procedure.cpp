@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/tools.hpp"
 
@@ -213,6 +215,58 @@ TEST(DentalProcedure, AMissingFileNamesIt) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("no/such/procedure.json"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// A procedure file's "material" (docs/procedure-format.md): a preset's name, or the preset and its
+// temperature; none without it or for the built-in procedure; an unknown preset, a temperature out
+// of range and a number are refused naming the file and the field.
+TEST(DentalProcedure, AProcedureFileNamesItsPaste) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "dentsph_procedure_material";
+  std::filesystem::create_directories(folder);
+  auto file = [&](const std::string& name, const std::string& material) {
+    const std::filesystem::path f = folder / name;
+    std::ofstream(f) << R"({"name": "m", "keyframes": [{"t": 0, "position": [0, 0, 3]}])"
+                     << (material.empty() ? "" : R"(, "material": )" + material) << "}";
+    return f;
+  };
+  const std::optional<PastePreset> packable = procedure_paste_preset(file("packable.json", R"("packable")"));
+  ASSERT_TRUE(packable.has_value());
+  EXPECT_EQ(packable->name, "packable");
+  EXPECT_DOUBLE_EQ(packable->temperature_c, 23);
+  const std::optional<PastePreset> warm =
+      procedure_paste_preset(file("warm.json", R"({"preset": "flowable", "temperature_c": 37})"));
+  ASSERT_TRUE(warm.has_value());
+  EXPECT_EQ(warm->name, "flowable");
+  EXPECT_DOUBLE_EQ(warm->temperature_c, 37);
+  EXPECT_FALSE(procedure_paste_preset(file("none.json", "")).has_value());
+  EXPECT_FALSE(procedure_paste_preset("").has_value()) << "the built-in procedure names none";
+  for (const auto& [name, material, phrase] :
+       {std::tuple<std::string, std::string, std::string>{"putty.json", R"("putty")", "choose flowable"},
+        {"hot.json", R"({"preset": "universal", "temperature_c": 90})", "outside 10 to 70 C"},
+        {"number.json", "5", "expected a preset's name"}}) {
+    const std::filesystem::path f = file(name, material);
+    try {
+      (void)procedure_paste_preset(f);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(f.string()), std::string::npos) << msg;
+      EXPECT_NE(msg.find("material"), std::string::npos) << msg;
+      EXPECT_NE(msg.find(phrase), std::string::npos) << msg;
+    }
+    expect_error(R"({"name": "m", "keyframes": [{"t": 0, "position": [0, 0, 3]}], "material": )" + material + "}",
+                 "material", phrase);
+  }
+  // A procedure with a material still builds its scene (the caller fills it with the preset).
+  EXPECT_NO_THROW(dental_procedure(crown(), R"({"name": "m", "keyframes": [{"t": 0, "position": [0, 0, 3]}],
+                                                "material": "universal"})",
+                                   "m.json"));
 }
 
 }  // namespace
