@@ -13,8 +13,13 @@
 // preconditioning; the bound q >= 0 is y >= 0). Each iteration is one of
 //   - a conjugate-gradient step on the rows with pressure (the free set), as long as it stays feasible;
 //   - an expansion step: the feasible part of that step, then a projected gradient step of length
-//     alpha_bar = 1 (the scaled matrix's norm stays under 2 on SPH pressure systems), which frees and
-//     binds many rows at once;
+//     alpha_bar, which frees and binds many rows at once. MPRGP decreases the energy for alpha_bar up
+//     to 2 / |H~| (H~ the scaled matrix, unit diagonal). |H~| is under 2 on an SPH paste's system,
+//     but not where paste is pressed between the tool and set paste or overlapping walls: there,
+//     with alpha_bar = 1 and a budget of 400 iterations, the solve diverged (a density error of
+//     1e156 at 42.2 s of the cured built-in procedure on the universal preset). alpha_bar = 0.5
+//     holds to |H~| <= 4, and took fewer iterations on the uncured procedure (9.4 a step against
+//     10.5; docs/model.md, "The pressure solve");
 //   - a proportioning step: where the rows held at q = 0 but compressed outweigh the free rows'
 //     gradient, a step that lets them push.
 // Conjugate gradients carry a correction across the paste in about sqrt(condition number)
@@ -41,7 +46,7 @@ namespace dentsph::iisph {
 namespace {
 
 constexpr real kGamma = 1;     // proportioning: a step for the bound rows when |beta|^2 > Gamma^2 phi~.phi
-constexpr real kAlphaBar = 1;  // the expansion step's projected gradient step (scaled unknowns)
+constexpr real kAlphaBar = 0.5;  // the expansion step's projected gradient step (scaled unknowns)
 
 // The sums of a pass over the rows (PressureSums::sum's slots).
 enum Slot { kBetaBeta, kPhiTildePhi, kPhiHp, kError, kCompression, kPhiPhi };
