@@ -177,9 +177,10 @@ Scene DentalOptions::procedure_scene() const {
   return filled_with(with_cavity_options([&] { return dental_run_scene(spec, procedure_, dental_params_for(*p)); }), *p);
 }
 
-Scene DentalOptions::filled_scene() const {
+Scene DentalOptions::filled_scene() const { return filled_scene(preset()); }
+
+Scene DentalOptions::filled_scene(const std::optional<PastePreset>& p) const {
   const ToothSpec spec = tooth();
-  const std::optional<PastePreset> p = preset();
   Scene sc = with_cavity_options([&] {
     return dental_scene(prepare_tooth(spec), p ? dental_params_for(*p) : DentalSceneParams{},
                         spec.mesh.empty() ? std::string("dental_default") : spec.mesh.stem().string(), tooth_name(spec));

@@ -34,6 +34,9 @@ class DentalOptions {
   Scene procedure_scene() const;
   // The dental scene of the tooth (paste in the cavity, a ball pressing): what the viewer opens.
   Scene filled_scene() const;
+  // The same filled with `preset` (none: the scene's own paste) whatever --material says: the
+  // viewer's preset chooser.
+  Scene filled_scene(const std::optional<PastePreset>& preset) const;
   // A replay's: the recording's paste preset and temperature where --material and --temperature
   // were not given.
   void take_material(const std::string& preset, double temperature_c);

@@ -5,8 +5,10 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "colour_map.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/tools.hpp"
 #include "scene/parse.hpp"
@@ -24,7 +26,8 @@ constexpr KindName kKinds[] = {{ScriptAction::Kind::move, "move"},         {Scri
                                {ScriptAction::Kind::switch_tool, "switch_tool"}, {ScriptAction::Kind::pause, "pause"},
                                {ScriptAction::Kind::resume, "resume"},     {ScriptAction::Kind::reset, "reset"},
                                {ScriptAction::Kind::colour_by, "colour_by"}, {ScriptAction::Kind::light_on, "light_on"},
-                               {ScriptAction::Kind::light_off, "light_off"}, {ScriptAction::Kind::end, "end"}};
+                               {ScriptAction::Kind::light_off, "light_off"}, {ScriptAction::Kind::load_preset, "load_preset"},
+                               {ScriptAction::Kind::end, "end"}};
 
 }  // namespace
 
@@ -41,11 +44,11 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
   for (const KindName& k : kKinds) names.push_back(k.name);
   for (std::size_t i = 0; i < actions.size(); ++i) {
     const scene::Reader a = top.element(actions, "actions", i, "an action");
-    a.only({"step", "action", "position_mm", "tool", "mode"});
+    a.only({"step", "action", "position_mm", "tool", "mode", "preset", "temperature_c"});
     ScriptAction act;
     act.step = std::uint64_t(a.integer("step", "the simulation step it happens at, e.g. 400", 0, std::int64_t(1) << 40));
     const std::string kind = a.string("action", "what happens: move, press, release, dispense, switch_tool, pause, "
-                                                "resume, reset, colour_by, light_on, light_off or end");
+                                                "resume, reset, colour_by, light_on, light_off, load_preset or end");
     bool known = false;
     for (const KindName& k : kKinds)
       if (kind == k.name) {
@@ -56,7 +59,7 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
       const std::string_view near = scene::closest(kind, names);
       a.fail("action", fmt::format("'{}' is not an action", kind),
              near.empty() ? "use one of move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, light_on, "
-                                           "light_off, end"
+                                           "light_off, load_preset, end"
                           : fmt::format("did you mean '{}'?", near));
     }
     if (!script.actions.empty() && act.step < script.actions.back().step)
@@ -82,6 +85,17 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
           a.fail("mode", e.what(), "use role, pressure, density, speed, bonds or conversion");
         }
         break;
+      case ScriptAction::Kind::load_preset: {
+        act.name = a.string("preset", fmt::format("the paste preset: {}", fmt::join(paste_preset_names(), ", ")));
+        act.temperature_c = a.number_or("temperature_c", 23, "the paste's temperature in C, 10 to 70");
+        try {
+          (void)paste_preset(act.name, act.temperature_c);
+        } catch (const std::exception& e) {
+          a.fail(std::string(e.what()).find("temperature") != std::string::npos ? "temperature_c" : "preset", e.what(),
+                 fmt::format("use one of {} at 10 to 70 C", fmt::join(paste_preset_names(), ", ")));
+        }
+        break;
+      }
       default:
         break;
     }

@@ -7,6 +7,7 @@
 //                {"step": 1500, "action": "switch_tool", "tool": "flat_plugger"},
 //                {"step": 1600, "action": "colour_by", "mode": "pressure"},
 //                {"step": 2000, "action": "light_on"}, {"step": 2800, "action": "light_off"},
+//                {"step": 2900, "action": "load_preset", "preset": "packable", "temperature_c": 37},
 //                {"step": 3000, "action": "end"}]}
 // Positions are of the tool's tip, in mm, in the tooth frame (dental scenes: origin on the long
 // axis at the occlusal surface, z up the axis) or in the world (other scenes).
@@ -22,12 +23,16 @@
 namespace dentsph::viewer {
 
 struct ScriptAction {
-  // light_on, light_off: the curing light over the cavity (the L key).
-  enum class Kind { move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, light_on, light_off, end };
+  // light_on, light_off: the curing light over the cavity (the L key). load_preset: the scene
+  // filled with a paste preset and reset (the Material panel's chooser).
+  enum class Kind {
+    move, press, release, dispense, switch_tool, pause, resume, reset, colour_by, light_on, light_off, load_preset, end
+  };
   std::uint64_t step = 0;
   Kind kind = Kind::move;
   Vec3 position_mm;   // move
-  std::string name;   // switch_tool: the instrument; colour_by: the mode
+  std::string name;   // switch_tool: the instrument; colour_by: the mode; load_preset: the preset
+  double temperature_c = 23;  // load_preset
 };
 
 struct InputScript {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/solver.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
@@ -48,6 +49,11 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"backend", r.last.backend},
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};
+  // The paste the session ended with (the Material panel's preset chooser may have changed it).
+  j["material"] = scene.paste_preset.empty()
+                      ? json()
+                      : json{{"preset", scene.paste_preset}, {"temperature_c", scene.paste_temperature_c}};
+  j["force_scale"] = scene.force_scale;
   {
     // Where the instrument is at the end (its tool frame's origin, the tip of the dental
     // instruments), in the frame of the script's moves: the tooth's, mm; world mm without a tooth.
@@ -153,6 +159,13 @@ int main(int argc, char** argv) {
       ro = device.options(sc, 0, so.threads, false, {});
       dev = device.make_device(sc, ro, false);
     }
+    if (scene_file.empty())  // the Material panel's preset chooser: the same scene with another paste
+      so.rebuild = [&dental, &solver, gpu = so.backend != Backend::cpu](const std::string& name, double temperature_c) {
+        Scene rebuilt = dental.filled_scene(name.empty() ? std::nullopt
+                                                         : std::optional<PastePreset>(paste_preset(name, temperature_c)));
+        (void)choose_solver(rebuilt, solver, gpu);
+        return rebuilt;
+      };
     viewer::SimSession session(std::move(sc), so);
     if (dev) session.use_device(std::move(dev), ro);
     const viewer::ViewerResult r = viewer::run_viewer(session, vo);

@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "dentsph/paste_presets.hpp"
+
 namespace dentsph::viewer {
 
 namespace {
@@ -75,13 +77,36 @@ void display_panel(const Snapshot& s, UiState& ui) {
 }
 
 void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
-  if (!ui.material_loaded) {
+  const std::vector<std::string>& presets = paste_preset_names();
+  if (!ui.material_loaded || s.preset != ui.loaded_preset || s.preset_temperature_c != ui.loaded_temperature_c) {
+    // The chooser and the edit fields follow the paste in use (at the start, and once a preset is
+    // loaded, by the button or a script).
+    const auto at = std::find(presets.begin(), presets.end(), s.preset);
+    ui.preset_index = at == presets.end() ? 0 : int(at - presets.begin()) + 1;
+    ui.preset_temperature_c = float(s.preset_temperature_c);
     ui.material = s.material;
     ui.material_loaded = true;
+    ui.loaded_preset = s.preset;
+    ui.loaded_temperature_c = s.preset_temperature_c;
   }
   ImGui::SetNextWindowPos(ImVec2(10, 430), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Material", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  // The paste preset (docs/model.md, "Presets"): the scene filled with it again, its force at
+  // scale 1; the scene's own paste at the paper's scale.
+  std::vector<const char*> names{"the scene's own"};
+  for (const std::string& p : presets) names.push_back(p.c_str());
+  ImGui::Combo("preset", &ui.preset_index, names.data(), int(names.size()));
+  if (ui.preset_index > 0) ImGui::DragFloat("temperature (C)", &ui.preset_temperature_c, 0.5f, 10.f, 70.f, "%.1f");
+  if (ImGui::Button("Load preset (resets)")) {
+    Command c{Command::Kind::load_preset};
+    c.preset = ui.preset_index > 0 ? presets[std::size_t(ui.preset_index - 1)] : std::string();
+    c.temperature_c = ui.preset_temperature_c;
+    out.push_back(c);
+  }
+  ImGui::TextDisabled("in use: %s", s.preset.empty() ? "the scene's own paste"
+                                                      : fmt::format("{} at {:g} C", s.preset, s.preset_temperature_c).c_str());
+  ImGui::Separator();
   MaterialEdit& m = ui.material;
   auto field = [](const char* label, real& v, float lo, float hi, const char* fmt_str) {
     float f = float(v);

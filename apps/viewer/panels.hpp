@@ -28,6 +28,10 @@ struct UiState {
   int tool_index = 0;
   MaterialEdit material;      // being edited
   bool material_loaded = false;
+  int preset_index = 0;       // the chooser: 0 the scene's own paste, k the k-th of paste_preset_names()
+  float preset_temperature_c = 23;
+  std::string loaded_preset;  // the snapshot's preset the edit fields were loaded from
+  double loaded_temperature_c = 23;
   std::deque<float> force_history;  // N, |F| per snapshot, newest last
   std::string last_message;
 };

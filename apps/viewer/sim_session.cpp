@@ -186,6 +186,33 @@ void SimSession::apply(const Command& c, Simulation& sim, std::vector<EventSampl
       }
       set_material(c.material, sim);
       return;
+    case Command::Kind::load_preset:
+      if (device_) {
+        message_ = "the paste is fixed while a device drives the runtime (its recording replays the scene's paste)";
+        return;
+      }
+      load_preset(c.preset, c.temperature_c);
+      return;
+  }
+}
+
+void SimSession::load_preset(const std::string& preset, double temperature_c) {
+  if (!opt_.rebuild) {
+    message_ = "this scene has no paste presets (a scene file's materials are its own); start the viewer without one";
+    return;
+  }
+  try {
+    Scene sc = opt_.rebuild(preset, temperature_c);  // refused before anything changes
+    scene_ = std::move(sc);
+    force_scale_ = scene_.force_scale;
+    paste_ = scene_paste(scene_).material;
+    paste_edited_ = false;
+    reset();
+    message_ = preset.empty() ? std::string("filled with the scene's own paste")
+                              : fmt::format("filled with {} at {:g} C, its force at scale {:g}", preset, temperature_c,
+                                            force_scale_);
+  } catch (const std::exception& e) {
+    message_ = fmt::format("preset refused: {}", e.what());
   }
 }
 
@@ -262,6 +289,8 @@ void SimSession::publish(Simulation& sim, bool with_assessment, double steps_per
   s.dt = model.dt;
   s.material = {paste_.Kp, paste_.Ka, paste_.mu, model.adhesion.A, model.adhesion.B, model.adhesion.eps,
                 model.adhesion.zeta, paste_.flow_index, paste_.yield_stress};
+  s.preset = scene_.paste_preset;
+  s.preset_temperature_c = scene_.paste_temperature_c;
   s.tool_name = tool_name_;
   s.message = message_;
   s.paused = paused_;

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -37,12 +38,16 @@ struct MaterialEdit {
 };
 
 struct Command {
-  enum class Kind { pause, resume, single_step, reset, dispense, switch_tool, set_material, tool_target, press, light };
+  enum class Kind {
+    pause, resume, single_step, reset, dispense, switch_tool, set_material, tool_target, press, light, load_preset
+  };
   Command() = default;
   Command(Kind k) : kind(k) {}  // NOLINT(google-explicit-constructor): {Kind::dispense} reads well
   Kind kind = Kind::pause;
   std::string tool;          // switch_tool: instrument name
   MaterialEdit material;     // set_material
+  std::string preset;        // load_preset: a paste preset's name (paste_presets.hpp); empty: the scene's own paste
+  double temperature_c = 23;  // load_preset: the preset's temperature, C
   Vec3 target;               // tool_target: tool tip position, m, world
   bool pressed = false;      // press: held down or released; light: on (over the cavity) or off
 };
@@ -65,6 +70,8 @@ struct Snapshot {
   StabilityLimits limits;
   real dt = 0;
   MaterialEdit material;      // the parameters in effect
+  std::string preset;         // the paste preset the scene is filled with; empty: the scene's own paste
+  double preset_temperature_c = 23;
   std::string tool_name;
   std::string message;        // the last command's complaint (an invalid edit), empty if none
   bool paused = false;
@@ -92,6 +99,9 @@ struct SessionOptions {
   double snapshot_hz = 60;          // publications per second of wall time
   double assess_hz = 5;             // assessments per second of wall time (dental scenes)
   bool start_paused = false;
+  // The scene again, filled with a paste preset at a temperature (an empty name: the scene's own
+  // paste): what load_preset loads. None: the viewer's scene has no presets (a scene file).
+  std::function<Scene(const std::string& preset, double temperature_c)> rebuild = {};
 };
 
 class SimSession {
@@ -143,6 +153,7 @@ class SimSession {
   // Applies `c` to `sim`; with `recorded` (device mode), appends what a replay must repeat.
   void apply(const Command& c, Simulation& sim, std::vector<EventSample>* recorded = nullptr);
   void set_material(const MaterialEdit& m, Simulation& sim);
+  void load_preset(const std::string& preset, double temperature_c);  // the scene rebuilt with it, reset
   void publish(Simulation& sim, bool with_assessment, double steps_per_second);
   void reset();  // the session's own Simulation from the scene again, with the paste as edited
   Vec3 tool_tip_goal() const;

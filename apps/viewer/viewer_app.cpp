@@ -156,6 +156,11 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
         case ScriptAction::Kind::reset: c = {Command::Kind::reset}; break;
         case ScriptAction::Kind::light_on: c = {Command::Kind::light}; c.pressed = true; break;
         case ScriptAction::Kind::light_off: c = {Command::Kind::light}; c.pressed = false; break;
+        case ScriptAction::Kind::load_preset:
+          c = {Command::Kind::load_preset};
+          c.preset = a.name;
+          c.temperature_c = a.temperature_c;
+          break;
         case ScriptAction::Kind::colour_by:
         case ScriptAction::Kind::end: view_actions.push_back(a); continue;
       }

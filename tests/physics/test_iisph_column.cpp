@@ -145,11 +145,13 @@ Settled settle(real dt, PressureSolve solve, int max_iterations, real seconds) {
 // At the velocity limit and a quarter of it, every step's solve reaches its tolerance (mean and
 // largest density error) within its budget, and the settled column's pressure is the same at both
 // steps: the column settles from the lattice at the velocity limit for 1.25 s, then goes on to 1.5 s
-// at that step and, from the same state, at a quarter of it. Measured: dp/dd = 1.037 and 1.035
-// rho g (each settled from the lattice at its own step: 1.037 and 1.049; 1.028 and 1.045 with the
-// cubic spline's gradient), the line through zero within 3 Pa, the layers about it within 6% of rho
-// g D (pairs of layers alternate about it), the fastest particle at 1.8 and 2.7 mm/s (the packing
-// still creeps at 1.5 s). The 3.5 to 4.9% over rho g is the discretisation's (the SPH gradient of a linear pressure on this
+// at that step and, from the same state, at a quarter of it. Measured: dp/dd = 1.034 and 1.034
+// rho g (1.037 and 1.035 with the cg solve's expansion step at 1; each settled from the lattice at
+// its own step: 1.037 and 1.049; 1.028 and 1.045 with the cubic spline's gradient), the line through
+// zero within 3 Pa, the layers about it within 9.3% of rho g D (6% with the step at 1: pairs of
+// layers alternate about it, a mode the tolerance leaves free: a largest density error of 1e-3 is
+// 50 Pa, 17% of rho g D), the fastest particle at 1.8 and 2.5 mm/s (the packing still creeps at
+// 1.5 s). The 3.5 to 4.9% over rho g is the discretisation's (the SPH gradient of a linear pressure on this
 // packing; the 16-layer paste column of test_iisph_hydrostatic.cpp reads within 3%), not the solve's:
 // it does not move with the tolerance or the step.
 TEST(DeepColumn, TheSolveConvergesAndThePressureIsTheSameAtEveryStep) {
@@ -167,7 +169,7 @@ TEST(DeepColumn, TheSolveConvergesAndThePressureIsTheSameAtEveryStep) {
     EXPECT_LE(r->max_error, 1e-3 * (1 + 1e-9)) << "no particle's density error over max_density_error";
     EXPECT_NEAR(r->window.slope / (rho0 * g), 1.0, 0.06) << "dp/dd against rho g";
     EXPECT_LT(std::abs(r->window.intercept), 0.03 * rho0 * g * nz * s) << "Pa: through zero at the surface";
-    EXPECT_LT(r->window.worst_layer, 0.08) << "the layers about the line, in rho g D";
+    EXPECT_LT(r->window.worst_layer, 0.12) << "the layers about the line, in rho g D";
     EXPECT_LT(r->window.max_speed, 3e-3) << "m/s: at rest";
   }
   EXPECT_NEAR(large.window.slope, quarter.window.slope, 0.02 * rho0 * g) << "the same pressure at both steps";
@@ -176,7 +178,7 @@ TEST(DeepColumn, TheSolveConvergesAndThePressureIsTheSameAtEveryStep) {
 // The first 0.5 s from the lattice, at the velocity limit, where the pressure changes from step to
 // step: relaxed Jacobi with the default budget of 12 stops on it (measured: 55 of 480 steps, a mean
 // error up to 0.00175, 17 times the target) and needs up to 77 iterations given 200; the conjugate
-// gradients need at most 32 (mean 3.4 against 5.2).
+// gradients need at most 21 (32 with the expansion step at 1; mean 3.4 against 5.3).
 TEST(DeepColumn, ConjugateGradientsNeedFewerIterationsThanJacobiWhileItSettles) {
   const real dt = velocity_limited_step();
   const Settled jacobi_12 = settle(dt, PressureSolve::jacobi, 12, 0.5);

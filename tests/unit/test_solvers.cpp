@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "dentsph/solver.hpp"
+#include "dentsph/step.hpp"
 #include "support/builders.hpp"
 
 namespace dentsph {
@@ -346,6 +348,22 @@ TEST(Solvers, AStiffPasteRestsOnOverlappingWallsWithTheirOwnRestDensity) {
   const real pushed = fastest_on_overlapping_floor(false), resting = fastest_on_overlapping_floor(true);
   std::printf("fastest paste: %.3g m/s (rest density rho0), %.3g m/s (the walls' own)\n", pushed, resting);
   EXPECT_LT(resting, 0.1 * pushed) << "measured 1.37 m/s against 0.37 mm/s";
+}
+
+}  // namespace
+}  // namespace dentsph
+
+namespace dentsph {
+namespace {
+
+// The runs stop on a tool force no paste can exert (step.hpp): a solve that diverged under the tool
+// once gave 7.8e150 N in a run that said it completed.
+TEST(Divergence, AToolForceNoPasteCanExertIsAnExplosion) {
+  EXPECT_FALSE(tool_force_exploded(ToolWrench{{0, 0, 3.0}, {}}));
+  EXPECT_FALSE(tool_force_exploded(ToolWrench{{0, 0, -0.9 * exploded_tool_force}, {}}));
+  EXPECT_TRUE(tool_force_exploded(ToolWrench{{7.8e150, 0, 0}, {}}));
+  EXPECT_TRUE(tool_force_exploded(ToolWrench{{0, std::numeric_limits<real>::quiet_NaN(), 0}, {}}));
+  EXPECT_TRUE(tool_force_exploded(ToolWrench{{0, 0, std::numeric_limits<real>::infinity()}, {}}));
 }
 
 }  // namespace

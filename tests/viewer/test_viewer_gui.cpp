@@ -317,6 +317,43 @@ TEST(ViewerGui, AMaterialPresetFillsTheViewersScene) {
   EXPECT_NE(r.err.find("choose flowable, universal, packable, amalgam"), std::string::npos) << r.err;
 }
 
+// The Material panel's preset chooser (the script's load_preset, as its "Load preset" button): the
+// built-in scene filled again with packable at 37 C, reset, its force at scale 1; the paste and its
+// force scale in the summary; the paper's paste before it. A script naming an unknown preset or a
+// temperature out of range is refused naming the field.
+TEST(ViewerGui, ThePresetChooserFillsTheSceneWithAnotherPaste) {
+  REQUIRE_XVFB();
+  const fs::path script = temp("load_preset.json"), png = temp("load_preset.png"), sum = temp("load_preset.json.out");
+  std::ofstream(script) << R"({"actions": [{"step": 5, "action": "load_preset", "preset": "packable", "temperature_c": 37},
+                                          {"step": 20, "action": "end"}]})";
+  Result r = run_viewer(fmt::format("--frames 10 --script '{}' --screenshot '{}' --summary '{}'", script.string(),
+                                    png.string(), sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(sum));
+  ASSERT_TRUE(j["material"].is_object()) << j.dump(2);
+  EXPECT_EQ(j["material"]["preset"], "packable");
+  EXPECT_DOUBLE_EQ(j["material"]["temperature_c"].get<double>(), 37);
+  EXPECT_DOUBLE_EQ(j["force_scale"].get<double>(), 1.0);
+  EXPECT_NE(j.value("message", std::string()).find("filled with packable at 37 C"), std::string::npos) << j.dump(2);
+  const Image img(png);
+  EXPECT_GT(img.share(tooth_pixel), 0.05) << "the tooth is drawn after the reset";
+  const fs::path plain = temp("no_preset.json.out");
+  r = run_viewer(fmt::format("--frames 3 --summary '{}'", plain.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto p = nlohmann::json::parse(slurp(plain));
+  EXPECT_TRUE(p["material"].is_null()) << "the paper's paste";
+  EXPECT_GT(p["force_scale"].get<double>(), 1000.0);
+  const fs::path bad = temp("bad_preset.json");
+  std::ofstream(bad) << R"({"actions": [{"step": 5, "action": "load_preset", "preset": "putty"}]})";
+  r = run_viewer(fmt::format("--script '{}' --frames 3", bad.string()));
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("actions[0].preset"), std::string::npos) << r.err;
+  std::ofstream(bad) << R"({"actions": [{"step": 5, "action": "load_preset", "preset": "flowable", "temperature_c": 90}]})";
+  r = run_viewer(fmt::format("--script '{}' --frames 3", bad.string()));
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("actions[0].temperature_c"), std::string::npos) << r.err;
+}
+
 // --backend cuda where it cannot run: exit status 2 and the reason, no window.
 TEST(ViewerGui, TheCudaBackendWithoutAGpuIsAClearError) {
   REQUIRE_XVFB();
