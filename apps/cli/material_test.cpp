@@ -1,8 +1,9 @@
 // `dentsph material-test depth-of-cure [--material PRESET] [--irradiance MW_PER_CM2] [--time S]`,
-// `dentsph material-test rheometer|slump [--material NAME] [--temperature C] [--out DIR]`.
+// `dentsph material-test rheometer|slump|packing|tack [--material NAME] [--temperature C] [--out DIR]`.
 #include "material_test.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <thread>
 
 #include <fmt/format.h>
@@ -18,7 +19,7 @@ namespace dentsph::cli {
 
 void MaterialTestCommand::add_to(CLI::App& app) {
   command_ = app.add_subcommand(
-      "material-test", "Virtual material tests: depth-of-cure (ISO 4049); the pastes' handling tests rheometer, slump");
+      "material-test", "Virtual material tests: depth-of-cure (ISO 4049); the pastes' handling tests rheometer, slump, packing, tack");
   command_->require_subcommand(1);
   depth_of_cure_ = command_->add_subcommand(
       "depth-of-cure",
@@ -39,27 +40,19 @@ void MaterialTestCommand::add_to(CLI::App& app) {
   depth_of_cure_->add_option("--mould-length", length_mm_, "The mould's length, mm")
       ->check(CLI::Range(1.0, 50.0))
       ->capture_default_str();
-  add_handling(*command_, "rheometer",
-               "Parallel-plate rheometer in steady shear: the flow curve, the viscosity at 10 /s beside the published "
-               "range",
-               rheometer_);
-  add_handling(*command_, "slump",
-               "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio "
-               "height / diameter",
-               slump_);
-  add_handling(*command_, "packing",
-               "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the "
-               "stress under the probe",
-               packing_);
-  add_handling(*command_, "tack",
-               "Probe tack: a 6 mm steel probe pressed onto the paste at 1 N for 1 s, withdrawn at 2, 4, 6 and 8 mm/s: "
-               "the peak pull and the work of separation",
-               tack_);
+  const char* descriptions[] = {
+      "Parallel-plate rheometer in steady shear: the flow curve, the viscosity at 10 /s beside the published range",
+      "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio height / diameter",
+      "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the stress "
+      "under the probe",
+      "Probe tack: a 6 mm steel probe pressed onto the paste at 1 N for 1 s, withdrawn at 2, 4, 6 and 8 mm/s: the "
+      "peak pull and the work of separation"};
+  static_assert(std::size(descriptions) == std::tuple_size_v<decltype(handling_)>);
+  for (std::size_t k = 0; k < handling_.size(); ++k) add_handling(*command_, descriptions[k], handling_[k]);
 }
 
-void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& name, const std::string& description,
-                                       Handling& h) {
-  h.command = parent.add_subcommand(name, description);
+void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& description, Handling& h) {
+  h.command = parent.add_subcommand(h.name, description);
   h.command->add_option("--material", h.material, fmt::format("The paste: {}", fmt::join(paste_preset_names(), ", ")))
       ->check(CLI::IsMember(paste_preset_names()))
       ->capture_default_str();
@@ -73,12 +66,12 @@ void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& name
       ->capture_default_str();
 }
 
-int MaterialTestCommand::run_handling(const std::string& name, const Handling& h) const {
+int MaterialTestCommand::run_handling(const Handling& h) const {
   if (!h.out.empty()) prepare_output_dir(h.out, "--out");  // before the test: never lost at its end
   HandlingRunOptions run;
   run.threads = h.threads;
   run.progress = [](const std::string& line) { fmt::print("{}\n", line); };
-  const HandlingResult r = run_handling_test(name, paste_preset(h.material, h.temperature_c), run);
+  const HandlingResult r = run_handling_test(h.name, paste_preset(h.material, h.temperature_c), run);
   fmt::print("{}", handling_report(r));
   if (!h.out.empty()) {
     write_handling_outputs(h.out, r);
@@ -92,10 +85,8 @@ int MaterialTestCommand::run_handling(const std::string& name, const Handling& h
 bool MaterialTestCommand::chosen() const { return command_ != nullptr && command_->parsed(); }
 
 int MaterialTestCommand::run() const {
-  if (rheometer_.command->parsed()) return run_handling("rheometer", rheometer_);
-  if (slump_.command->parsed()) return run_handling("slump", slump_);
-  if (packing_.command->parsed()) return run_handling("packing", packing_);
-  if (tack_.command->parsed()) return run_handling("tack", tack_);
+  for (const Handling& h : handling_)
+    if (h.command->parsed()) return run_handling(h);
   DepthOfCureOptions o = options_;
   o.irradiance = irradiance_mw_ * W_per_m2_per_mW_per_cm2;
   o.spacing = spacing_mm_ * 1e-3;

@@ -1,8 +1,9 @@
 // `dentsph material-test`: virtual material tests. depth-of-cure: the ISO 4049 depth of cure of a
-// cure preset (include/dentsph/depth_of_cure.hpp); rheometer and slump: the paste presets' handling
-// tests (include/dentsph/handling.hpp), each figure beside its published range.
+// cure preset (include/dentsph/depth_of_cure.hpp); rheometer, slump, packing and tack: the paste
+// presets' handling tests (include/dentsph/handling.hpp), each figure beside its published range.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -13,7 +14,7 @@ namespace dentsph::cli {
 
 class MaterialTestCommand {
  public:
-  // Adds the "material-test" subcommand (with "depth-of-cure", "rheometer" and "slump") to `app`.
+  // Adds the "material-test" subcommand (with "depth-of-cure" and the handling tests) to `app`.
   void add_to(CLI::App& app);
   // Whether the command line chose it.
   bool chosen() const;
@@ -24,20 +25,21 @@ class MaterialTestCommand {
  private:
   // The options of a handling test's subcommand.
   struct Handling {
+    std::string name;  // one of handling_test_names()
     CLI::App* command = nullptr;
     std::string material = "universal";
     double temperature_c = 23;
-    std::string out;
+    std::string out{};
     int threads = 1;
   };
-  void add_handling(CLI::App& parent, const std::string& name, const std::string& description, Handling& h);
-  int run_handling(const std::string& name, const Handling& h) const;
+  void add_handling(CLI::App& parent, const std::string& description, Handling& h);
+  int run_handling(const Handling& h) const;
 
   CLI::App* command_ = nullptr;
   CLI::App* depth_of_cure_ = nullptr;
   DepthOfCureOptions options_;
   double irradiance_mw_ = 1000, spacing_mm_ = 0.1, length_mm_ = 10;
-  Handling rheometer_, slump_, packing_, tack_;
+  std::array<Handling, 4> handling_{{{"rheometer"}, {"slump"}, {"packing"}, {"tack"}}};
 };
 
 }  // namespace dentsph::cli

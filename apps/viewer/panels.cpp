@@ -104,8 +104,10 @@ void material_panel(const Snapshot& s, UiState& ui, std::vector<Command>& out) {
     c.temperature_c = ui.preset_temperature_c;
     out.push_back(c);
   }
-  ImGui::TextDisabled("in use: %s", s.preset.empty() ? "the scene's own paste"
-                                                      : fmt::format("{} at {:g} C", s.preset, s.preset_temperature_c).c_str());
+  if (s.preset.empty())
+    ImGui::TextDisabled("in use: the scene's own paste");
+  else
+    ImGui::TextDisabled("in use: %s at %g C", s.preset.c_str(), s.preset_temperature_c);
   ImGui::Separator();
   MaterialEdit& m = ui.material;
   auto field = [](const char* label, real& v, float lo, float hi, const char* fmt_str) {

@@ -1,8 +1,8 @@
 // Virtual handling tests of the filling pastes (docs/model.md, "Handling tests"): each reproduces a
 // published protocol on particles (its geometry, speed and the quantity measured) with a preset
 // (paste_presets.hpp) and gives its figures beside the published range and source.
-// `dentsph material-test rheometer|slump --material NAME [--out DIR]` runs them; with --out each
-// writes result.json and its curves as SVG plots.
+// `dentsph material-test rheometer|slump|packing|tack --material NAME [--out DIR]` runs them; with
+// --out each writes result.json and its curves as SVG plots.
 #pragma once
 
 #include <array>
@@ -41,12 +41,12 @@ struct HandlingCurve {
   bool log_x = false, log_y = false;
   std::vector<HandlingSeries> series;
   bool legend_right = false;  // the legend in the upper right corner (else the upper left)
-  // A published range drawn as a bar at x: [x, low, high] (none where x is NaN).
+  // A published range drawn as a bar at x: [x, low, high].
   std::optional<std::array<real, 3>> range_bar;
 };
 
 struct HandlingResult {
-  std::string test;      // "rheometer", "slump"
+  std::string test;      // one of handling_test_names()
   std::string material;  // the preset's name
   real temperature_c = 23;
   std::vector<HandlingFigure> figures;
@@ -123,7 +123,7 @@ struct TackOptions {
 };
 HandlingResult tack_test(const PastePreset& preset, const TackOptions& options = {});
 
-// The test named `test` ("rheometer", "slump", "packing", "tack") with default options but `run`.
+// The test named `test` (one of handling_test_names(): "rheometer", "slump", "packing", "tack") with default options but `run`.
 // std::invalid_argument naming the choices for another name.
 HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run);
 const std::vector<std::string>& handling_test_names();

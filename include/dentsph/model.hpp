@@ -172,6 +172,15 @@ struct Model {
 // reads "iisph.<field>: <problem>; <fix>".
 void check_iisph_params(const IisphParams& p);
 
+// The kernel support and adhesion range of particles on a lattice of spacing s, as every built-in
+// scene has them: h = 2 s (the lattice shares of the kernels assume it), the adhesion's A = 1.2 s
+// and B = 3 s.
+inline void set_lattice_spacing(ModelParams& p, real s) {
+  p.h = 2 * s;
+  p.adhesion.A = 1.2 * s;
+  p.adhesion.B = 3 * s;
+}
+
 // Checks `p` and derives the kernel constants, C_d and the grid. Throws std::invalid_argument
 // whose message names the offending field and says how to fix it.
 Model make_model(const ModelParams& p);

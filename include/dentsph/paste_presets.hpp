@@ -4,6 +4,7 @@
 // renders its force at scale 1.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -22,6 +23,10 @@ struct PastePreset {
   real viscosity_at_10 = 0;    // Pa s, its viscosity at a shear rate of 10 /s (its yield stress's share included)
   real published_low = 0, published_high = 0;  // Pa s, the published range that figure sits in
   std::string source;          // the publication of that range, and which constants are assumed
+  // Where one is published and no constant was set from it: the range of its viscosity over a
+  // conventional composite's (the `universal` preset's), and its source (the rheometer's check).
+  std::optional<std::array<real, 2>> published_ratio;
+  std::string ratio_source;
 };
 
 // "flowable", "universal", "packable", "amalgam".

@@ -86,13 +86,13 @@ real velocity_time_step_limit(const Model& model, real speed);
 // `explosion_speed_factor` times it, or non-finite, has exploded (the offline run, the haptic
 // runtime and the viewer stop on it).
 inline constexpr real explosion_speed_factor = 10;
-inline bool exploded(const StepDiagnostics& d, real sound_speed) {
-  return d.non_finite > 0 || d.max_speed > explosion_speed_factor * sound_speed;
-}
-// A tool force no paste can exert: non-finite, or over a meganewton (the built-in procedure's is a
-// few newtons; a device renders at most tens). A solve that diverged under the tool gives one while
-// the material still moves slowly: the runs stop on it as on exploded material.
+// A tool force no paste can exert, non-finite or over a meganewton (the built-in procedure's is a
+// few newtons; a device renders at most tens), has exploded too: a solve that diverged under the
+// tool gives one while the material still moves slowly.
 inline constexpr real exploded_tool_force = 1e6;  // N
 inline bool tool_force_exploded(const ToolWrench& w) { return !(norm(w.force) <= exploded_tool_force); }
+inline bool exploded(const StepDiagnostics& d, const ToolWrench& w, real sound_speed) {
+  return d.non_finite > 0 || d.max_speed > explosion_speed_factor * sound_speed || tool_force_exploded(w);
+}
 
 }  // namespace dentsph

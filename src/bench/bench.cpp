@@ -193,9 +193,7 @@ Scene sweep_cups_scene(int side, int cups, int grid_reach) {
   sc.name = cups == 1 ? fmt::format("block_{}", side) : fmt::format("cups_{}x{}", cups, side);
   sc.source = "built-in";
   sc.params.dt = 2e-4;
-  sc.params.h = 2 * s;
-  sc.params.adhesion.A = 1.2 * s;
-  sc.params.adhesion.B = 3 * s;
+  set_lattice_spacing(sc.params, s);
   // The domain begins one spacing before the walls and ends five after them on every axis, so a
   // search past its edge (the grid wraps there) finds empty cells, never another cup's.
   sc.params.domain_min = {base, base, -3 * s};

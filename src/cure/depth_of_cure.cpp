@@ -43,9 +43,7 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
   const int across = int(std::floor(R / s)), layers = std::max(1, int(std::lround(o.mould_length / s)));
   ModelParams p;
   p.dt = 1e-5;
-  p.h = 2 * s;
-  p.adhesion.A = 1.2 * s;
-  p.adhesion.B = 3 * s;
+  set_lattice_spacing(p, s);
   p.domain_min = {-R - 2 * s, -R - 2 * s, -o.mould_length - 2 * s};
   p.domain_max = {R + 2 * s, R + 2 * s, 2 * s};
   Model model = make_model(p);  // its material table grows with the paste (add_particles)

@@ -157,15 +157,13 @@ HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions&
     eta10.source = fmt::format("the published range is at 23 C ({:.4g} to {:.4g} Pa s); this paste is at {:g} C",
                                preset.published_low, preset.published_high, preset.temperature_c);
   r.figures.push_back(eta10);
-  // The flowable's viscosity over a conventional composite's (the universal preset's at 10 /s at the
-  // same temperature): not fitted (the flowable's viscosity was chosen in Loumprinis 2021's range,
-  // the universal's from Lee 2003's packable ratio).
-  if (preset.name == "flowable") {
+  // The viscosity over a conventional composite's (the universal preset's at 10 /s at the same
+  // temperature), where the preset has a published ratio no constant was set from (the flowable's:
+  // its viscosity was chosen in Loumprinis 2021's range, the universal's from Lee 2003's packable ratio).
+  if (preset.published_ratio) {
     const real universal = paste_preset("universal", preset.temperature_c).viscosity_at_10;
     r.figures.push_back({"viscosity over a conventional composite's", eta10.value / universal, "",
-                         std::array<real, 2>{0.04, 0.56},
-                         "Lee, Son & Um (Dent Mater 2003): flowables 0.04 to 0.56 of a conventional hybrid (Z-100) at "
-                         "10 rad/s; here over the universal preset's viscosity at 10 /s"});
+                         preset.published_ratio, preset.ratio_source});
   }
   const real law_slope = std::log(law[n - 1] * rates[n - 1] / (law[n - 2] * rates[n - 2])) /
                          std::log(rates[n - 1] / rates[n - 2]);

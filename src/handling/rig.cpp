@@ -16,10 +16,8 @@ namespace dentsph::handling {
 ModelParams rig_params(real s, const Vec3& lo, const Vec3& hi, real dt, const Vec3& gravity) {
   ModelParams p;
   p.dt = dt;
-  p.h = 2 * s;
+  set_lattice_spacing(p, s);
   p.gravity = gravity;
-  p.adhesion.A = 1.2 * s;
-  p.adhesion.B = 3 * s;
   p.domain_min = lo;
   p.domain_max = hi;
   p.solver = Solver::iisph;
@@ -37,6 +35,9 @@ void rig_step(const Model& model, State& state, const HandlingRunOptions& run, c
   if (state.diagnostics.non_finite != 0)
     throw std::runtime_error(fmt::format("the {} test: {} particles' state is not finite at t = {:.3f} s", test,
                                          state.diagnostics.non_finite, state.time));
+  if (tool_force_exploded(state.tool_wrench))
+    throw std::runtime_error(fmt::format("the {} test: the tool force reached {:.3g} N at t = {:.3f} s: the solve diverged",
+                                         test, norm(state.tool_wrench.force), state.time));
 }
 
 MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real mould_depth, real probe_diameter,

@@ -10,15 +10,16 @@
 
 namespace dentsph::handling {
 
-// The model of a rig of spacing s (h = 2 s, the adhesion's A = 1.2 s and B = 3 s, as the dental
-// scenes) over [lo, hi], on the iisph solver: cg pressure, the viscosity solved to 1e-4.
+// The model of a rig of spacing s (set_lattice_spacing, as the dental scenes) over [lo, hi], on the
+// iisph solver: cg pressure, the viscosity solved to 1e-4.
 ModelParams rig_params(real s, const Vec3& lo, const Vec3& hi, real dt, const Vec3& gravity);
 
 // The plates', moulds' and probes' material beside `paste`: as stiff as the dental walls (1.5 Kp),
 // of its density, no adhesion of its own.
 Material wall_beside(const Material& paste);
 
-// One step; std::runtime_error naming the test when a particle's state is not finite.
+// One step; std::runtime_error naming the test when a particle's state is not finite or the tool
+// force has exploded (step.hpp).
 void rig_step(const Model& model, State& state, const HandlingRunOptions& run, const std::string& test);
 
 }  // namespace dentsph::handling

@@ -63,7 +63,7 @@ HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& o) {
   st.add_particles(model, ps);
 
   const Shape start = shape(st, s);
-  std::vector<real> t{0}, aspect{start.height / start.diameter}, height{start.height * 1e3};
+  std::vector<real> t{0}, aspect{start.height / start.diameter};
   real next_sample = 0.1;
   while (st.time < o.duration - 0.5 * o.dt) {
     handling::rig_step(model, st, o.run, "slump");
@@ -71,7 +71,6 @@ HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& o) {
       const Shape now = shape(st, s);
       t.push_back(st.time);
       aspect.push_back(now.height / now.diameter);
-      height.push_back(now.height * 1e3);
       next_sample += 0.1;
       if (o.run.progress && std::lround(st.time * 10) % 10 == 0)
         o.run.progress(fmt::format("slump: {} at {:.1f} s: aspect ratio {:.3f}", preset.name, st.time, aspect.back()));
@@ -83,13 +82,14 @@ HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& o) {
   r.test = "slump";
   r.material = preset.name;
   r.temperature_c = preset.temperature_c;
-  r.figures.push_back({"aspect ratio after 10 s", end.height / end.diameter, "", std::nullopt,
+  r.figures.push_back({fmt::format("aspect ratio after {:g} s", o.duration), end.height / end.diameter, "", std::nullopt,
                        "Lee, Min, Kim & Ferracane (Dent Mater 2010): the aspect ratio falls as the paste slumps more; "
                        "their ranking (slumping resistance rising with the complex modulus) is the published "
                        "figure, not a range for this volume"});
   r.figures.push_back({"aspect ratio at the start", start.height / start.diameter, "", std::nullopt,
                        "the cylinder as set down"});
-  r.figures.push_back({"height kept", end.height / start.height, "", std::nullopt, "the height after 10 s over the height at the start"});
+  r.figures.push_back({"height kept", end.height / start.height, "", std::nullopt,
+                       fmt::format("the height after {:g} s over the height at the start", o.duration)});
   r.figures.push_back({"fastest particle at the end", st.diagnostics.max_speed * 1e3, "mm/s", std::nullopt,
                        "still slumping where above about 0.01 mm/s"});
   HandlingCurve curve;

@@ -96,7 +96,7 @@ std::string svg_plot(const HandlingCurve& curve) {
     xs.insert(xs.end(), s.x.begin(), s.x.end());
     ys.insert(ys.end(), s.y.begin(), s.y.end());
   }
-  if (curve.range_bar && std::isfinite((*curve.range_bar)[0])) {
+  if (curve.range_bar) {
     xs.push_back((*curve.range_bar)[0]);
     ys.push_back((*curve.range_bar)[1]);
     ys.push_back((*curve.range_bar)[2]);
@@ -132,7 +132,7 @@ std::string svg_plot(const HandlingCurve& curve) {
                      kHeight - 16, escape(curve.x_label));
   svg += fmt::format("<text transform=\"translate(18 {:.1f}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
                      0.5 * (kTop + kHeight - kBottom), escape(curve.y_label));
-  // The published range.
+  // The legend, an entry a line; then the published range and the series, each with its entry.
   int legend = 0;
   auto legend_entry = [&](const std::string& name, const std::string& colour, const std::string& dash) {
     const double ly = kTop + 14 + 18 * legend++;

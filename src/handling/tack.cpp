@@ -21,7 +21,6 @@ namespace {
 
 struct Pull {
   std::vector<real> travel, force;  // mm from where the pull started, N (the pull: positive down)
-  real pressed_depth = 0;           // m the probe's face went below the paste's surface
   real peak = 0;                    // N
   real work = 0;                    // N mm
 };
@@ -39,12 +38,12 @@ Pull pull(const PastePreset& preset, real speed, const TackOptions& o) {
     handling::rig_step(rig.model, st, o.run, "tack");
   }
   Pull p;
-  p.pressed_depth = std::max<real>(0, z - rig.face_gap);
   // Held there.
   for (real t = 0; t < o.press_time - 0.5 * o.dt; t += o.dt) handling::rig_step(rig.model, st, o.run, "tack");
   // Withdrawn.
   const real z0 = z;
   for (real up = 0; up < o.pull_distance - 1e-12;) {
+    const real before = up;
     up = std::min(o.pull_distance, up + speed * o.dt);
     st.tool_pose = Pose{Vec3{0, 0, -(z0 - up)}, Quat{}};
     handling::rig_step(rig.model, st, o.run, "tack");
@@ -52,7 +51,7 @@ Pull pull(const PastePreset& preset, real speed, const TackOptions& o) {
     p.travel.push_back(up * 1e3);
     p.force.push_back(f);
     p.peak = std::max(p.peak, f);
-    p.work += std::max<real>(0, f) * speed * o.dt * 1e3;
+    p.work += std::max<real>(0, f) * (up - before) * 1e3;  // N mm over this step's travel
   }
   if (o.run.progress)
     o.run.progress(fmt::format("tack: {} withdrawn at {:g} mm/s: peak {:.3g} N, work {:.3g} N mm", preset.name,

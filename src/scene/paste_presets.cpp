@@ -31,19 +31,24 @@ Material composite(real eta10, real n, real yield_stress, real plateau, real rho
 }
 
 // The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C, its yield
-// stress's share included), flow index, yield stress (Pa), low-shear plateau (Pa s at 23 C; 0: none), density (kg/m^3), cure preset, the
-// published range of the viscosity and its source.
+// stress's share included), flow index, yield stress (Pa), low-shear plateau (Pa s at 23 C; 0:
+// none), density (kg/m^3), cure preset, the published range of the viscosity and its source, and a
+// published range of its ratio to a conventional composite's not used to set it (0, 0: none).
 struct PresetRow {
   const char* name;
   real eta10, n, yield_stress, plateau, rho0;
   const char* cure;
   real low, high;
   const char* source;
+  real ratio_low = 0, ratio_high = 0;
+  const char* ratio_source = "";
 };
 
 constexpr PresetRow kPresets[] = {
     {"flowable", 1700, 0.5, 0, 1700, 2000, "composite", 1310, 2200,
-     "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C"},
+     "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C", 0.04, 0.56,
+     "Lee, Son & Um (Dent Mater 2003): flowables 0.04 to 0.56 of a conventional hybrid (Z-100) at 10 rad/s; here over "
+     "the universal preset's viscosity at 10 /s"},
     {"universal", 5300, 0.5, 2e4, 0, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
      "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and packables 6.75 to "
      "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
@@ -90,6 +95,10 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     p.published_low = r.low;
     p.published_high = r.high;
     p.source = r.source;
+    if (r.ratio_high > 0) {
+      p.published_ratio = std::array<real, 2>{r.ratio_low, r.ratio_high};
+      p.ratio_source = r.ratio_source;
+    }
     p.viscosity_at_10 = rheology::effective_viscosity(p.paste, 10);
     return p;
   }

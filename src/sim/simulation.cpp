@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -124,19 +125,21 @@ bool Simulation::step(const Pose& tool_pose) {
   if (model_.dt > force_limit && force_violation_steps_++ == 0) first_force_violation_t_ = t;
   solver_.record(solver_statistics_, d);
   // Exploded material: the run says so instead of stepping garbage.
-  const bool tool_exploded = tool_force_exploded(state_.tool_wrench);
-  if (!diverged_ && (exploded(d, limits_.sound_speed) || tool_exploded)) {
+  if (!diverged_ && exploded(d, state_.tool_wrench, limits_.sound_speed)) {
     diverged_ = true;
+    std::string what;
+    if (d.non_finite > 0)
+      what = fmt::format("{} material particles became non-finite", d.non_finite);
+    else if (tool_force_exploded(state_.tool_wrench))
+      what = fmt::format("the tool force reached {:.3g} N, over {:.0e} N", norm(state_.tool_wrench.force),
+                         exploded_tool_force);
+    else
+      what = fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s", d.max_speed,
+                         explosion_speed_factor, limits_.sound_speed);
     divergence_ = fmt::format(
         "{} at t = {:.6g} s (step {}); the smallest {} limit seen was {:.3g} s against dt = {:.3g} s: lower "
         "simulation.dt or the stiffness",
-        d.non_finite > 0 ? fmt::format("{} material particles became non-finite", d.non_finite)
-        : tool_exploded  ? fmt::format("the tool force reached {:.3g} N, over {:.0e} N", norm(state_.tool_wrench.force),
-                                       exploded_tool_force)
-                         : fmt::format("material reached {:.3g} m/s, over {} times the sound speed {:.3g} m/s",
-                                       d.max_speed, explosion_speed_factor, limits_.sound_speed),
-        state_.time, state_.steps, solver_.motion_limit_name(), limits_.force,
-        model_.dt);
+        what, state_.time, state_.steps, solver_.motion_limit_name(), limits_.force, model_.dt);
   }
   if (!diverged_) cure_after_step(t);
   return !diverged_;

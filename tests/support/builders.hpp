@@ -12,14 +12,12 @@
 
 namespace dentsph::testing {
 
-// A model of spacing s: h = 2 s, A = 1.2 s, B = 3 s, over the given domain.
+// A model of spacing s (set_lattice_spacing: h = 2 s, A = 1.2 s, B = 3 s), over the given domain.
 inline ModelParams params_for_spacing(real s, Vec3 lo, Vec3 hi, real dt = 1e-4, Vec3 g = {0, 0, 0}) {
   ModelParams p;
   p.dt = dt;
-  p.h = 2 * s;
+  set_lattice_spacing(p, s);
   p.gravity = g;
-  p.adhesion.A = 1.2 * s;
-  p.adhesion.B = 3 * s;
   p.domain_min = lo;
   p.domain_max = hi;
   return p;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -324,6 +325,12 @@ TEST(PastePresets, AnchoredToTheirPublishedViscosityAndOrdered) {
     EXPECT_GE(dp.wall.Kp, dp.paste.Kp) << "walls at least as stiff as the paste";
     EXPECT_EQ(dp.solver, Solver::iisph);
   }
+  // The one published ratio no constant was set from (the rheometer checks it): the flowable's to a
+  // conventional composite's, Lee, Son & Um 2003's 0.04 to 0.56.
+  ASSERT_TRUE(paste_preset("flowable").published_ratio.has_value());
+  EXPECT_EQ(*paste_preset("flowable").published_ratio, (std::array<real, 2>{0.04, 0.56}));
+  for (const std::string name : {"universal", "packable", "amalgam"})
+    EXPECT_FALSE(paste_preset(name).published_ratio.has_value()) << name;
   // Warmer paste is less viscous (Arrhenius, E/R = 3462 K): fitted to the lower end of the
   // published 41 to 92% drop from 23 to 37 C, it predicts 0.33 of the viscosity at 54 C, inside the
   // 0.32 to 0.39 of Loumprinis et al. 2021's unplugging forces (2.9 to 6.2 N at 54 C over 7.5 to
