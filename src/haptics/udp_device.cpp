@@ -29,6 +29,9 @@ namespace proto = haptic_protocol;
 namespace {
 
 constexpr int kMaxDatagramsPerTick = 256;
+// The speed anchor's least age (s): with the 2 mm jitter tolerance, a pose may be at most 0.1 m/s
+// faster than the speed limit over each anchor's span.
+constexpr double kAnchorAge = 0.02;
 
 struct UdpCounters {
   std::uint64_t datagrams = 0, poses = 0, duplicates = 0, reordered = 0, gaps = 0, too_old = 0;
@@ -198,9 +201,12 @@ class UdpDeviceImpl final : public Device {
 
   // A pose in the workspace and no faster than a hand: from the pose received before it (by the
   // client's clock, or ours when the client's does not advance: so a pose that jumps away is
-  // refused, and so is the one after it, which jumps back), and from the last one accepted
-  // (by the longer of the two clocks, so that the device catches up, at a hand's speed, with a
-  // hand that really moved while its poses were refused). Counted by reason when not.
+  // refused, and so is the one after it, which jumps back), and from the speed anchor, an
+  // accepted pose at least `kAnchorAge` old (by the longer of the two clocks, so that the device
+  // catches up, at a hand's speed, with a hand that really moved while its poses were refused).
+  // The anchor moves only every kAnchorAge: measured from the pose just accepted, poses sent back
+  // to back (a client catching up after a stall) would each be within the jitter tolerance of
+  // the one before and creep away at any speed. Counted by reason when not.
   bool plausible(const proto::PosePacket& p, std::int64_t now_ns) {
     const Vec3 x{p.position[0], p.position[1], p.position[2]};
     const Vec3 previous = received_position_;
@@ -218,14 +224,21 @@ class UdpDeviceImpl final : public Device {
     auto too_fast = [&](const Vec3& from, double dt) {
       return norm(x - from) > opt_.max_speed_m_per_s * std::max(dt, 0.0) + opt_.jump_tolerance_m;
     };
-    const double ours = double(now_ns - accepted_ns_) * 1e-9;
-    const double theirs = double(std::int64_t(p.header.timestamp_ns - accepted_stamp_)) * 1e-9;
+    const double anchor_age = since_anchor(p, now_ns);
     if ((had_previous && too_fast(previous, theirs_prev > 0 && theirs_prev < 1 ? theirs_prev : ours_prev)) ||
-        (have_accepted_ && too_fast(accepted_position_, std::max(ours, theirs > 0 && theirs < 1 ? theirs : 0.0)))) {
+        (have_accepted_ && too_fast(anchor_position_, anchor_age))) {
       ++c_.too_fast;
       return false;
     }
     return true;
+  }
+
+  // Seconds since the speed anchor, by the longer of our clock and the client's (when the
+  // client's is plausible: forward and under a second).
+  double since_anchor(const proto::PosePacket& p, std::int64_t now_ns) const {
+    const double ours = double(now_ns - anchor_ns_) * 1e-9;
+    const double theirs = double(std::int64_t(p.header.timestamp_ns - anchor_stamp_)) * 1e-9;
+    return std::max(ours, theirs > 0 && theirs < 1 ? theirs : 0.0);
   }
 
   // Sequence bookkeeping over a 64-packet window behind the newest (as in IPsec's anti-replay
@@ -279,10 +292,13 @@ class UdpDeviceImpl final : public Device {
     ++c_.poses;
     if (!plausible(p, now_ns)) return false;  // arrived (not lost), but not used nor answered
     last_heard_ns_ = now_ns;
-    have_accepted_ = true;
-    accepted_ns_ = now_ns;
-    accepted_stamp_ = p.header.timestamp_ns;
     accepted_position_ = {p.position[0], p.position[1], p.position[2]};
+    if (!have_accepted_ || since_anchor(p, now_ns) >= kAnchorAge) {
+      anchor_ns_ = now_ns;
+      anchor_stamp_ = p.header.timestamp_ns;
+      anchor_position_ = accepted_position_;
+    }
+    have_accepted_ = true;
     answer_sequence_ = q;
     answer_timestamp_ = p.header.timestamp_ns;
     s.pose.position = accepted_position_;
@@ -315,14 +331,14 @@ class UdpDeviceImpl final : public Device {
   std::array<std::uint8_t, proto::kMaxPacketBytes> out_{};
   bool session_ = false, torque_client_ = false, have_pose_ = false, have_accepted_ = false, have_received_ = false, answer_pending_ = false;
   sockaddr_in client_{};
-  std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0, accepted_ns_ = 0, received_ns_ = 0;
+  std::int64_t last_heard_ns_ = 0, last_sent_ns_ = 0, anchor_ns_ = 0, received_ns_ = 0;
   std::uint32_t newest_sequence_ = 0, out_sequence_ = 0, answer_sequence_ = 0, old_last_ = 0, session_number_ = 0;
   int old_streak_ = 0;
   bool old_fresh_ = false;            // every pose of the run sent after the newest pose
   std::uint32_t old_first_ = 0;       // the run's first pose number
   std::uint64_t newest_stamp_ = 0;    // the newest pose's timestamp (the client's clock)
-  std::uint64_t answer_timestamp_ = 0, accepted_stamp_ = 0, received_stamp_ = 0, seen_mask_ = 0;
-  Vec3 accepted_position_, received_position_;
+  std::uint64_t answer_timestamp_ = 0, anchor_stamp_ = 0, received_stamp_ = 0, seen_mask_ = 0;
+  Vec3 accepted_position_, anchor_position_, received_position_;
   UdpCounters c_;
 };
 

@@ -198,12 +198,45 @@ TEST(HapticSafety, AClientThatRestartsItsNumberingIsANewSession) {
   }
 }
 
+// Poses sent straight to a UDP device on loopback, each read at once at a clock of our own.
+struct PoseSender {
+  std::uint16_t port = 0;
+  std::unique_ptr<Device> device = make_udp_device({"127.0.0.1", 0}, &port);
+  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  DeviceSample sample;
+  std::int64_t now = 1'000'000'000;
+  PoseSender() {
+    to.sin_family = AF_INET;
+    to.sin_port = htons(port);
+    ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+    device->start(0);
+  }
+  ~PoseSender() { ::close(fd); }
+  PoseSender(const PoseSender&) = delete;
+  PoseSender& operator=(const PoseSender&) = delete;
+  // Sends one pose and reads the device `step_ns` later by our clock; true when it was used.
+  bool send(std::uint32_t seq, std::uint64_t stamp, Vec3 position = {}, std::int64_t step_ns = 1'000'000) {
+    namespace proto = haptic_protocol;
+    proto::PosePacket pose;
+    pose.header.sequence = seq;
+    pose.header.timestamp_ns = stamp;
+    for (int a = 0; a < 3; ++a) pose.position[a] = position[a];
+    std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
+    const std::size_t n = proto::encode(pose, buf);
+    ::sendto(fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    now += step_ns;
+    return device->read(now, sample) && sample.sequence == seq;
+  }
+  nlohmann::json report() const { return nlohmann::json::parse(device->report_json()); }
+};
+
 // Old poses resent later with their old timestamps (a network path that delivers a burst of
 // stale datagrams): three in a row, numbered one after another, were read as a restart (the
 // session started again, every pose since counted lost). They are too old; a client that really
 // numbers from the start again (its clock going on, or from pose 1 whatever its clock) is a restart.
 TEST(HapticSafety, StalePosesResentAreNotARestart) {
-  namespace proto = haptic_protocol;
   struct Case {
     const char* name;
     std::uint32_t first;     // the run's first pose number
@@ -214,38 +247,52 @@ TEST(HapticSafety, StalePosesResentAreNotARestart) {
                        Case{"numbered from 1, a clock that restarted", 1, true, 1},
                        Case{"numbered from 100, clock going on", 100, false, 1}}) {
     SCOPED_TRACE(k.name);
-    std::uint16_t port = 0;
-    const std::unique_ptr<Device> device = make_udp_device({"127.0.0.1", 0}, &port);
-    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in to{};
-    to.sin_family = AF_INET;
-    to.sin_port = htons(port);
-    ::inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
-    device->start(0);
-    DeviceSample sample;
-    std::int64_t now = 1'000'000'000;
-    auto send = [&](std::uint32_t seq, std::uint64_t stamp) {
-      proto::PosePacket pose;
-      pose.header.sequence = seq;
-      pose.header.timestamp_ns = stamp;
-      std::array<std::uint8_t, proto::kMaxPacketBytes> buf{};
-      const std::size_t n = proto::encode(pose, buf);
-      ::sendto(fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-      now += 1'000'000;
-      device->read(now, sample);
-    };
+    PoseSender c;
     const std::uint64_t t0 = 5'000'000'000;  // the client's clock at its first pose
-    for (std::uint32_t q = 1; q <= 2000; ++q) send(q, t0 + q * 1'000'000ull);
+    for (std::uint32_t q = 1; q <= 2000; ++q) c.send(q, t0 + q * 1'000'000ull);
     for (std::uint32_t q = k.first; q < k.first + 3; ++q)
-      send(q, k.old_stamps ? t0 + q * 1'000'000ull : t0 + (2000 + q) * 1'000'000ull);
-    ::close(fd);
-    const nlohmann::json d = nlohmann::json::parse(device->report_json());
+      c.send(q, k.old_stamps ? t0 + q * 1'000'000ull : t0 + (2000 + q) * 1'000'000ull);
+    const nlohmann::json d = c.report();
     EXPECT_EQ(d["restarts"], k.restarts);
     EXPECT_EQ(d["lost"], 0);
     if (k.restarts == 0) {
       EXPECT_EQ(d["too_old"], 3);
       EXPECT_EQ(d["sessions"], 1);
+    }
+  }
+}
+
+// A client catching up after a stall sends its poses back to back, a tenth of a millisecond apart.
+// Each was within the 2 mm jitter tolerance of the pose used before it, so a burst crept away at
+// any speed (a client in millimetres was followed 95 mm from its origin, on a loaded host). The
+// speed is now measured from a pose used at least 20 ms before: a burst at 10 m/s is followed
+// no further than a hand's 2 m/s allows; one at 1.5 m/s is followed all the way.
+TEST(HapticSafety, ABurstOfPosesCannotCreepFasterThanAHand) {
+  for (const double speed : {10.0, 1.5}) {
+    SCOPED_TRACE(speed);
+    PoseSender c;
+    const std::uint64_t t0 = 5'000'000'000;
+    const std::int64_t dt_ns = 100'000;
+    const int poses = 400;  // 40 ms
+    int used = 0;
+    real furthest = 0;
+    for (int q = 1; q <= poses; ++q) {
+      const double t = double(q - 1) * double(dt_ns) * 1e-9;
+      if (c.send(std::uint32_t(q), t0 + std::uint64_t(q) * std::uint64_t(dt_ns), Vec3{real(speed * t), 0, 0}, dt_ns)) {
+        ++used;
+        furthest = std::max(furthest, norm(c.sample.pose.position));
+      }
+    }
+    const double span = double(poses - 1) * double(dt_ns) * 1e-9;
+    std::printf("%.1f m/s burst: %d of %d poses used, followed to %.4f m of %.4f m\n", speed, used, poses, furthest,
+                speed * span);
+    if (speed > 2) {
+      // 2 m/s over the 40 ms, with the 2 mm tolerance once per 20 ms anchor: 0.086 m at most.
+      EXPECT_LE(furthest, 2.0 * span + 3 * 0.002);
+      EXPECT_GT(c.report()["implausible_by_reason"]["faster than a hand"].get<int>(), poses / 2);
+    } else {
+      EXPECT_EQ(used, poses);
+      EXPECT_NEAR(furthest, speed * span, 1e-6);
     }
   }
 }
