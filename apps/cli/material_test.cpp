@@ -1,5 +1,5 @@
 // `dentsph material-test depth-of-cure [--material PRESET] [--irradiance MW_PER_CM2] [--time S]`,
-// `dentsph material-test rheometer|slump|packing|tack [--material NAME] [--temperature C] [--out DIR]`.
+// `dentsph material-test rheometer|slump|packing|tack|condensation [--material NAME] [--temperature C] [--out DIR]`.
 #include "material_test.hpp"
 
 #include <algorithm>
@@ -19,7 +19,7 @@ namespace dentsph::cli {
 
 void MaterialTestCommand::add_to(CLI::App& app) {
   command_ = app.add_subcommand(
-      "material-test", "Virtual material tests: depth-of-cure (ISO 4049); the pastes' handling tests rheometer, slump, packing, tack");
+      "material-test", "Virtual material tests: depth-of-cure (ISO 4049); the pastes' handling tests rheometer, slump, packing, tack, condensation");
   command_->require_subcommand(1);
   depth_of_cure_ = command_->add_subcommand(
       "depth-of-cure",
@@ -46,7 +46,9 @@ void MaterialTestCommand::add_to(CLI::App& app) {
       "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the stress "
       "under the probe",
       "Probe tack: a 6 mm steel probe pressed onto the paste at 1 N for 1 s, withdrawn at 2, 4, 6 and 8 mm/s: the "
-      "peak pull and the work of separation"};
+      "peak pull and the work of separation",
+      "Condensation (amalgam, the default here): 1.15 mm and 1.8 mm flat pluggers driven 0.5 mm into a 1 mm "
+      "increment on a cavity's floor: the peak stress and force"};
   static_assert(std::size(descriptions) == std::tuple_size_v<decltype(handling_)>);
   for (std::size_t k = 0; k < handling_.size(); ++k) add_handling(*command_, descriptions[k], handling_[k]);
 }

@@ -39,7 +39,8 @@ class MaterialTestCommand {
   CLI::App* depth_of_cure_ = nullptr;
   DepthOfCureOptions options_;
   double irradiance_mw_ = 1000, spacing_mm_ = 0.1, length_mm_ = 10;
-  std::array<Handling, 4> handling_{{{"rheometer"}, {"slump"}, {"packing"}, {"tack"}}};
+  std::array<Handling, 5> handling_{
+      {{"rheometer"}, {"slump"}, {"packing"}, {"tack"}, {"condensation", nullptr, "amalgam"}}};
 };
 
 }  // namespace dentsph::cli

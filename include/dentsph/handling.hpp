@@ -1,7 +1,7 @@
 // Virtual handling tests of the filling pastes (docs/model.md, "Handling tests"): each reproduces a
 // published protocol on particles (its geometry, speed and the quantity measured) with a preset
 // (paste_presets.hpp) and gives its figures beside the published range and source.
-// `dentsph material-test rheometer|slump|packing|tack --material NAME [--out DIR]` runs them; with
+// `dentsph material-test rheometer|slump|packing|tack|condensation --material NAME [--out DIR]` runs them; with
 // --out each writes result.json and its curves as SVG plots.
 #pragma once
 
@@ -123,7 +123,23 @@ struct TackOptions {
 };
 HandlingResult tack_test(const PastePreset& preset, const TackOptions& options = {});
 
-// The test named `test` (one of handling_test_names(): "rheometer", "slump", "packing", "tack") with default options but `run`.
+// The condensation of an amalgam: a flat plugger driven into a 1 mm increment on the floor of a
+// cavity 4 mm across, as a practitioner condenses it; the peak stress under the plugger (its force
+// over its face's area) and the peak force, for a 1.15 mm and a 1.8 mm plugger.
+struct CondensationOptions {
+  HandlingRunOptions run;
+  std::vector<real> plugger_diameters{1.15e-3, 1.8e-3};  // m
+  real cavity_diameter = 4e-3;  // m
+  real increment = 1e-3;        // m, the paste's thickness on the cavity's floor
+  real speed = 1e-3;            // m/s, the plugger's (assumed: a condensing stroke)
+  real depth = 0.5e-3;          // m into the increment
+  real spacing = 0.1e-3;        // m
+  real dt = 5e-3;               // s
+};
+HandlingResult condensation_test(const PastePreset& preset, const CondensationOptions& options = {});
+
+// The test named `test` (one of handling_test_names(): "rheometer", "slump", "packing", "tack",
+// "condensation") with default options but `run`.
 // std::invalid_argument naming the choices for another name.
 HandlingResult run_handling_test(const std::string& test, const PastePreset& preset, const HandlingRunOptions& run);
 const std::vector<std::string>& handling_test_names();

@@ -16,36 +16,9 @@ namespace dentsph {
 
 namespace {
 
-constexpr real pi = 3.14159265358979323846;
-
-struct Run {
-  std::vector<real> t, stress;  // s, MPa
-  real peak = 0;                // MPa
-  real end = 0;                 // MPa, over the hold's second half
-};
-
-Run press(const PastePreset& preset, real probe_diameter, const PackingOptions& o) {
+handling::ProbePress press(const PastePreset& preset, real probe_diameter, const PackingOptions& o) {
   handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, probe_diameter, o.dt);
-  Model& model = rig.model;
-  State& st = rig.state;
-  const real a = 0.5 * probe_diameter;
-
-  const real travel = rig.face_gap + o.depth, t_stop = travel / o.speed, t_end = t_stop + o.hold;
-  const real area = pi * a * a;
-  Run r;
-  real end_sum = 0;
-  int end_count = 0;
-  while (st.time < t_end - 0.5 * o.dt) {
-    const real next = st.time + o.dt;
-    st.tool_pose = Pose{Vec3{0, 0, -std::min(travel, o.speed * next)}, Quat{}};
-    handling::rig_step(model, st, o.run, "packing");
-    const real stress = st.tool_wrench.force.z / area * 1e-6;
-    r.t.push_back(st.time);
-    r.stress.push_back(stress);
-    r.peak = std::max(r.peak, stress);
-    if (st.time > t_stop + 0.5 * o.hold + 1e-9) end_sum += stress, ++end_count;  // the hold's second half
-  }
-  r.end = end_count > 0 ? end_sum / end_count : 0;
+  const handling::ProbePress r = handling::press_probe(rig, probe_diameter, o.speed, o.depth, o.hold, o.dt, o.run, "packing");
   if (o.run.progress)
     o.run.progress(fmt::format("packing: {} under a {:g} mm probe: peak {:.3g} MPa, {:.3g} MPa after the hold",
                                preset.name, probe_diameter * 1e3, r.peak, r.end));
@@ -74,7 +47,7 @@ HandlingResult packing_test(const PastePreset& preset, const PackingOptions& o) 
   curve.x_label = "time (s)";
   curve.y_label = "stress under the probe (MPa)";
   for (real d : o.probe_diameters) {
-    const Run run = press(preset, d, o);
+    const handling::ProbePress run = press(preset, d, o);
     const std::string probe = fmt::format("{:g} mm probe", d * 1e3);
     r.figures.push_back({"peak stress, " + probe, run.peak, "MPa", std::array<real, 2>{0.12, 4.21},
                          "flat-probe packing stresses of resin composites, 0.12 to 4.21 MPa, packables high and "

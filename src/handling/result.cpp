@@ -19,7 +19,7 @@ const HandlingFigure& HandlingResult::figure(const std::string& name) const {
 }
 
 const std::vector<std::string>& handling_test_names() {
-  static const std::vector<std::string> names{"rheometer", "slump", "packing", "tack"};
+  static const std::vector<std::string> names{"rheometer", "slump", "packing", "tack", "condensation"};
   return names;
 }
 
@@ -41,6 +41,7 @@ HandlingResult run_handling_test(const std::string& test, const PastePreset& pre
   if (test == "slump") return with_run(&slump_test, preset, run);
   if (test == "packing") return with_run(&packing_test, preset, run);
   if (test == "tack") return with_run(&tack_test, preset, run);
+  if (test == "condensation") return with_run(&condensation_test, preset, run);
   throw std::invalid_argument(
       fmt::format("unknown handling test \"{}\"; choose {}", test, fmt::join(handling_test_names(), ", ")));
 }

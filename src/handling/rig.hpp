@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "dentsph/handling.hpp"
 #include "dentsph/model.hpp"
@@ -37,5 +38,15 @@ struct MouldRig {
 };
 MouldRig mould_rig(const PastePreset& preset, real spacing, real mould_diameter, real mould_depth,
                    real probe_diameter, real dt);
+
+// The probe driven down at `speed` to `depth` below the paste's surface, then held still for
+// `hold`: the stress under it (its force over its face's area) at every step.
+struct ProbePress {
+  std::vector<real> t, stress;  // s, MPa
+  real peak = 0;                // MPa
+  real end = 0;                 // MPa, the mean over the hold's second half (0 without a hold)
+};
+ProbePress press_probe(MouldRig& rig, real probe_diameter, real speed, real depth, real hold, real dt,
+                       const HandlingRunOptions& run, const std::string& test);
 
 }  // namespace dentsph::handling
