@@ -62,6 +62,12 @@ void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& desc
       ->check(CLI::Range(10.0, 70.0))
       ->capture_default_str();
   h.command->add_option("--out", h.out, "Write result.json and the plots (SVG) into this folder");
+  if (h.name == "tack" || h.name == "packing" || h.name == "condensation")
+    h.command
+        ->add_option("--instrument", h.instrument,
+                     fmt::format("The probe's surface: {} (non-stick)", fmt::join(instrument_surface_names(), " or ")))
+        ->check(CLI::IsMember(instrument_surface_names()))
+        ->capture_default_str();
   h.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   h.command->add_option("--threads", h.threads, "Threads for the parallel stages")
       ->check(CLI::Range(1, 1024))
@@ -72,6 +78,7 @@ int MaterialTestCommand::run_handling(const Handling& h) const {
   if (!h.out.empty()) prepare_output_dir(h.out, "--out");  // before the test: never lost at its end
   HandlingRunOptions run;
   run.threads = h.threads;
+  run.instrument = h.instrument;
   run.progress = [](const std::string& line) { fmt::print("{}\n", line); };
   const HandlingResult r = run_handling_test(h.name, paste_preset(h.material, h.temperature_c), run);
   fmt::print("{}", handling_report(r));

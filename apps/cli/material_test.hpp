@@ -30,6 +30,7 @@ class MaterialTestCommand {
     std::string material = "universal";
     double temperature_c = 23;
     std::string out{};
+    std::string instrument = "steel";
     int threads = 1;
   };
   void add_handling(CLI::App& parent, const std::string& description, Handling& h);

@@ -58,6 +58,9 @@ struct HandlingResult {
 // What every test takes besides its geometry.
 struct HandlingRunOptions {
   int threads = 1;
+  // The surface of the probe, plugger or plate the paste meets: instrument_surface_names() ("steel",
+  // or "coated": non-stick). Its contact's strength (Material::interface_strength) limits a pull.
+  std::string instrument = "steel";
   std::function<void(const std::string&)> progress;  // a line per stage, where set
 };
 

@@ -29,11 +29,19 @@ struct Material {
   real flow_index = 1;     // n: below 1 shear-thinning, 1 Newtonian
   real yield_stress = 0;   // Pa, the stress below which the paste holds its shape
   real max_viscosity = 0;  // Pa s, the unyielded paste's viscosity (non-Newtonian only; 0: 1000 mu)
+  // Pa: the tension a paste particle's contact with an instrument carries before it lets go (the
+  // iisph solver; docs/model.md, "Tack"): a pair's is the smaller of its two materials' where both
+  // give one, 0 is none (the contact holds whatever the tension, as the no-slip coupling does).
+  real interface_strength = 0;
 };
 inline bool operator==(const Material& a, const Material& b) {
   return a.mu == b.mu && a.Kp == b.Kp && a.rho0 == b.rho0 && a.Ka == b.Ka && a.flow_index == b.flow_index &&
-         a.yield_stress == b.yield_stress && a.max_viscosity == b.max_viscosity;
+         a.yield_stress == b.yield_stress && a.max_viscosity == b.max_viscosity &&
+         a.interface_strength == b.interface_strength;
 }
+// The strength of a contact between materials of interface strengths a and b (Pa): the smaller of
+// those given, 0 (none) where neither gives one.
+inline real contact_strength(real a, real b) { return a > 0 && b > 0 ? (a < b ? a : b) : (a > b ? a : b); }
 // Whether the viscosity is mu whatever the flow.
 inline bool newtonian(const Material& m) { return m.flow_index == 1 && m.yield_stress == 0; }
 
@@ -90,6 +98,12 @@ class MaterialTable {
     for (std::size_t i = 0; i < entries_.size(); ++i)
       if (!newtonian(entries_[i].material)) return MaterialIndex(i);
     return std::nullopt;
+  }
+  // Whether an entry's contact with an instrument has a strength (Material::interface_strength).
+  bool any_interface_strength() const {
+    for (const auto& e : entries_)
+      if (e.material.interface_strength > 0) return true;
+    return false;
   }
 
   // The scene's paste (what increments dispense, what the viewer's paste editor changes) and the

@@ -31,6 +31,18 @@ struct PastePreset {
 
 // "flowable", "universal", "packable", "amalgam".
 const std::vector<std::string>& paste_preset_names();
+
+// The tension (Pa) a preset's contact with a steel instrument carries (Material::interface_strength):
+// fitted to the probe-tack test's published peak pull on the universal preset, the same for every
+// preset (docs/model.md, "Presets").
+inline constexpr real kPasteSteelStrength = 5e4;
+// A non-stick coated instrument's contact carries this at most (assumed: docs/model.md, "Presets").
+inline constexpr real kCoatedStrength = 1e4;
+// The instruments' surfaces: "steel", "coated".
+const std::vector<std::string>& instrument_surface_names();
+// The interface strength of an instrument of that surface (Material::interface_strength: 0 for
+// steel, whose contact takes the paste's own). std::invalid_argument naming the choices.
+real instrument_interface_strength(const std::string& surface);
 // The preset of that name at `temperature_c` (10 to 70 C; 23 room, 37 mouth, 54 a pre-warmed
 // composite): its consistency times paste_temperature_factor. std::invalid_argument naming the
 // choices for another name, and the range for another temperature.

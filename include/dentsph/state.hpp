@@ -78,6 +78,7 @@ struct StepDiagnostics {
   std::uint64_t wall_projections = 0;  // material particles the wall field moved out this step (wall_field.hpp)
   int substeps = 1;                     // equal steps this step took (iisph: its velocity CFL limit under dt)
   std::uint64_t held = 0;               // material held at the domain's edge (Model::hold_outside_domain)
+  std::uint32_t interface_capped = 0;   // paste whose pull from the instrument its contact's strength capped this step
 };
 
 // What the force pass reads of a neighbour, gathered in one record per particle by the density

@@ -31,7 +31,8 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
   curve.x_label = "plugger's travel (mm)";
   curve.y_label = "stress under the plugger (MPa)";
   for (real d : o.plugger_diameters) {
-    handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.cavity_diameter, o.increment, d, o.dt);
+    handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.cavity_diameter, o.increment, d, o.dt,
+                                                 instrument_interface_strength(o.run.instrument));
     const handling::ProbePress run = handling::press_probe(rig, d, o.speed, o.depth, 0, o.dt, o.run, "condensation");
     const std::string plugger = fmt::format("{:g} mm plugger", d * 1e3);
     const real force = run.peak * 1e6 * pi * 0.25 * d * d;

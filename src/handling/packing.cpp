@@ -17,7 +17,8 @@ namespace dentsph {
 namespace {
 
 handling::ProbePress press(const PastePreset& preset, real probe_diameter, const PackingOptions& o) {
-  handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, probe_diameter, o.dt);
+  handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, probe_diameter, o.dt,
+                                               instrument_interface_strength(o.run.instrument));
   const handling::ProbePress r = handling::press_probe(rig, probe_diameter, o.speed, o.depth, o.hold, o.dt, o.run, "packing");
   if (o.run.progress)
     o.run.progress(fmt::format("packing: {} under a {:g} mm probe: peak {:.3g} MPa, {:.3g} MPa after the hold",

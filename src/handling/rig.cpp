@@ -41,7 +41,7 @@ void rig_step(const Model& model, State& state, const HandlingRunOptions& run, c
 }
 
 MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real mould_depth, real probe_diameter,
-                   real dt) {
+                   real dt, real probe_strength) {
   const real Rm = 0.5 * mould_diameter, a = 0.5 * probe_diameter;
   const int nz = int(std::lround(mould_depth / s));
   const int reach = int(std::ceil(Rm / s)) + 3;
@@ -52,6 +52,8 @@ MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real 
                {}, s};
   const Material& paste = preset.paste;
   const Material steel = wall_beside(paste);
+  Material probe = steel;
+  probe.interface_strength = probe_strength;
   const real m = lattice_particle_mass(paste.rho0, s, rig.model.kernel);
   std::vector<ParticleInit> ps;
   for (int k = -2; k < nz + 2; ++k)
@@ -70,7 +72,7 @@ MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real 
       for (int i = -reach; i <= reach; ++i) {
         const Vec3 x{i * s, j * s, face0 + (k + 0.5) * s};
         const real r = std::hypot(x.x, x.y);
-        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, steel));
+        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, probe));
       }
   rig.state.add_particles(rig.model, ps);
   return rig;

@@ -36,8 +36,9 @@ struct MouldRig {
   State state;
   real face_gap = 0;  // m from the probe's face (half a spacing under its first layer) to the paste's surface
 };
+// `probe_strength`: the probe's Material::interface_strength (0: steel's, none of its own).
 MouldRig mould_rig(const PastePreset& preset, real spacing, real mould_diameter, real mould_depth,
-                   real probe_diameter, real dt);
+                   real probe_diameter, real dt, real probe_strength = 0);
 
 // The probe driven down at `speed` to `depth` below the paste's surface, then held still for
 // `hold`: the stress under it (its force over its face's area) at every step.

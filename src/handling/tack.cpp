@@ -2,8 +2,9 @@
 // stickiness method of Kaleem, Satterthwaite & Watts: on the mould rig (rig.hpp) the 6 mm probe is
 // lowered onto the paste (its face to the paste's surface) and on until it bears the press force,
 // held where it is, then withdrawn at a
-// constant speed. The paste pulls the probe back (its adhesion to the probe's particles and its
-// viscosity as it is drawn up with it): the peak of that pull is the tack force, its integral over
+// constant speed. The paste pulls the probe back (drawn up with it by the no-slip viscous coupling,
+// up to what its contact with the probe carries, Material::interface_strength, the smaller of the
+// paste's and the probe's surface's): the peak of that pull is the tack force, its integral over
 // the probe's travel the work of separation. The pressure never pulls (the solve's pressures are
 // not negative), so no suction is modelled.
 #include <algorithm>
@@ -26,7 +27,8 @@ struct Pull {
 };
 
 Pull pull(const PastePreset& preset, real speed, const TackOptions& o) {
-  handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, o.probe_diameter, o.dt);
+  handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.mould_diameter, o.mould_depth, o.probe_diameter, o.dt,
+                                               instrument_interface_strength(o.run.instrument));
   State& st = rig.state;
   const real max_travel = rig.face_gap + 2e-3;
   // Down onto the paste (its face at the paste's surface: the paste's first layer bonds to it, a
@@ -68,6 +70,7 @@ HandlingResult tack_test(const PastePreset& preset, const TackOptions& o) {
                                 "pull distance");
   for (real v : o.speeds)
     if (!(v > 0)) throw std::invalid_argument("tack: every withdrawal speed must be > 0");
+  (void)instrument_interface_strength(o.run.instrument);  // an unknown surface refused before any run
   if (!(o.probe_diameter > 2 * o.spacing) || !(o.probe_diameter < o.mould_diameter - 2 * o.spacing))
     throw std::invalid_argument("tack: the probe must be wider than two spacings and narrower than the mould less two");
   HandlingResult r;
@@ -76,8 +79,8 @@ HandlingResult tack_test(const PastePreset& preset, const TackOptions& o) {
   r.temperature_c = preset.temperature_c;
   HandlingCurve curve;
   curve.file = "tack";
-  curve.title = fmt::format("Tack: {} at {:g} C, a {:g} mm steel probe withdrawn", preset.name, preset.temperature_c,
-                            o.probe_diameter * 1e3);
+  curve.title = fmt::format("Tack: {} at {:g} C, a {:g} mm {} probe withdrawn", preset.name, preset.temperature_c,
+                            o.probe_diameter * 1e3, o.run.instrument);
   curve.x_label = "probe's travel from the paste (mm)";
   curve.legend_right = true;
   curve.y_label = "the paste's pull on the probe (N)";
@@ -96,6 +99,15 @@ HandlingResult tack_test(const PastePreset& preset, const TackOptions& o) {
       "{:g} mm deep ({:g} mm spacing); the pressure cannot pull, so no suction is modelled",
       o.press_speed * 1e3, o.press_force, o.press_time, o.pull_distance * 1e3, o.mould_diameter * 1e3,
       o.mould_depth * 1e3, o.spacing * 1e3));
+  const real strength =
+      contact_strength(preset.paste.interface_strength, instrument_interface_strength(o.run.instrument));
+  r.notes.push_back(
+      strength > 0 ? fmt::format("a {} probe: the paste's contact with it carries {:g} kPa at most (the interface "
+                                 "strength; docs/model.md, \"Tack\"), the published ranges are for steel",
+                                 o.run.instrument, strength * 1e-3)
+                   : fmt::format("a {} probe: the paste's contact with it holds whatever the tension (no interface "
+                                 "strength)",
+                                 o.run.instrument));
   return r;
 }
 

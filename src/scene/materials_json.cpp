@@ -27,7 +27,8 @@ constexpr MaterialField material_fields[] = {
      "the adhesion strength Ka in Pa (>= 0; 0 for walls and tools), e.g. 200"},
 };
 
-// The optional fields of a non-Newtonian material (docs/model.md, "Rheology"): Newtonian without them.
+// The optional fields: a non-Newtonian material's (docs/model.md, "Rheology"; Newtonian without them) and
+// its contact's strength with an instrument ("Tack").
 constexpr MaterialField rheology_fields[] = {
     {"flow_index", &Material::flow_index, Range::positive,
      "the Herschel-Bulkley flow index n (0.1 to 2; 1 Newtonian, under 1 shear-thinning), e.g. 0.5"},
@@ -35,6 +36,8 @@ constexpr MaterialField rheology_fields[] = {
      "the yield stress in Pa (>= 0; 0: none), e.g. 100"},
     {"max_viscosity", &Material::max_viscosity, Range::non_negative,
      "the unyielded paste's viscosity in Pa s (>= viscosity; 0: 1000 times it), e.g. 1e6"},
+    {"interface_strength", &Material::interface_strength, Range::non_negative,
+     "the tension in Pa a paste's contact with an instrument carries (0: no limit; iisph), e.g. 5e4"},
 };
 
 // Reads the rheology fields `m` has into `mat`, then checks the whole law.
@@ -49,6 +52,9 @@ void read_rheology(const Reader& m, Material& mat) {
   if (mat.yield_stress > 1e7)
     m.fail("yield_stress", fmt::format("{} Pa is over 1e7 Pa (a solid, not a paste)", mat.yield_stress),
            "give a yield stress in Pa of at most 1e7, e.g. 100");
+  if (mat.interface_strength > 1e7)
+    m.fail("interface_strength", fmt::format("{} Pa is over 1e7 Pa", mat.interface_strength),
+           "give the contact's strength in Pa, at most 1e7, e.g. 5e4 (0: no limit)");
   if (mat.max_viscosity > 0 && mat.max_viscosity < mat.mu)
     m.fail("max_viscosity", fmt::format("{} Pa s is under the viscosity {} Pa s", mat.max_viscosity, mat.mu),
            "give the unyielded viscosity at least the flowing one, or 0 for 1000 times it");
@@ -61,7 +67,8 @@ constexpr std::string_view role_keys[] = {"material", "boundary", "tool"};  // i
 
 // A complete material: all four fields required, the rheology's optional.
 Material read_material(const Reader& m) {
-  m.only({"viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress", "max_viscosity"});
+  m.only({"viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress", "max_viscosity",
+          "interface_strength"});
   Material mat;
   for (const MaterialField& f : material_fields) mat.*f.member = m.number(f.key, f.hint, f.range);
   read_rheology(m, mat);
@@ -73,7 +80,7 @@ Material read_material(const Reader& m) {
 Material read_override(const Reader& m, const SceneMaterials& table,
                        const MaterialDefault& fallback) {
   m.only({"base", "viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress",
-          "max_viscosity"});
+          "max_viscosity", "interface_strength"});
   std::optional<Material> base = fallback.material;
   if (m.has("base"))
     base = table.lookup(m, "base", m.string("base", "the name of the material to start from"));

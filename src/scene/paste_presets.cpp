@@ -27,6 +27,7 @@ Material composite(real eta10, real n, real yield_stress, real plateau, real rho
   m.rho0 = rho0;
   m.Kp = 1e4;
   m.Ka = 50;
+  m.interface_strength = kPasteSteelStrength;
   return m;
 }
 
@@ -103,6 +104,18 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     return p;
   }
   throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
+}
+
+const std::vector<std::string>& instrument_surface_names() {
+  static const std::vector<std::string> names{"steel", "coated"};
+  return names;
+}
+
+real instrument_interface_strength(const std::string& surface) {
+  if (surface == "steel") return 0;  // none of its own: the paste's kPasteSteelStrength holds
+  if (surface == "coated") return kCoatedStrength;
+  throw std::invalid_argument(
+      fmt::format("unknown instrument surface \"{}\"; choose {}", surface, fmt::join(instrument_surface_names(), ", ")));
 }
 
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams dp) {

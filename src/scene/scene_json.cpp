@@ -308,11 +308,15 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
 
   const SceneMaterials materials = parse_materials(root);
   if (sc.params.solver != Solver::iisph)
-    for (const auto& [name, material] : materials.by_name)
+    for (const auto& [name, material] : materials.by_name) {
       if (!newtonian(material))
         root.fail(fmt::format("materials.{}", name), "a non-Newtonian material (flow_index or yield_stress) on the paper's step",
                   "set simulation.solver to \"iisph\" (the solver that steps a rheology; docs/model.md), or drop "
                   "flow_index and yield_stress");
+      else if (material.interface_strength > 0)
+        root.fail(fmt::format("materials.{}", name), "an interface_strength on the paper's step (its contact has none)",
+                  "set simulation.solver to \"iisph\" (docs/model.md, \"Tack\"), or drop interface_strength");
+    }
   // Every block, the tool and every event counted before their particles are made: the blocks'
   // (the most) once every count is in.
   ParticleBudget budget(sc.params.max_bonds_per_particle, sc.params.neighbour_skin > 0);

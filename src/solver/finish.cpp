@@ -24,6 +24,7 @@ Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i)
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
     const std::uint32_t j = row[e].j;
     pressure += row[e].grad() * (x.q[i] + x.q[j]);
+    if (x.capped_count > 0 && x.capped[j]) continue;  // held by its contact's strength alone (tool_wrench)
     if (x.rheology) {  // the projected form (rheology.cpp)
       const Vec3 g = row[e].grad();
       viscous += g * (row[e].visc * dot(x.v_a[j] - s.vel[i], g));
@@ -43,6 +44,14 @@ void tool_wrench(State& s, const IisphScratch& x) {
     w.force += t.force;
     w.torque += t.torque;
   }
+  // The reaction of the pull of paste held to the tool by its contact's strength (interface.cpp).
+  if (x.capped_count > 0)
+    for (const std::uint32_t i : x.material)
+      if (x.capped[i]) {
+        const physics::WrenchTerm t = physics::wrench_of(-x.interface_force[i], s.pos[i], c);
+        w.force += t.force;
+        w.torque += t.torque;
+      }
   s.tool_wrench = w;
 }
 

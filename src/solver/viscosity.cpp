@@ -188,9 +188,20 @@ class ViscositySolve {
 
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const IisphParams& ip = model.iisph;
+  // Paste pulled from the instrument past its contact's strength is held by the strength alone, and
+  // the solve runs once more so (interface.cpp).
+  const bool interface = model.materials.any_interface_strength();
+  std::uint32_t capped = 0;
+  x.capped_count = 0;
   if (!x.rheology) {
     ViscositySolve<false> solve(model, s, x, threads);
-    const auto [residual, iterations] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    auto [residual, iterations] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    if (interface && (capped = cap_tool_pull(model, s, x, threads)) > 0) {
+      const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+      residual = r;
+      iterations += it;
+    }
+    s.diagnostics.interface_capped = capped;
     s.diagnostics.viscosity_iterations = iterations;
     s.diagnostics.viscosity_residual = residual;
     s.diagnostics.rheology_iterations = 0;
@@ -217,6 +228,12 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
       break;
     }
   }
+  if (interface && (capped = cap_tool_pull(model, s, x, threads)) > 0) {
+    const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    residual = r;
+    iterations += it;
+  }
+  s.diagnostics.interface_capped = capped;
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
   s.diagnostics.rheology_iterations = solves;

@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dentsph/handling.hpp"
 #include "physics/rheology.hpp"
@@ -166,31 +168,60 @@ TEST(Packing, ThePeakStressRisesFromFlowableToPackableAndTheFittedPastesAreInRan
 namespace dentsph {
 namespace {
 
-// The tack test on the universal paste at the slowest and fastest of the protocol's speeds: the
-// pull and the work of separation rise with the speed, and the work lies in the published 0.11 to
-// 2.84 N mm. The pull is the paste's viscosity drawing it up with the probe (the adhesion at
-// Ka = 50 Pa gives micronewtons in SI units: the same figures with Ka = 0), and its peak is over the
-// published 3.68 N (measured with the command's defaults: 3.75 and 4.85 N, work 1.00 and 1.48 N mm):
-// a departure, held here within twice the range's top. Pressed 0.2 s here, 1 s in the protocol.
-TEST(Tack, ThePullAndTheWorkRiseWithTheSpeedAndTheWorkIsInRange) {
+// The tack test's pull at the protocol's speeds, pressed 0.2 s here (1 s in the protocol).
+HandlingResult tack(const std::string& name, std::vector<real> speeds, const std::string& instrument = "steel") {
   TackOptions o;
   o.run.threads = 2;
-  o.speeds = {2e-3, 8e-3};
+  o.run.instrument = instrument;
+  o.speeds = std::move(speeds);
   o.press_time = 0.2;
   o.pull_distance = 1e-3;  // past the separation (under 0.5 mm)
-  const HandlingResult r = tack_test(paste_preset("universal"), o);
+  HandlingResult r = tack_test(paste_preset(name), o);
   std::printf("%s", handling_report(r).c_str());
+  return r;
+}
+
+// The universal paste on a steel probe at the slowest and fastest of the protocol's speeds. Its
+// contact with steel carries 50 kPa (the interface strength, fitted to put this peak in the
+// published 0.47 to 3.68 N: a calibration); the work of separation, predicted, lies in the
+// published 0.11 to 2.84 N mm and rises with the speed; the peak does not (a departure, held: the
+// contact is rigid-plastic, where a real paste's pull rises with the speed). Measured (the
+// command's defaults): 1.84 N at every speed, work 0.387 to 0.423 N mm. Before the interface had a
+// strength the no-slip coupling pulled 3.75 to 4.85 N (over the range), the same with Ka 0, 10 or
+// 50 Pa. A non-stick coated probe (10 kPa, assumed) pulls a fifth of steel's (measured 0.38 N).
+TEST(Tack, TheInterfaceStrengthHoldsThePullInRangeAndTheWorkRisesWithTheSpeed) {
+  const HandlingResult r = tack("universal", {2e-3, 8e-3});
   const HandlingFigure &slow = r.figure("peak tack force at 2 mm/s"), &fast = r.figure("peak tack force at 8 mm/s");
   const HandlingFigure &w_slow = r.figure("work of separation at 2 mm/s"), &w_fast = r.figure("work of separation at 8 mm/s");
-  EXPECT_GT(fast.value, slow.value) << "the pull rises with the speed";
+  EXPECT_TRUE(slow.in_range()) << slow.value << " N";
+  EXPECT_TRUE(fast.in_range()) << fast.value << " N";
+  EXPECT_NEAR(fast.value, slow.value, 0.05 * slow.value) << "the departure: a rigid-plastic contact, no rise with speed";
   EXPECT_GT(w_fast.value, w_slow.value) << "the work rises with the speed";
   EXPECT_TRUE(w_slow.in_range()) << w_slow.value << " N mm";
   EXPECT_TRUE(w_fast.in_range()) << w_fast.value << " N mm";
-  EXPECT_GT(slow.value, 0.47) << "N: the paste holds on to the probe";
-  EXPECT_LT(fast.value, 2 * 3.68) << "N: the departure above the range, held";
   ASSERT_EQ(r.curves.size(), 1u);
   ASSERT_EQ(r.curves[0].series.size(), 2u);
   EXPECT_GT(r.curves[0].series[0].y.size(), 10u) << "the pull's curve";
+
+  const real coated = tack("universal", {8e-3}, "coated").figure("peak tack force at 8 mm/s").value;
+  EXPECT_GT(coated, 0.1 * fast.value) << "a coated probe still holds some paste";
+  EXPECT_LT(coated, 0.3 * fast.value) << "a non-stick coating pulls far less than steel";
+}
+
+// The packable pulled 13 N with an unlimited contact (3.6 times the published top): its contact's
+// strength holds it in range. The flowable never reaches its contact's strength: its pull is its
+// viscous resistance, in proportion to the speed (measured 0.36 and 1.51 N at 2 and 8 mm/s; the
+// slowest a little under the published 0.47 N: a departure, held).
+TEST(Tack, ThePackableIsHeldInRangeAndTheFlowablesPullRisesWithTheSpeed) {
+  const HandlingFigure packable = tack("packable", {2e-3}).figure("peak tack force at 2 mm/s");
+  EXPECT_TRUE(packable.in_range()) << packable.value << " N";
+  const HandlingResult flowable = tack("flowable", {2e-3, 8e-3});
+  const real slow = flowable.figure("peak tack force at 2 mm/s").value, fast = flowable.figure("peak tack force at 8 mm/s").value;
+  EXPECT_GT(fast, 3 * slow) << "a viscous pull, about in proportion to the speed";
+  EXPECT_TRUE(flowable.figure("peak tack force at 8 mm/s").in_range()) << fast << " N";
+  EXPECT_GT(slow, 0.2) << "N";
+  EXPECT_LT(slow, 0.47) << "N: the slowest under the published range, held";
+  EXPECT_TRUE(flowable.figure("work of separation at 8 mm/s").in_range());
 }
 
 }  // namespace
