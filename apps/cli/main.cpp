@@ -134,10 +134,12 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
   if (const SolverStatistics& st = s.solver_statistics; st.recorded)
     fmt::print("pressure solve: {:.1f} iterations a step (at most {}), density error mean {:.3g}% (max {:.3g}%); "
                "{} of {} steps ({:.1f}%) stopped on the iteration budget, at a residual of up to {:.3g}%\n"
+               "compression measured at a step's start: mean {:.3g}% (a step's at most {:.3g}%, a particle's {:.3g}%)\n"
                "viscosity solve: {:.1f} iterations a step (at most {}), relative residual mean {:.3g} (max {:.3g})\n",
                st.iterations_mean(), st.iterations_max, 100 * st.density_error_mean(), 100 * st.density_error_max,
                st.on_budget_steps, st.steps, st.steps > 0 ? 100.0 * double(st.on_budget_steps) / double(st.steps) : 0.0,
-               100 * st.on_budget_residual_max, st.viscosity_iterations_mean(), st.viscosity_iterations_max,
+               100 * st.on_budget_residual_max, 100 * st.compression_mean(), 100 * st.compression_mean_max,
+               100 * st.compression_max, st.viscosity_iterations_mean(), st.viscosity_iterations_max,
                st.viscosity_residual_mean(),
                st.viscosity_residual_max);
   if (const SolverStatistics& st = s.solver_statistics; st.recorded && st.rheology_iterations_max > 0)

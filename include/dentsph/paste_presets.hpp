@@ -62,7 +62,8 @@ std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& f
 // The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
 // solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of
 // iterations leaves a stiff paste's viscosity far from solved). The iisph solver alone: the preset
-// is non-Newtonian.
+// is non-Newtonian. The paste's contact with the instruments keeps no strength there
+// (Material::interface_strength 0; docs/model.md, "Tack").
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
 
 }  // namespace dentsph

@@ -33,6 +33,9 @@ struct SolverStatistics {
   double iterations_sum = 0;
   int iterations_max = 0;
   double density_error_sum = 0, density_error_max = 0, pressure_residual_max = 0;
+  // The compression measured at each step's start (StepDiagnostics::compression_mean, _max): the
+  // mean over steps of its mean, the largest of its mean, and the largest of one particle's.
+  double compression_sum = 0, compression_mean_max = 0, compression_max = 0;
   // Steps whose pressure solve stopped on its budget (StepDiagnostics::pressure_on_budget), and the
   // largest error it stopped at.
   std::uint64_t on_budget_steps = 0;
@@ -65,6 +68,7 @@ struct SolverStatistics {
 
   double iterations_mean() const { return steps > 0 ? iterations_sum / double(steps) : 0; }
   double density_error_mean() const { return steps > 0 ? density_error_sum / double(steps) : 0; }
+  double compression_mean() const { return steps > 0 ? compression_sum / double(steps) : 0; }
   double viscosity_iterations_mean() const { return steps > 0 ? viscosity_iterations_sum / double(steps) : 0; }
   double rheology_iterations_mean() const { return steps > 0 ? rheology_iterations_sum / double(steps) : 0; }
   double viscosity_residual_mean() const { return steps > 0 ? viscosity_residual_sum / double(steps) : 0; }

@@ -61,6 +61,10 @@ struct StepDiagnostics {
                                 // |rho_predicted - rho0 - p / (k Kp)| / rho0 (where p = 0: its positive
                                 // part; k = iisph.stiffness)
   real pressure_max_error = 0;  // the largest of those terms over material particles (cg solve; 0 after jacobi)
+  // The compression the material has at the step's start, measured (the pair pass's density, not
+  // the pressure solve's prediction, which the viscosity solve after it may undo): mean over
+  // material particles of max(0, rho / rho0 - 1), and the largest.
+  real compression_mean = 0, compression_max = 0;
   bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
                                     // iisph.density_error (pressure_residual says how far)
   bool on_deadline = false;         // a solve stopped at StepOptions::deadline, before its tolerance

@@ -43,6 +43,10 @@ std::string summary_json(const RunSummary& s) {
     j["solver"].update({{"pressure_solve", pressure_solve_name(s.pressure_solve)},
                         {"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
                         {"density_error", {{"mean", st.density_error_mean()}, {"max", st.density_error_max}}},
+                        // The compression measured at each step's start (not the solve's prediction).
+                        {"compression", {{"mean", st.compression_mean()},
+                                         {"mean_max", st.compression_mean_max},
+                                         {"particle_max", st.compression_max}}},
                         {"pressure_residual_max", st.pressure_residual_max},
                         // The largest density error a particle was left with (the cg solve; 0: not measured).
                         {"pressure_max_error", st.pressure_max_error},

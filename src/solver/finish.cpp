@@ -24,12 +24,13 @@ Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i)
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
     const std::uint32_t j = row[e].j;
     pressure += row[e].grad() * (x.q[i] + x.q[j]);
-    if (x.capped_count > 0 && x.capped[j]) continue;  // held by its contact's strength alone (tool_wrench)
+    // The coupling its contact's strength weakened (interface.cpp).
+    const real c = x.capped_count > 0 && x.capped[j] ? row[e].visc * x.interface_scale[j] : row[e].visc;
     if (x.rheology) {  // the projected form (rheology.cpp)
       const Vec3 g = row[e].grad();
-      viscous += g * (row[e].visc * dot(x.v_a[j] - s.vel[i], g));
+      viscous += g * (c * dot(x.v_a[j] - s.vel[i], g));
     } else {
-      viscous += (x.v_a[j] - s.vel[i]) * row[e].visc;  // v** of material, the tool's own velocity
+      viscous += (x.v_a[j] - s.vel[i]) * c;  // v** of material, the tool's own velocity
     }
   }
   return pressure * -s.mass[i] + viscous * (s.mass[i] * x.inv_rho[i]) + x.tool_force[i];
@@ -44,14 +45,6 @@ void tool_wrench(State& s, const IisphScratch& x) {
     w.force += t.force;
     w.torque += t.torque;
   }
-  // The reaction of the pull of paste held to the tool by its contact's strength (interface.cpp).
-  if (x.capped_count > 0)
-    for (const std::uint32_t i : x.material)
-      if (x.capped[i]) {
-        const physics::WrenchTerm t = physics::wrench_of(-x.interface_force[i], s.pos[i], c);
-        w.force += t.force;
-        w.torque += t.torque;
-      }
   s.tool_wrench = w;
 }
 

@@ -13,7 +13,7 @@
 //   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
 //   viscosity.cpp   backward-Euler viscosity by conjugate gradients: v**
 //   rheology.cpp    a non-Newtonian material's effective viscosity from its shear rate (Picard)
-//   interface.cpp   paste pulled from the instrument harder than their contact's strength is held by it alone
+//   interface.cpp   paste pulled from the instrument harder than their contact's strength slips
 //   finish.cpp      velocity and position, the tool's move, diagnostics, the tool wrench
 //
 // Every stage is a loop over rows (or particles) in which each writes only its own entries and sums
@@ -67,12 +67,15 @@ inline bool has_rheology(const Model& model) { return model.materials.first_non_
 // the boundary's and tool's terms (at state.vel) weighed with it. Returns the largest relative change of a
 // particle's viscosity (infinity the first time in a step: `first`, which also keeps the unit weights).
 real update_viscosity(const Model& model, State& state, IisphScratch& x, int threads, const Vec3* v, bool first);
-// interface.cpp: after the viscosity solve, each paste particle pulled towards the instrument (its
-// instrument pairs' viscous force along their mean line) harder than the contact's strength
-// (Material::interface_strength) times V^(2/3) is held by that alone: its instrument pairs leave the
-// coupling (row weights, visc_diag, visc_block, visc_fixed), the strength's pull goes into v*
-// (x.interface_force, x.capped). Returns how many (also x.capped_count); the caller solves again.
-std::uint32_t cap_tool_pull(const Model& model, State& state, IisphScratch& x, int threads);
+// interface.cpp: after the viscosity solve, each paste particle whose tension against the
+// instrument (its instrument pairs' viscous pull less the pressure's push, along their mean line) is
+// over the contact's strength (Material::interface_strength) times V^(2/3) has those pairs' coupling
+// weakened by the factor that brings it there (row weights, visc_diag, visc_block, visc_fixed; the
+// factor in x.interface_scale, x.capped set). `first`: the step's first pass (resets them). Returns
+// how many; the caller solves again.
+std::uint32_t cap_tool_pull(const Model& model, State& state, IisphScratch& x, int threads, bool first);
+// The passes of cap_tool_pull and solve a step takes at most.
+inline constexpr int kInterfacePasses = 3;
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient
 // iterations, or fewer where iisph.viscosity_tolerance is reached.
 void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads,

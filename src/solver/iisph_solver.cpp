@@ -87,6 +87,9 @@ class IisphSolver final : public StepSolver {
     s.density_error_sum += d.density_error;
     s.density_error_max = std::max<double>(s.density_error_max, d.density_error);
     s.pressure_residual_max = std::max<double>(s.pressure_residual_max, d.pressure_residual);
+    s.compression_sum += d.compression_mean;
+    s.compression_mean_max = std::max<double>(s.compression_mean_max, d.compression_mean);
+    s.compression_max = std::max<double>(s.compression_max, d.compression_max);
     if (d.pressure_on_budget) {
       ++s.on_budget_steps;
       s.on_budget_residual_max = std::max<double>(s.on_budget_residual_max, d.pressure_residual);

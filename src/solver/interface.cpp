@@ -1,14 +1,14 @@
 // The iisph solver's paste-instrument interface (docs/model.md, "Tack"). The viscosity solve couples
 // a paste particle to the instrument particles within h with no slip, which holds the paste to the
 // instrument whatever the tension. Where the materials give their contact a strength sigma
-// (Material::interface_strength), the contact is rigid-plastic in tension: after the solve, a paste
-// particle whose pull towards the instrument (the viscous force of its instrument pairs, along their
-// mean line n towards the instrument) is over sigma V_i^(2/3) (its share of the interface) is held
-// by sigma V_i^(2/3) n alone: its instrument pairs leave the coupling, that force goes into its
-// velocity (v* += dt F / m), its reaction onto the instrument (finish.cpp), and the solve runs
-// again. A particle drawn away from the instrument so keeps that pull until it is clear of it (no
-// instrument particle within h): a cohesive zone h - s wide, whose work per area is about sigma s.
-// Nothing is remembered from step to step; pressure still pushes.
+// (Material::interface_strength), the contact slips in tension: after the solve, a paste particle
+// whose tension against the instrument (the viscous pull of its instrument pairs and the pressure's
+// push, along their mean line towards the instrument) is over sigma V_i^(2/3) (its share of the
+// interface) has its instrument pairs' coupling weakened by the ratio that brings the tension to
+// that (the rows' weights, their diagonal and fixed terms; the tool's rows read the same factor,
+// finish.cpp), and the solve runs again, up to kPasses times, each pass weakening it further where
+// the particle, now lagging, is still pulled harder. Only weakened, never pushed: no force is
+// added, so nothing is drawn into the instrument. Nothing is remembered between steps.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,23 +17,25 @@
 
 namespace dentsph::iisph {
 
-std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int threads) {
+std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int threads, bool first) {
   constexpr std::size_t stride = IisphScratch::kPairStride;
   const std::int64_t nm = std::int64_t(x.material.size());
-  const real dt = model.dt;
   std::uint32_t capped = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : capped)
   for (std::int64_t m = 0; m < nm; ++m) {
     const std::uint32_t i = x.material[m];
-    x.capped[i] = 0;
+    if (first) {
+      x.capped[i] = 0;
+      x.interface_scale[i] = 1;
+    }
     SolverPair* row = x.pairs.data() + std::size_t(i) * stride;
-    const std::size_t first = stride - x.n_other[i];
+    const std::size_t from = stride - x.n_other[i];
     const Material& paste = model.materials[s.material[i] & kMaterialMask];
     real strength = std::numeric_limits<real>::infinity();
-    Vec3 line, force;  // the mean direction to the instrument's pairs, their viscous force on i
+    Vec3 line, viscous, pressure;  // the mean direction to the instrument's pairs, their forces on i
     const real vol = s.mass[i] * x.inv_rho[i];
     const Vec3 vi = x.v_a[i];
-    for (std::size_t q = first; q < stride; ++q) {
+    for (std::size_t q = from; q < stride; ++q) {
       const std::uint32_t j = row[q].j;
       if (s.role[j] != Role::tool) continue;
       const real c = contact_strength(paste.interface_strength,
@@ -42,40 +44,39 @@ std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int t
       const Vec3 d = s.pos[j] - s.pos[i];
       const real r = norm(d);
       if (r > 0) line += d / r;
-      if (x.rheology) {
-        const Vec3 g = row[q].grad();
-        force += g * (-vol * row[q].visc * dot(vi - s.vel[j], g));  // the projected form (rheology.cpp)
-      } else {
-        force += (s.vel[j] - vi) * (vol * row[q].visc);
-      }
+      const Vec3 g = row[q].grad();
+      pressure -= g * (s.mass[i] * (x.q[i] + x.q[j]));  // pushes i off the instrument (p >= 0)
+      if (x.rheology)
+        viscous += g * (-vol * row[q].visc * dot(vi - s.vel[j], g));  // the projected form (rheology.cpp)
+      else
+        viscous += (s.vel[j] - vi) * (vol * row[q].visc);
     }
     const real len = norm(line);
     if (!std::isfinite(strength) || !(len > 0)) continue;
     const Vec3 n = line / len;
-    const real hold = strength * std::cbrt(vol * vol);
-    if (!(dot(force, n) > hold)) continue;
-    // Held by the strength alone: the instrument pairs leave the coupling (the row's diagonal and
-    // fixed terms without them) and the strength's pull goes into v*.
+    // The contact's tension: the viscous pull less the pressure's push (a pressed contact whose
+    // coupling holds the paste against the pressure is not pulled).
+    const real hold = strength * std::cbrt(vol * vol), push = dot(pressure, n), pull = dot(viscous, n);
+    if (!(pull + push > hold)) continue;
+    const real f = std::clamp((hold - push) / pull, real(0), real(1));  // pull > hold - push >= hold > 0
     x.capped[i] = 1;
+    x.interface_scale[i] *= f;
     ++capped;
-    x.interface_force[i] = n * hold;
-    x.v_star[i] += n * (hold * dt / s.mass[i]);
-    for (std::size_t q = first; q < stride; ++q) {
+    for (std::size_t q = from; q < stride; ++q) {
       const std::uint32_t j = row[q].j;
       if (s.role[j] != Role::tool) continue;
-      const real c = row[q].visc;
+      const real c = row[q].visc, dc = c * (1 - f);
       if (x.rheology) {
         const Vec3 g = row[q].grad();
-        x.visc_block[i] -= Vec3{g.x * g.x, g.y * g.y, g.z * g.z} * c;
-        x.visc_fixed[i] -= g * (c * dot(s.vel[j], g));
+        x.visc_block[i] -= Vec3{g.x * g.x, g.y * g.y, g.z * g.z} * dc;
+        x.visc_fixed[i] -= g * (dc * dot(s.vel[j], g));
       } else {
-        x.visc_diag[i] -= c;
-        x.visc_fixed[i] -= s.vel[j] * c;
+        x.visc_diag[i] -= dc;
+        x.visc_fixed[i] -= s.vel[j] * dc;
       }
-      row[q].visc = 0;
+      row[q].visc = float(c * f);
     }
   }
-  x.capped_count = capped;
   return capped;
 }
 

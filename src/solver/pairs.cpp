@@ -301,6 +301,18 @@ void compute_pairs(const Model& model, State& s, IisphScratch& x, int threads, b
   total.overflowed = overflowed;
   bonds::record(s, total);
   s.diagnostics.pair_overflow = pair_overflow;
+  // The compression the material has now, measured from its density.
+  const std::int64_t nm = std::int64_t(x.material.size());
+  real sum = 0, most = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : sum) reduction(max : most)
+  for (std::int64_t m = 0; m < nm; ++m) {
+    const std::uint32_t i = x.material[m];
+    const real c = std::max<real>(0, s.rho[i] / s.rho0[i] - 1);
+    sum += c;
+    most = std::max(most, c);
+  }
+  s.diagnostics.compression_mean = nm > 0 ? sum / real(nm) : 0;
+  s.diagnostics.compression_max = most;
 }
 
 }  // namespace dentsph::iisph

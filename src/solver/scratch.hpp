@@ -65,10 +65,10 @@ struct IisphScratch {
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
-  // The interface's (interface.cpp): material held to the instrument by its contact's strength alone
-  // this step, and that pull (N); valid where capped_count > 0.
+  // The interface's (interface.cpp): material whose coupling to the instrument its contact's strength
+  // weakened this step, and by what factor; valid where capped_count > 0.
   std::vector<std::uint8_t> capped;
-  std::vector<Vec3> interface_force;
+  std::vector<real> interface_scale;
   std::uint32_t capped_count = 0;
   // A non-Newtonian material's (rheology.cpp), sized only where the model has one (`rheology`):
   bool rheology = false;

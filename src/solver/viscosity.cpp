@@ -184,24 +184,38 @@ class ViscositySolve {
   std::int64_t n_;
 };
 
+// Where the contact's strength is exceeded, its coupling weakened and the solve run again, up to
+// kInterfacePasses times (interface.cpp); the residual and iterations those solves leave. Returns
+// the particles weakened.
+template <class Solve>
+std::uint32_t slip(const Model& model, State& s, IisphScratch& x, int threads, Solve& solve, real& residual,
+                   int& iterations, Deadline deadline) {
+  std::uint32_t weakened = 0;
+  for (int pass = 0; pass < kInterfacePasses; ++pass) {
+    const std::uint32_t n = cap_tool_pull(model, s, x, threads, pass == 0);
+    if (n == 0) break;
+    weakened = std::max(weakened, n);
+    x.capped_count = weakened;  // finish.cpp reads the factors
+    const auto [r, it] = solve.run(model.iisph.viscosity_iterations, model.iisph.viscosity_tolerance, deadline);
+    residual = r;
+    iterations += it;
+    if (past(deadline)) break;
+  }
+  return weakened;
+}
+
 }  // namespace
 
 void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threads, Deadline deadline) {
   const IisphParams& ip = model.iisph;
-  // Paste pulled from the instrument past its contact's strength is held by the strength alone, and
-  // the solve runs once more so (interface.cpp).
+  // Paste pulled from the instrument past its contact's strength slips (interface.cpp).
   const bool interface = model.materials.any_interface_strength();
-  std::uint32_t capped = 0;
   x.capped_count = 0;
+  s.diagnostics.interface_capped = 0;
   if (!x.rheology) {
     ViscositySolve<false> solve(model, s, x, threads);
     auto [residual, iterations] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
-    if (interface && (capped = cap_tool_pull(model, s, x, threads)) > 0) {
-      const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
-      residual = r;
-      iterations += it;
-    }
-    s.diagnostics.interface_capped = capped;
+    if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, residual, iterations, deadline);
     s.diagnostics.viscosity_iterations = iterations;
     s.diagnostics.viscosity_residual = residual;
     s.diagnostics.rheology_iterations = 0;
@@ -228,12 +242,7 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
       break;
     }
   }
-  if (interface && (capped = cap_tool_pull(model, s, x, threads)) > 0) {
-    const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
-    residual = r;
-    iterations += it;
-  }
-  s.diagnostics.interface_capped = capped;
+  if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, residual, iterations, deadline);
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
   s.diagnostics.rheology_iterations = solves;

@@ -186,9 +186,9 @@ HandlingResult tack(const std::string& name, std::vector<real> speeds, const std
 // published 0.47 to 3.68 N: a calibration); the work of separation, predicted, lies in the
 // published 0.11 to 2.84 N mm and rises with the speed; the peak does not (a departure, held: the
 // contact is rigid-plastic, where a real paste's pull rises with the speed). Measured (the
-// command's defaults): 1.84 N at every speed, work 0.387 to 0.423 N mm. Before the interface had a
+// command's defaults): 2.0 N at every speed, work 0.406 to 0.448 N mm. Before the interface had a
 // strength the no-slip coupling pulled 3.75 to 4.85 N (over the range), the same with Ka 0, 10 or
-// 50 Pa. A non-stick coated probe (10 kPa, assumed) pulls a fifth of steel's (measured 0.38 N).
+// 50 Pa. A non-stick coated probe (10 kPa, assumed) pulls a fifth of steel's (measured 0.385 N).
 TEST(Tack, TheInterfaceStrengthHoldsThePullInRangeAndTheWorkRisesWithTheSpeed) {
   const HandlingResult r = tack("universal", {2e-3, 8e-3});
   const HandlingFigure &slow = r.figure("peak tack force at 2 mm/s"), &fast = r.figure("peak tack force at 8 mm/s");

@@ -203,6 +203,12 @@ TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
   EXPECT_DOUBLE_EQ(s.at("tool").at("force_scale").get<double>(), 1.0);
   EXPECT_GT(s.at("solver").at("viscosity").at("rheology").at("iterations").get<double>(), 0) << "the paste is non-Newtonian";
   EXPECT_NE(r.output.find("rheology:"), std::string::npos) << r.output;
+  // The compression measured at each step's start, beside the solve's predicted density error.
+  const nlohmann::json& compression = s.at("solver").at("compression");
+  EXPECT_GE(compression.at("mean").get<double>(), 0);
+  EXPECT_GE(compression.at("mean_max").get<double>(), compression.at("mean").get<double>());
+  EXPECT_GE(compression.at("particle_max").get<double>(), compression.at("mean_max").get<double>());
+  EXPECT_NE(r.output.find("compression measured at a step's start"), std::string::npos) << r.output;
   const nlohmann::json own = [&] {
     const fs::path plain = dir() / "paper_paste";
     const Result p = dentsph_cli("run --steps 5 --threads 1 --out " + plain.string());
@@ -457,6 +463,7 @@ TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
 
   expect_refused("material-test slump --material putty", {"--material", "putty"});
   expect_refused("material-test rheometer --temperature 80", {"--temperature"});
+  expect_refused("material-test tack --instrument teflon", {"--instrument", "teflon"});
   write(dir() / "a_file", "x");
   expect_refused("material-test slump --out " + (dir() / "a_file").string(), {"--out", "a_file"});
 }

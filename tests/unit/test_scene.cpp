@@ -81,6 +81,15 @@ TEST(SceneMaterials, RheologyFieldsReachTheTable) {
   EXPECT_FALSE(newtonian(sc.model.materials[m]));
   EXPECT_TRUE(newtonian(sc.model.materials[*sc.model.materials.find("wall")]));
   EXPECT_EQ(sc.model.materials.first_non_newtonian(), m);
+  EXPECT_FALSE(sc.model.materials.any_interface_strength());
+  // The contact's strength with an instrument (docs/model.md, "Tack").
+  j["materials"]["paste"]["interface_strength"] = 5e4;
+  const Scene strong = parse(j);
+  EXPECT_EQ(strong.model.materials[*strong.model.materials.find("paste")].interface_strength, 5e4);
+  EXPECT_TRUE(strong.model.materials.any_interface_strength());
+  EXPECT_EQ(contact_strength(5e4, 0), 5e4) << "steel gives none of its own";
+  EXPECT_EQ(contact_strength(5e4, 1e4), 1e4) << "the smaller of two";
+  EXPECT_EQ(contact_strength(0, 0), 0) << "none";
 }
 
 // ---- shapes
@@ -635,6 +644,14 @@ const BrokenCase broken_cases[] = {
      "materials.paste", "set simulation.solver to \"iisph\""},
     {"iisph rheology iterations 0", [](json& j) { j["simulation"]["iisph"] = {{"rheology_iterations", 0}}; },
      "simulation.iisph.rheology_iterations", "[1, 100]"},
+    {"an interface strength on the paper's step", [](json& j) { j["materials"]["paste"]["interface_strength"] = 5e4; },
+     "materials.paste", "drop interface_strength"},
+    {"an interface strength over 1e7 Pa",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["interface_strength"] = 2e7;
+     },
+     "materials.paste.interface_strength", "at most 1e7"},
 };
 
 class BrokenScene : public ::testing::TestWithParam<BrokenCase> {};
