@@ -20,10 +20,7 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
           "condensation: a {:g} mm plugger must be wider than four spacings and narrower than the cavity less two",
           d * 1e3));
   constexpr real pi = 3.14159265358979323846;
-  HandlingResult r;
-  r.test = "condensation";
-  r.material = preset.name;
-  r.temperature_c = preset.temperature_c;
+  HandlingResult r = handling::result_of("condensation", preset);
   HandlingCurve curve;
   curve.file = "condensation";
   curve.title = fmt::format("Condensation: {} at {:g} C, {:g} mm/s into a {:g} mm increment", preset.name,

@@ -37,10 +37,7 @@ HandlingResult packing_test(const PastePreset& preset, const PackingOptions& o) 
     if (!(d > 2 * o.spacing) || !(d < o.mould_diameter - 2 * o.spacing))
       throw std::invalid_argument(fmt::format(
           "packing: a {:g} mm probe must be wider than two spacings and narrower than the mould less two", d * 1e3));
-  HandlingResult r;
-  r.test = "packing";
-  r.material = preset.name;
-  r.temperature_c = preset.temperature_c;
+  HandlingResult r = handling::result_of("packing", preset);
   HandlingCurve curve;
   curve.file = "packing";
   curve.title = fmt::format("Packing: {} at {:g} C, {:g} mm/s to {:g} mm, held {:g} s", preset.name,

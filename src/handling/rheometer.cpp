@@ -146,10 +146,7 @@ HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions&
   // rates (where a yield stress's share and a low-shear plateau are least).
   const real flow_index = std::log(stress[n - 1] / stress[n - 2]) / std::log(rates[n - 1] / rates[n - 2]);
 
-  HandlingResult r;
-  r.test = "rheometer";
-  r.material = preset.name;
-  r.temperature_c = preset.temperature_c;
+  HandlingResult r = handling::result_of("rheometer", preset);
   HandlingFigure eta10{"viscosity at 10 /s", loglog_at(rates, viscosity, 10), "Pa s", std::nullopt, preset.source};
   if (preset.published_high > 0 && preset.temperature_c == 23)
     eta10.range = std::array<real, 2>{preset.published_low, preset.published_high};

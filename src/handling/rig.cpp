@@ -30,6 +30,14 @@ ModelParams rig_params(real s, const Vec3& lo, const Vec3& hi, real dt, const Ve
 
 Material wall_beside(const Material& paste) { return Material{paste.mu, 1.5 * paste.Kp, paste.rho0, 0}; }
 
+HandlingResult result_of(const std::string& test, const PastePreset& preset) {
+  HandlingResult r;
+  r.test = test;
+  r.material = preset.name;
+  r.temperature_c = preset.temperature_c;
+  return r;
+}
+
 void rig_step(const Model& model, State& state, const HandlingRunOptions& run, const std::string& test) {
   step(model, state, StepOptions{run.threads, nullptr});
   if (state.diagnostics.non_finite != 0)

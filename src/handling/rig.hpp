@@ -19,6 +19,9 @@ ModelParams rig_params(real s, const Vec3& lo, const Vec3& hi, real dt, const Ve
 // of its density, no adhesion of its own.
 Material wall_beside(const Material& paste);
 
+// An empty result of the test named `test` on `preset` (its material and temperature).
+HandlingResult result_of(const std::string& test, const PastePreset& preset);
+
 // One step; std::runtime_error naming the test when a particle's state is not finite or the tool
 // force has exploded (step.hpp).
 void rig_step(const Model& model, State& state, const HandlingRunOptions& run, const std::string& test);

@@ -78,10 +78,7 @@ HandlingResult slump_test(const PastePreset& preset, const SlumpOptions& o) {
   }
   const Shape end = shape(st, s);
 
-  HandlingResult r;
-  r.test = "slump";
-  r.material = preset.name;
-  r.temperature_c = preset.temperature_c;
+  HandlingResult r = handling::result_of("slump", preset);
   r.figures.push_back({fmt::format("aspect ratio after {:g} s", o.duration), end.height / end.diameter, "", std::nullopt,
                        "Lee, Min, Kim & Ferracane (Dent Mater 2010): the aspect ratio falls as the paste slumps more; "
                        "their ranking (slumping resistance rising with the complex modulus) is the published "

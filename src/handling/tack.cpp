@@ -73,10 +73,7 @@ HandlingResult tack_test(const PastePreset& preset, const TackOptions& o) {
   (void)instrument_interface_strength(o.run.instrument);  // an unknown surface refused before any run
   if (!(o.probe_diameter > 2 * o.spacing) || !(o.probe_diameter < o.mould_diameter - 2 * o.spacing))
     throw std::invalid_argument("tack: the probe must be wider than two spacings and narrower than the mould less two");
-  HandlingResult r;
-  r.test = "tack";
-  r.material = preset.name;
-  r.temperature_c = preset.temperature_c;
+  HandlingResult r = handling::result_of("tack", preset);
   HandlingCurve curve;
   curve.file = "tack";
   curve.title = fmt::format("Tack: {} at {:g} C, a {:g} mm {} probe withdrawn", preset.name, preset.temperature_c,
