@@ -45,8 +45,8 @@ void MaterialTestCommand::add_to(CLI::App& app) {
       "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio height / diameter",
       "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the stress "
       "under the probe",
-      "Probe tack: a 6 mm steel probe pressed onto the paste at 1 N for 1 s, withdrawn at 2, 4, 6 and 8 mm/s: the "
-      "peak pull and the work of separation",
+      "Probe tack: a 6 mm probe (steel, or --instrument coated) pressed onto the paste at 1 N for 1 s, withdrawn "
+      "at 2, 4, 6 and 8 mm/s: the peak pull and the work of separation",
       "Condensation (amalgam, the default here): 1.15 mm and 1.8 mm flat pluggers driven 0.5 mm into a 1 mm "
       "increment on a cavity's floor: the peak stress and force"};
   static_assert(std::size(descriptions) == std::tuple_size_v<decltype(handling_)>);

@@ -1,6 +1,6 @@
 // `dentsph material-test`: virtual material tests. depth-of-cure: the ISO 4049 depth of cure of a
-// cure preset (include/dentsph/depth_of_cure.hpp); rheometer, slump, packing and tack: the paste
-// presets' handling tests (include/dentsph/handling.hpp), each figure beside its published range.
+// cure preset (include/dentsph/depth_of_cure.hpp); rheometer, slump, packing, tack and
+// condensation: the paste presets' handling tests (include/dentsph/handling.hpp), each figure beside its published range.
 #pragma once
 
 #include <array>

@@ -19,7 +19,6 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
       throw std::invalid_argument(fmt::format(
           "condensation: a {:g} mm plugger must be wider than four spacings and narrower than the cavity less two",
           d * 1e3));
-  constexpr real pi = 3.14159265358979323846;
   HandlingResult r = handling::result_of("condensation", preset);
   HandlingCurve curve;
   curve.file = "condensation";
@@ -32,7 +31,7 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
                                                  instrument_interface_strength(o.run.instrument));
     const handling::ProbePress run = handling::press_probe(rig, d, o.speed, o.depth, 0, o.dt, o.run, "condensation");
     const std::string plugger = fmt::format("{:g} mm plugger", d * 1e3);
-    const real force = run.peak * 1e6 * pi * 0.25 * d * d;
+    const real force = run.peak_force;
     if (o.run.progress)
       o.run.progress(fmt::format("condensation: {} under a {}: peak {:.3g} MPa ({:.3g} N)", preset.name, plugger,
                                  run.peak, force));

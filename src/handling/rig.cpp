@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -88,9 +89,8 @@ MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real 
 
 ProbePress press_probe(MouldRig& rig, real probe_diameter, real speed, real depth, real hold, real dt,
                        const HandlingRunOptions& run, const std::string& test) {
-  constexpr real pi = 3.14159265358979323846;
   State& st = rig.state;
-  const real a = 0.5 * probe_diameter, area = pi * a * a;
+  const real a = 0.5 * probe_diameter, area = std::numbers::pi * a * a;
   const real travel = rig.face_gap + depth, t_stop = travel / speed, t_end = t_stop + hold;
   ProbePress r;
   real end_sum = 0;
@@ -102,7 +102,7 @@ ProbePress press_probe(MouldRig& rig, real probe_diameter, real speed, real dept
     const real stress = st.tool_wrench.force.z / area * 1e-6;
     r.t.push_back(st.time);
     r.stress.push_back(stress);
-    r.peak = std::max(r.peak, stress);
+    if (stress > r.peak) r.peak = stress, r.peak_force = st.tool_wrench.force.z;
     if (hold > 0 && st.time > t_stop + 0.5 * hold + 1e-9) end_sum += stress, ++end_count;  // the hold's second half
   }
   r.end = end_count > 0 ? end_sum / end_count : 0;

@@ -48,6 +48,7 @@ MouldRig mould_rig(const PastePreset& preset, real spacing, real mould_diameter,
 struct ProbePress {
   std::vector<real> t, stress;  // s, MPa
   real peak = 0;                // MPa
+  real peak_force = 0;          // N, the force under the probe at that peak
   real end = 0;                 // MPa, the mean over the hold's second half (0 without a hold)
 };
 ProbePress press_probe(MouldRig& rig, real probe_diameter, real speed, real depth, real hold, real dt,

@@ -25,7 +25,7 @@ Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i)
     const std::uint32_t j = row[e].j;
     pressure += row[e].grad() * (x.q[i] + x.q[j]);
     // The coupling its contact's strength weakened (interface.cpp).
-    const real c = x.capped_count > 0 && x.capped[j] ? row[e].visc * x.interface_scale[j] : row[e].visc;
+    const real c = s.diagnostics.interface_capped > 0 ? row[e].visc * x.interface_scale[j] : row[e].visc;
     if (x.rheology) {  // the projected form (rheology.cpp)
       const Vec3 g = row[e].grad();
       viscous += g * (c * dot(x.v_a[j] - s.vel[i], g));

@@ -71,9 +71,13 @@ real update_viscosity(const Model& model, State& state, IisphScratch& x, int thr
 // instrument (its instrument pairs' viscous pull less the pressure's push, along their mean line) is
 // over the contact's strength (Material::interface_strength) times V^(2/3) has those pairs' coupling
 // weakened by the factor that brings it there (row weights, visc_diag, visc_block, visc_fixed; the
-// factor in x.interface_scale, x.capped set). `first`: the step's first pass (resets them). Returns
-// how many; the caller solves again.
-std::uint32_t cap_tool_pull(const Model& model, State& state, IisphScratch& x, int threads, bool first);
+// factor in x.interface_scale). `first`: the step's first pass (sets every factor to 1). Returns how
+// many particles it weakened, and how many of them for the first time this step; the caller solves
+// again where any were.
+struct InterfacePass {
+  std::uint32_t weakened = 0, first_time = 0;
+};
+InterfacePass cap_tool_pull(const Model& model, State& state, IisphScratch& x, int threads, bool first);
 // The passes of cap_tool_pull and solve a step takes at most.
 inline constexpr int kInterfacePasses = 3;
 // viscosity.cpp: the backward-Euler viscosity, model.iisph.viscosity_iterations conjugate-gradient

@@ -17,17 +17,14 @@
 
 namespace dentsph::iisph {
 
-std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int threads, bool first) {
+InterfacePass cap_tool_pull(const Model& model, State& s, IisphScratch& x, int threads, bool first) {
   constexpr std::size_t stride = IisphScratch::kPairStride;
   const std::int64_t nm = std::int64_t(x.material.size());
-  std::uint32_t capped = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : capped)
+  std::uint32_t weakened = 0, first_time = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : weakened, first_time)
   for (std::int64_t m = 0; m < nm; ++m) {
     const std::uint32_t i = x.material[m];
-    if (first) {
-      x.capped[i] = 0;
-      x.interface_scale[i] = 1;
-    }
+    if (first) x.interface_scale[i] = 1;
     SolverPair* row = x.pairs.data() + std::size_t(i) * stride;
     const std::size_t from = stride - x.n_other[i];
     const Material& paste = model.materials[s.material[i] & kMaterialMask];
@@ -59,9 +56,9 @@ std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int t
     const real hold = strength * std::cbrt(vol * vol), push = dot(pressure, n), pull = dot(viscous, n);
     if (!(pull + push > hold)) continue;
     const real f = std::clamp((hold - push) / pull, real(0), real(1));  // pull > hold - push >= hold > 0
-    x.capped[i] = 1;
+    ++weakened;
+    first_time += x.interface_scale[i] == 1;
     x.interface_scale[i] *= f;
-    ++capped;
     for (std::size_t q = from; q < stride; ++q) {
       const std::uint32_t j = row[q].j;
       if (s.role[j] != Role::tool) continue;
@@ -77,7 +74,7 @@ std::uint32_t cap_tool_pull(const Model& model, State& s, IisphScratch& x, int t
       row[q].visc = float(c * f);
     }
   }
-  return capped;
+  return {weakened, first_time};
 }
 
 }  // namespace dentsph::iisph

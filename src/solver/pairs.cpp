@@ -21,6 +21,7 @@
 
 #include "bonds/hysteresis.hpp"
 #include "physics/kernels.hpp"
+#include "solver/block_sum.hpp"
 #include "solver/iisph.hpp"
 #include "step/grid.hpp"
 #include "step/stages.hpp"
@@ -301,18 +302,19 @@ void compute_pairs(const Model& model, State& s, IisphScratch& x, int threads, b
   total.overflowed = overflowed;
   bonds::record(s, total);
   s.diagnostics.pair_overflow = pair_overflow;
-  // The compression the material has now, measured from its density.
+  // The compression the material has now, measured from its density: summed in fixed blocks, so
+  // that every thread count reports the same (block_sum.hpp; the cg solve's block sums, free until
+  // its start, hold the sum and the largest).
   const std::int64_t nm = std::int64_t(x.material.size());
-  real sum = 0, most = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : sum) reduction(max : most)
-  for (std::int64_t m = 0; m < nm; ++m) {
+  const PressureSums c = for_rows_summed(nm, threads, x.pc_partial.data(), [&](std::int64_t m) {
     const std::uint32_t i = x.material[m];
-    const real c = std::max<real>(0, s.rho[i] / s.rho0[i] - 1);
-    sum += c;
-    most = std::max(most, c);
-  }
-  s.diagnostics.compression_mean = nm > 0 ? sum / real(nm) : 0;
-  s.diagnostics.compression_max = most;
+    PressureSums one;
+    one.sum[0] = std::max<real>(0, s.rho[i] / s.rho0[i] - 1);
+    one.max = one.sum[0];
+    return one;
+  });
+  s.diagnostics.compression_mean = nm > 0 ? c.sum[0] / real(nm) : 0;
+  s.diagnostics.compression_max = nm > 0 ? c.max : 0;
 }
 
 }  // namespace dentsph::iisph

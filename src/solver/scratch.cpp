@@ -31,9 +31,7 @@ void IisphScratch::resize(const State& state, bool with_rheology) {
   size(cg_p, n);
   size(cg_r, n);
   size(cg_ap, n);
-  size(capped, n);
   size(interface_scale, n);
-  capped_count = 0;
   rheology = with_rheology;
   size(visc_unit, with_rheology ? n * kPairStride : 0);
   size(mu_eff, with_rheology ? n : 0);
@@ -58,7 +56,7 @@ std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
          b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
-         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(capped) + b(interface_scale) + b(visc_unit) + b(mu_eff) + b(visc_block) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
+         b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(interface_scale) + b(visc_unit) + b(mu_eff) + b(visc_block) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
          b(pc_dir) + b(pc_hp) + b(pc_partial) + b(tools) + b(tool_list) + b(tool_count) +
          b(link_start) + b(link_fill) + b(link_tool);
 }

@@ -65,11 +65,10 @@ struct IisphScratch {
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
-  // The interface's (interface.cpp): material whose coupling to the instrument its contact's strength
-  // weakened this step, and by what factor; valid where capped_count > 0.
-  std::vector<std::uint8_t> capped;
+  // The interface's (interface.cpp): the factor its contact's strength weakened each material
+  // particle's coupling to the instrument by this step (1: not at all); valid where the step's
+  // diagnostics count any (StepDiagnostics::interface_capped).
   std::vector<real> interface_scale;
-  std::uint32_t capped_count = 0;
   // A non-Newtonian material's (rheology.cpp), sized only where the model has one (`rheology`):
   bool rheology = false;
   std::vector<float> visc_unit;      // [n * kPairStride] each row entry's weight without the viscosity:

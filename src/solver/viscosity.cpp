@@ -186,16 +186,15 @@ class ViscositySolve {
 
 // Where the contact's strength is exceeded, its coupling weakened and the solve run again, up to
 // kInterfacePasses times (interface.cpp); the residual and iterations those solves leave. Returns
-// the particles weakened.
+// the particles weakened (finish.cpp reads their factors where there are any).
 template <class Solve>
 std::uint32_t slip(const Model& model, State& s, IisphScratch& x, int threads, Solve& solve, real& residual,
                    int& iterations, Deadline deadline) {
   std::uint32_t weakened = 0;
   for (int pass = 0; pass < kInterfacePasses; ++pass) {
-    const std::uint32_t n = cap_tool_pull(model, s, x, threads, pass == 0);
-    if (n == 0) break;
-    weakened = std::max(weakened, n);
-    x.capped_count = weakened;  // finish.cpp reads the factors
+    const InterfacePass p = cap_tool_pull(model, s, x, threads, pass == 0);
+    if (p.weakened == 0) break;
+    weakened += p.first_time;
     const auto [r, it] = solve.run(model.iisph.viscosity_iterations, model.iisph.viscosity_tolerance, deadline);
     residual = r;
     iterations += it;
@@ -210,7 +209,6 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
   const IisphParams& ip = model.iisph;
   // Paste pulled from the instrument past its contact's strength slips (interface.cpp).
   const bool interface = model.materials.any_interface_strength();
-  x.capped_count = 0;
   s.diagnostics.interface_capped = 0;
   if (!x.rheology) {
     ViscositySolve<false> solve(model, s, x, threads);

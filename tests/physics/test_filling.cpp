@@ -235,6 +235,16 @@ TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   EXPECT_GT(s.peak_tool_force_N, 0.5) << "a paste in SI units presses back with newtons, not 1e-4 N";
   EXPECT_LT(s.peak_tool_force_N, 5.0);
   ASSERT_EQ(c["increments"].size(), 3u);
+  // The departure docs/model.md records ("Measured compression"; measured 3.28% against 0.045%): the
+  // compression the paste has at a step's start is far over what the pressure solve predicts, the
+  // viscosity solve after it undoing its correction in clusters under the instrument. Held here so
+  // that a change in either shows.
+  const SolverStatistics& st = s.solver_statistics;
+  std::printf("compression measured %.3g%% (a step's at most %.3g%%), predicted density error %.3g%%\n",
+              100 * st.compression_mean(), 100 * st.compression_mean_max, 100 * st.density_error_mean());
+  EXPECT_GT(st.compression_mean(), 10 * st.density_error_mean());
+  EXPECT_GT(st.compression_mean(), 0.01);
+  EXPECT_LT(st.compression_mean(), 0.06);
 }
 // The same with the pressure solve's budget at 400 iterations: the solve must not diverge where the
 // tool presses paste against set paste. With the expansion step's length at 1 it did: a density

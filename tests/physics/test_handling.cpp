@@ -233,7 +233,7 @@ namespace {
 // The condensation test on the amalgam. Its yield stress was fitted (590 kPa) to put the 1.8 mm
 // plugger's peak at the 4.1 MPa (10.4 N) practitioners condense with (a calibration: measured
 // 4.09 MPa, 10.4 N); the 1.15 mm plugger's is a prediction: in the published 4 to 9 MPa, and above
-// the larger plugger's, as practitioners' are (9.1 against 4.1 MPa), though at 5.05 MPa well under
+// the larger plugger's, as practitioners' are (9.1 against 4.1 MPa), though at 5.04 MPa well under
 // their 9.1 (a departure: a hand pushes harder than the paste needs). A conventional composite
 // resists far less. Converged in the spacing: 4.47, 4.14, 4.36 MPa (1.15 mm) and 3.49, 3.34,
 // 3.30 MPa (1.8 mm) at 0.15, 0.1 and 0.075 mm, before the fit.

@@ -183,11 +183,16 @@ TEST(IisphStep, MeasuresTheCompressionThePasteHas) {
   std::vector<ParticleInit> ps;
   for (Vec3 x : testing::lattice({0, 0, 0}, 0.85 * s, 6, 6, 6)) ps.push_back(testing::particle(Role::material, x, m, Material{1.0, 10, rho0, 0}));
   c.state.add_particles(c.model, ps);
-  step(c.model, c.state);
+  State two = c.state;
+  step(c.model, c.state, StepOptions{1, nullptr});
   // The interior at 1 / 0.85^3 = 1.63 of the rest density, the surface less.
   EXPECT_GT(c.state.diagnostics.compression_max, 0.5);
   EXPECT_GT(c.state.diagnostics.compression_mean, 0.1);
   EXPECT_LT(c.state.diagnostics.compression_mean, c.state.diagnostics.compression_max);
+  // Summed in fixed blocks: the same on two threads, bit for bit.
+  step(c.model, two, StepOptions{2, nullptr});
+  EXPECT_EQ(two.diagnostics.compression_mean, c.state.diagnostics.compression_mean);
+  EXPECT_EQ(two.diagnostics.compression_max, c.state.diagnostics.compression_max);
 }
 
 TEST(IisphHydrostatic, PressureIsRhoGDepthAndTheDensityHolds) {
