@@ -28,12 +28,6 @@
 
 namespace dentsph {
 
-namespace haptics {
-struct SessionStart;
-template <class T>
-class TripleBuffer;
-}  // namespace haptics
-
 enum class ForceMode {
   direct,    // the paper's: the tool moves with the device, the tool force is rendered
   coupling,  // virtual coupling: the tool is a proxy tied to the device by a spring and damper;
@@ -56,9 +50,6 @@ struct CouplingParams {
   // 1 ms a contact pushed the proxy 7 mm in two steps and the paste exploded). Slowing the proxy
   // only takes energy out.
   double max_speed_m_per_s = 0;
-  // Set by the runtime, not a user's setting: where the haptic loop announces a new device
-  // session (DeviceSample::session), at which the proxy is put where the device is.
-  haptics::TripleBuffer<haptics::SessionStart>* sessions = nullptr;
 };
 
 struct WatchdogParams {

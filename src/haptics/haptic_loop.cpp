@@ -191,6 +191,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
     c.contact_normal = contact.touching ? contact.normal : Vec3{};
     c.stamp_ns = now;
     c.sequence = sample_.sequence;
+    c.session = sample_.session;
     c.dispense_presses = dispense_presses_.counted();
     c.light_presses = light_presses_.counted();
     c.valid = true;
@@ -230,10 +231,6 @@ void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
   if (torque_limiter_) torque_limiter_->reset();
   have_sim_ = false;
   session_start_ns_ = now;
-  SessionStart& s = shared_.sessions.back();
-  s.session = fresh.session;
-  s.device_position = fresh.pose.position;
-  shared_.sessions.publish();
 }
 
 HapticReport HapticLoop::report() const {

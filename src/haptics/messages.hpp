@@ -23,14 +23,11 @@ struct ToolCommand {
   std::uint32_t sequence = 0; // device pose sequence it came from
   std::uint64_t dispense_presses = 0;  // presses of button 1 since the start (kButtonDispense)
   std::uint64_t light_presses = 0;     // presses of button 2 since the start (kButtonLight)
-  bool valid = false;
-};
-
-// Haptic -> simulation (virtual coupling): a new device session started with the device at
-// `device_position` (device frame); the proxy is put there (VirtualCoupling::step).
-struct SessionStart {
+  // The device session (DeviceSample::session) the pose belongs to: with the first command of a new
+  // session the simulation puts the coupling's proxy at its pose, at rest, and drops the previous
+  // hand's tool force (sim_loop.cpp).
   std::uint32_t session = 0;
-  Vec3 device_position;
+  bool valid = false;
 };
 
 // Simulation -> haptic: the newest tool force.

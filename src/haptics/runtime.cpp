@@ -97,7 +97,6 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   haptics::HapticLoop haptic(device, opt, shared);
   // The simulation's virtual coupling hears of a new device session from the haptic loop.
   RealtimeOptions sim_opt = opt;
-  sim_opt.coupling.sessions = &shared.sessions;
   haptics::SimLoop sim(core, sim_opt, force_scale, shared, scene_rigid_band(scene));
   haptics::ConsumerLoop consumer(opt, shared);
   haptics::ContactLoop contact(shared);

@@ -26,7 +26,6 @@ struct RuntimeShared {
   TripleBuffer<ToolCommand> command;  // haptic -> simulation
   TripleBuffer<SimOutput> output;     // simulation -> haptic
   TripleBuffer<Snapshot> snapshots;   // simulation -> consumer
-  TripleBuffer<SessionStart> sessions;  // haptic -> simulation's virtual coupling
   TripleBuffer<ContactWorld> contact;   // contact loop -> haptic: the rigid surfaces and the instrument
   TripleBuffer<RigidInput> rigid;       // simulation -> contact loop: what is rigid, the instrument
   std::atomic<bool> stop{false};

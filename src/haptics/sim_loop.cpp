@@ -53,6 +53,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
   VirtualCoupling proxy(coupling);
   const real reach = std::max(sim_.model().kernel.h, sim_.model().adhesion.B);  // the tool's farthest pair
   bool proxy_started = false;
+  std::uint32_t proxy_session = 0;
   std::uint64_t presses_handled = 0, light_presses_handled = 0;
   const real dispense_volume = increment_volume_or_default(sim_.scene(), opt_.dispense_volume);
   const IncrementPaste paste = scene_paste(sim_.scene());
@@ -101,7 +102,13 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
       if (opt_.mode == ForceMode::coupling) {
         // The proxy: pulled by the coupling to the device, pushed by the tool force of the last
         // step, over this step's dt.
-        if (!proxy_started) proxy.reset(tool), proxy_started = true;
+        // A new hand (the device's first command, or a new session's) starts with the proxy at its
+        // pose, at rest; the last step's tool force was the previous hand's tool's, not felt by this one.
+        Vec3 tool_force = state.tool_wrench.force * force_scale_;
+        if (!proxy_started || cmd.session != proxy_session) {
+          proxy.reset(tool), proxy_started = true, proxy_session = cmd.session;
+          tool_force = {};
+        }
         // A free move: no paste or wall particle within reach of the instrument's path from the proxy to the hand
         // (the kernel's support, or the adhesion's where a bond reaches farther), and the proxy
         // goes there at once; otherwise it goes freely as far as the path is clear, and on from
@@ -114,7 +121,7 @@ void SimLoop::run(std::int64_t t0_ns, const std::function<bool(std::int64_t)>& s
           proxy.place(tool, cmd.velocity);
         } else {
           if (share > 0) proxy.place(at + (tool - at) * share, cmd.velocity);
-          proxy.step(cmd.pose.position, cmd.velocity, state.tool_wrench.force * force_scale_, dt);
+          proxy.step(cmd.pose.position, cmd.velocity, tool_force, dt);
           // The hard contact's surface holds the simulated tool too: the coupling's swing does
           // not carry it into the tooth or set paste.
           if (cmd.contact_normal != Vec3{}) proxy.keep_outside(cmd.pose.position, cmd.contact_normal);

@@ -35,10 +35,6 @@ void VirtualCoupling::keep_outside(const Vec3& point, const Vec3& normal) {
 }
 
 void VirtualCoupling::step(const Vec3& xd, const Vec3& vd, const Vec3& tool_force, double dt) {
-  if (p_.sessions && p_.sessions->update() && p_.sessions->front().session != session_) {
-    session_ = p_.sessions->front().session;
-    reset(p_.sessions->front().device_position);
-  }
   // The drag takes energy out of a contact; in air (no tool force) it would only be felt, as a force
   // against the hand of drag x speed (0.125 N at 62.5 mm/s), so it acts in contact alone.
   const bool contact = tool_force != Vec3{};

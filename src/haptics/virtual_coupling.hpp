@@ -41,9 +41,7 @@ class VirtualCoupling {
   // surface the hand's instrument rests on): moved back onto it, its velocity into it removed.
   void keep_outside(const Vec3& point, const Vec3& normal);
   // One tick of dt s: device position and velocity (device frame), the tool force on the proxy
-  // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state. A new
-  // device session announced on CouplingParams::sessions first puts the proxy where that session's
-  // device started, at rest: a new hand does not inherit the previous one's tool.
+  // (device N). Moves the proxy; the force on the hand is coupling_force() of its new state.
   void step(const Vec3& device_x, const Vec3& device_v, const Vec3& tool_force, double dt);
   const Vec3& position() const { return x_; }
   const Vec3& velocity() const { return v_; }
@@ -59,7 +57,6 @@ class VirtualCoupling {
   Vec3 sampled_x_, sampled_force_;  // where the stiffness was last sampled, and the tool force there
   bool sampled_ = false;
   double k_tool_ = 0;
-  std::uint32_t session_ = 0;
 };
 
 }  // namespace dentsph::haptics

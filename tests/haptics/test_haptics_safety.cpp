@@ -164,11 +164,12 @@ TEST(HapticSafety, ANewClientStartsWithItsOwnToolAndTheForceRampsIn) {
   }
   std::printf("second session: largest force %.4g N (the first hand's reached %.4g N)\n", largest,
               a_report["max_force_N"].get<double>());
-  // B's tool is its own, above the paste: it does not feel A's tool in the paste (0.38 N when the
-  // renderer still ramped from A's proxy; before sessions reset the proxy, B got A's tool, up to
-  // 9 N in 9 ms).
-  EXPECT_LT(largest, 0.1);
-  EXPECT_LT(b_report["max_force_N"].get<double>(), 0.1);
+  // B's tool is its own, above the paste: it feels nothing of A's tool in the paste. Before sessions
+  // reset the proxy, B got A's tool, up to 9 N in 9 ms; then 0.38 N while the renderer still ramped
+  // from A's proxy; then 0.15 N on a loaded host, where the proxy, reset, was pushed once by A's
+  // last tool force (the reset now comes with B's first command, and drops that force).
+  EXPECT_LT(largest, 0.02);
+  EXPECT_LT(b_report["max_force_N"].get<double>(), 0.02);
 }
 
 // ---- class 6: lock-out ---------------------------------------------------------------------------
