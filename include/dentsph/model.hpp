@@ -122,6 +122,11 @@ struct IisphParams {
   // the same paste on both solvers (docs/model.md), 1 takes the equation of state as written.
   real stiffness = 0.5;
   PressureGradient gradient = PressureGradient::spiky;
+  // The viscous pressure's step alpha (docs/model.md, "The viscous pressure"; 0: none, the solver as
+  // it was): a viscous paste's pressure built up across steps, one Uzawa iteration of the coupled
+  // pressure and viscosity a step, so that the viscosity solved after the pressure does not leave the
+  // paste compressed. At most 1; the presets' 0.5.
+  real viscous_pressure = 0;
 };
 
 // The user's choices; make_model() checks them and derives the rest.

@@ -65,6 +65,7 @@ struct StepDiagnostics {
   // the pressure solve's prediction, which the viscosity solve after it may undo): mean over
   // material particles of max(0, rho / rho0 - 1), and the largest.
   real compression_mean = 0, compression_max = 0;
+  real viscous_pressure_max = 0;  // Pa, the largest viscous pressure after this step (iisph.viscous_pressure)
   bool pressure_on_budget = false;  // the pressure solve stopped at max_iterations, its error still over
                                     // iisph.density_error (pressure_residual says how far)
   bool on_deadline = false;         // a solve stopped at StepOptions::deadline, before its tolerance

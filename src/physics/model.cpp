@@ -82,6 +82,9 @@ void check_iisph_params(const IisphParams& ip) {
     fail("iisph.rheology_iterations", fmt::format("must be in [1, 100], got {}; 3 is usual", ip.rheology_iterations));
   if (!(ip.rheology_tolerance >= 0 && ip.rheology_tolerance < 1))
     fail("iisph.rheology_tolerance", fmt::format("must be in [0, 1), got {}; 0.02 is usual", ip.rheology_tolerance));
+  if (!(ip.viscous_pressure >= 0 && ip.viscous_pressure <= 1))
+    fail("iisph.viscous_pressure",
+         fmt::format("must be in [0, 1], got {}; 0 for none, 0.5 is the presets' (docs/model.md)", ip.viscous_pressure));
   if (!(ip.stiffness > 0 && ip.stiffness <= 1))
     fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
 }

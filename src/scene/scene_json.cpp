@@ -47,7 +47,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
            "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "rheology_iterations",
-           "rheology_tolerance", "wall_rest_density"});
+           "rheology_tolerance", "wall_rest_density", "viscous_pressure"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
     const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
@@ -85,6 +85,9 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   p.cfl = i->number_or("cfl", p.cfl, "the velocity Courant number, about 0.4", Range::positive);
   p.rheology_iterations = int(i->integer_or("rheology_iterations", p.rheology_iterations,
                                             "a non-Newtonian material's viscosity solves a step at most, e.g. 3", 1, 100));
+  p.viscous_pressure = i->number_or("viscous_pressure", p.viscous_pressure,
+                                    "the viscous pressure's step, in [0, 1]: 0.5 the presets', 0 none (docs/model.md)",
+                                    Range::non_negative);
   p.rheology_tolerance = i->number_or("rheology_tolerance", p.rheology_tolerance,
                                       "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
                                       Range::non_negative);

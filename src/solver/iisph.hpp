@@ -11,6 +11,8 @@
 //   pressure.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
 //                   step where its equation of state puts it; v* + dt a_p
 //   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
+//   viscous_pressure.cpp  the pressure a viscous paste needs to stay incompressible (Uzawa, a step
+//                   an iteration): its force before the viscosity, its update after
 //   viscosity.cpp   backward-Euler viscosity by conjugate gradients: v**
 //   rheology.cpp    a non-Newtonian material's effective viscosity from its shear rate (Picard)
 //   interface.cpp   paste pulled from the instrument harder than their contact's strength slips
@@ -67,6 +69,11 @@ inline bool has_rheology(const Model& model) { return model.materials.first_non_
 // the boundary's and tool's terms (at state.vel) weighed with it. Returns the largest relative change of a
 // particle's viscosity (infinity the first time in a step: `first`, which also keeps the unit weights).
 real update_viscosity(const Model& model, State& state, IisphScratch& x, int threads, const Vec3* v, bool first);
+// viscous_pressure.cpp (iisph.viscous_pressure > 0): the viscous pressure's force added to v* + dt a_p
+// before the viscosity solve (x.v_star, x.v_a), and after it its Uzawa update from the density v**
+// gives at the step's end.
+void push_viscous_pressure(const Model& model, State& state, IisphScratch& x, int threads);
+void update_viscous_pressure(const Model& model, State& state, IisphScratch& x, int threads);
 // interface.cpp: after the viscosity solve, each paste particle whose tension against the
 // instrument (its instrument pairs' viscous pull less the pressure's push, along their mean line) is
 // over the contact's strength (Material::interface_strength) times V^(2/3) has those pairs' coupling

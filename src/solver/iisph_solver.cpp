@@ -22,7 +22,7 @@ class IisphSolver final : public StepSolver {
   const char* description() const override { return "implicit pressure and viscosity; docs/model.md"; }
 
   void resize(const Model& model, const State& state) override {
-    x_.resize(state, has_rheology(model));
+    x_.resize(state, has_rheology(model), model.iisph.viscous_pressure > 0);
     list_material(state, x_);
     layout_ = state.layout_stamp;
     listed_ = state.order_stamp;

@@ -36,7 +36,10 @@ void one_step(const Model& model, State& state, IisphScratch& x, const StepOptio
   state.diagnostics.on_deadline = false;
   solve_pressure(model, state, x, t, opt.deadline);  // the pressure; v* + dt a_p
   clock.lap(&StageTimes::pressure_us);
+  const bool viscous_pressure = model.iisph.viscous_pressure > 0;
+  if (viscous_pressure) push_viscous_pressure(model, state, x, t);  // + dt a_pv
   implicit_viscosity(model, state, x, t, opt.deadline);  // v**
+  if (viscous_pressure) update_viscous_pressure(model, state, x, t);
   clock.lap(&StageTimes::viscosity_us);
   finish(model, state, x, t);                  // velocity, position, tool, diagnostics, wrench
   clock.lap(&StageTimes::integrate_us);

@@ -4,7 +4,7 @@
 
 namespace dentsph {
 
-void IisphScratch::resize(const State& state, bool with_rheology) {
+void IisphScratch::resize(const State& state, bool with_rheology, bool with_viscous_pressure) {
   const std::size_t n = state.size();
   auto size = [](auto& v, std::size_t k) {
     v.resize(k);
@@ -26,6 +26,9 @@ void IisphScratch::resize(const State& state, bool with_rheology) {
   size(tool_force, n);
   size(inv_rho, n);
   size(q, n);
+  if (!with_viscous_pressure || viscous_pressure.size() > n) size(viscous_pressure, 0);
+  viscous_pressure.resize(with_viscous_pressure ? n : 0, 0);
+  size(q_viscous, with_viscous_pressure ? n : 0);
   size(accel, n);
   size(v_a, n);
   size(cg_p, n);
@@ -55,7 +58,7 @@ void IisphScratch::resize(const State& state, bool with_rheology) {
 std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
-         b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) +
+         b(visc_fixed) + b(div_fixed) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) + b(viscous_pressure) + b(q_viscous) +
          b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(interface_scale) + b(visc_unit) + b(mu_eff) + b(visc_block) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
          b(pc_dir) + b(pc_hp) + b(pc_partial) + b(tools) + b(tool_list) + b(tool_count) +
          b(link_start) + b(link_fill) + b(link_tool);
