@@ -4,6 +4,7 @@
 // material tests).
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -101,14 +102,18 @@ Scene scene_of(const std::string& file, const cli::DentalOptions& dental, const 
 }
 
 int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std::string& solver,
-            const std::string& pressure_solve, RunOptions opt, bool quiet, cli::RealtimeCommand& rt,
-            const cli::SessionOptions& session) {
+            const std::string& pressure_solve, std::optional<double> viscous_pressure, RunOptions opt, bool quiet,
+            cli::RealtimeCommand& rt, const cli::SessionOptions& session) {
   // No scene file: a filling procedure (the built-in one or --procedure) on the built-in molar
   // crown or on the given scanned tooth, with the cavity of the options.
   Scene sc = scene_of(file, dental, solver, opt.backend);
   if (const std::optional<PressureSolve> ps = pressure_solve_from_name(pressure_solve)) {
     sc.params.iisph.pressure_solve = *ps;
     sc.model.iisph.pressure_solve = *ps;
+  }
+  if (viscous_pressure) {
+    sc.params.iisph.viscous_pressure = *viscous_pressure;
+    sc.model.iisph.viscous_pressure = *viscous_pressure;
   }
   session.apply(sc);
   // The outputs' folder, made and written once before anything runs: a run never ends by losing them.
@@ -142,6 +147,8 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
                100 * st.compression_max, st.viscosity_iterations_mean(), st.viscosity_iterations_max,
                st.viscosity_residual_mean(),
                st.viscosity_residual_max);
+  if (const SolverStatistics& st = s.solver_statistics; st.recorded && s.viscous_pressure > 0)
+    fmt::print("viscous pressure: step {:.3g}, at most {:.4g} kPa\n", s.viscous_pressure, st.viscous_pressure_max / 1e3);
   if (const SolverStatistics& st = s.solver_statistics; st.recorded && st.rheology_iterations_max > 0)
     fmt::print("rheology: {:.2f} Picard iterations a step (at most {}), effective viscosity {:.3g} to {:.3g} Pa s\n",
                st.rheology_iterations_mean(), st.rheology_iterations_max, st.viscosity_min, st.viscosity_max);
@@ -210,6 +217,12 @@ int main(int argc, char** argv) {
                   "The iisph solver's pressure solve: jacobi (relaxed Jacobi) or cg (projected conjugate gradients, "
                   "docs/model.md); default: the scene's simulation.iisph.pressure_solve")
       ->check(CLI::IsMember({"jacobi", "cg"}));
+  std::optional<double> run_viscous_pressure;
+  run->add_option("--viscous-pressure", run_viscous_pressure,
+                  "The iisph solver's viscous pressure step, 0 to 1: a viscous paste kept at its volume (0.5 "
+                  "suggested; docs/model.md, \"The viscous pressure\"); default: the scene's "
+                  "simulation.iisph.viscous_pressure (0, none)")
+      ->check(CLI::Range(0.0, 1.0));
 
   BenchOptions bench_opt;
   std::string bench_json_file;
@@ -268,7 +281,7 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.backend = parse_backend(run_backend);
       session.check(opt.out_dir);  // the store, before the session: never lost at its end
-      const int rc = cmd_run(run_scene, run_dental, run_solver, run_pressure_solve, opt, quiet, realtime, session);
+      const int rc = cmd_run(run_scene, run_dental, run_solver, run_pressure_solve, run_viscous_pressure, opt, quiet, realtime, session);
       if (rc == 0) session.record(opt.out_dir);
       return rc;
     }

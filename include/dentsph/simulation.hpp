@@ -85,6 +85,7 @@ struct RunSummary {
   int threads = 1;
   Solver solver = Solver::paper;     // the step that ran
   PressureSolve pressure_solve = PressureSolve::jacobi;  // its pressure solve (the iisph solver's)
+  double viscous_pressure = 0;  // its viscous pressure's step (iisph.viscous_pressure; 0: none)
   // Its figures over the run (solver.hpp; none recorded by the paper's step).
   SolverStatistics solver_statistics;
   // Curing (scenes with cure events or a curing light turned on): light-on time, how much of it

@@ -36,6 +36,7 @@ struct SolverStatistics {
   // The compression measured at each step's start (StepDiagnostics::compression_mean, _max): the
   // mean over steps of its mean, the largest of its mean, and the largest of one particle's.
   double compression_sum = 0, compression_mean_max = 0, compression_max = 0;
+  double viscous_pressure_max = 0;  // Pa, the largest viscous pressure (StepDiagnostics::viscous_pressure_max)
   // Steps whose pressure solve stopped on its budget (StepDiagnostics::pressure_on_budget), and the
   // largest error it stopped at.
   std::uint64_t on_budget_steps = 0;

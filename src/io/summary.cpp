@@ -47,6 +47,8 @@ std::string summary_json(const RunSummary& s) {
                         {"compression", {{"mean", st.compression_mean()},
                                          {"mean_max", st.compression_mean_max},
                                          {"particle_max", st.compression_max}}},
+                        // The viscous pressure's step (0: none) and the largest it reached.
+                        {"viscous_pressure", {{"step", s.viscous_pressure}, {"max_Pa", st.viscous_pressure_max}}},
                         {"pressure_residual_max", st.pressure_residual_max},
                         // The largest density error a particle was left with (the cg solve; 0: not measured).
                         {"pressure_max_error", st.pressure_max_error},

@@ -131,7 +131,6 @@ DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams
   dp.iisph.pressure_solve = PressureSolve::cg;
   dp.iisph.max_iterations = 50;
   dp.iisph.wall_rest_density = true;
-  dp.iisph.viscous_pressure = 0.5;
   return dp;
 }
 

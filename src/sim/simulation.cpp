@@ -155,6 +155,7 @@ RunSummary Simulation::summary() {
   s.threads = options_.threads;
   s.solver = model_.solver;
   s.pressure_solve = model_.iisph.pressure_solve;
+  s.viscous_pressure = model_.iisph.viscous_pressure;
   s.solver_statistics = solver_statistics_;
   if (diverged_) {
     s.status = "diverged";

@@ -90,6 +90,7 @@ class IisphSolver final : public StepSolver {
     s.compression_sum += d.compression_mean;
     s.compression_mean_max = std::max<double>(s.compression_mean_max, d.compression_mean);
     s.compression_max = std::max<double>(s.compression_max, d.compression_max);
+    s.viscous_pressure_max = std::max<double>(s.viscous_pressure_max, d.viscous_pressure_max);
     if (d.pressure_on_budget) {
       ++s.on_budget_steps;
       s.on_budget_residual_max = std::max<double>(s.on_budget_residual_max, d.pressure_residual);

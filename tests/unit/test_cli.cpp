@@ -511,6 +511,19 @@ TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
   EXPECT_GT(cg_sum.at("solver").at("pressure_max_error").get<double>(), 0);
   EXPECT_EQ(cg_sum.at("solver").at("on_deadline").at("steps"), 0) << "an offline run has no deadline";
   expect_refused("run scenes/tool_press.json --pressure-solve multigrid --steps 1 -q", {"--pressure-solve", "jacobi", "cg"});
+  // --viscous-pressure over the scene's (none), written to the summary with the largest it reached;
+  // a step outside [0, 1] is refused naming the option.
+  EXPECT_EQ(cg_sum.at("solver").at("viscous_pressure").at("step"), 0) << "none by default";
+  EXPECT_EQ(cg_sum.at("solver").at("viscous_pressure").at("max_Pa"), 0);
+  const fs::path vp = dir() / "press_vp";
+  const Result v = dentsph_cli("run scenes/tool_press.json --solver iisph --viscous-pressure 0.5 --steps 20 --threads 1 "
+                               "--out " + vp.string());
+  ASSERT_EQ(v.code, 0) << v.output;
+  EXPECT_NE(v.output.find("viscous pressure: step 0.5"), std::string::npos) << v.output;
+  const nlohmann::json vp_sum = read_json(vp / "summary.json");
+  EXPECT_EQ(vp_sum.at("solver").at("viscous_pressure").at("step"), 0.5);
+  EXPECT_GE(vp_sum.at("solver").at("viscous_pressure").at("max_Pa").get<double>(), 0);
+  expect_refused("run scenes/tool_press.json --viscous-pressure 2 --steps 1 -q", {"--viscous-pressure", "0", "1"});
   EXPECT_EQ(sum.at("stability").at("dt_s"), 5e-4) << "a scene file keeps its dt";
   // The built-in procedure takes the solver's dental time step with it.
   const fs::path dental = dir() / "dental_solver";
