@@ -37,6 +37,18 @@ void with_progress(std::size_t n, F each) {
   }
 }
 
+// --db: an empty address is refused, not taken for none.
+CLI::Validator store_address() {
+  return CLI::Validator(
+      [](const std::string& v) {
+        return v.find_first_not_of(" \t") == std::string::npos
+                   ? std::string("an empty session store address: give an SQLite file (sessions.sqlite) or a "
+                                 "PostgreSQL address (postgresql://user@host/dentsph)")
+                   : std::string();
+      },
+      "STORE");
+}
+
 }  // namespace
 
 void SessionOptions::add_options(CLI::App& run) {
@@ -44,7 +56,10 @@ void SessionOptions::add_options(CLI::App& run) {
       ->check(person_text());
   run.add_option("--exercise", exercise_, "Which exercise the session is (the report; the session store's index)")
       ->check(person_text());
-  run.add_option("--db", db_, "Index the finished session in this session store (an SQLite file, created when missing)");
+  run.add_option("--db", db_,
+                 "Index the finished session in this session store (an SQLite file, created when missing, or a "
+                 "PostgreSQL address)")
+      ->check(store_address());
 }
 
 void SessionOptions::check(const std::filesystem::path& out_dir) const {
@@ -80,7 +95,9 @@ void ReportCommand::add_subcommand(CLI::App& app) {
   cmd_->add_option("dirs", dirs_, "Run folders (the --out of dentsph run)");
   cmd_->add_option("--out", out_, "Compare the sessions in this HTML file (and a CSV beside it)");
   cmd_->add_option("--csv", csv_, "The comparison's CSV (default: --out with .csv)");
-  cmd_->add_option("--db", db_, "Take the sessions from this session store");
+  cmd_->add_option("--db", db_, "Take the sessions from this session store (an SQLite file dentsph run --db made, or a "
+                                "PostgreSQL address)")
+      ->check(store_address());
   cmd_->add_option("--student", student_, "With --db: this student's sessions");
   cmd_->add_option("--exercise", exercise_, "With --db: this exercise's sessions");
   cmd_->add_option("--title", title_, "The comparison's title");
@@ -106,6 +123,10 @@ int ReportCommand::run() const {
   std::vector<report::SessionEntry> sessions;
   std::string title = title_;
   if (!db_.empty()) {
+    // Reading: a file that is not there is a mistyped name, not a store to make.
+    if (!report::is_postgres_location(db_) && !std::filesystem::exists(db_))
+      throw std::invalid_argument(fmt::format("--db {}: no such session store; give the file dentsph run --db wrote",
+                                              db_));
     const report::SessionStore store(db_);
     sessions = store.find(student_, exercise_);
     if (sessions.empty())

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -24,8 +25,13 @@ const Criterion* find(const std::vector<Criterion>& cs, const std::string& id) {
   return nullptr;
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+// A text cell of the CSV: quoted where it holds a comma, a quote or a line break; one that begins
+// with = + - @, a tab or a carriage return (a spreadsheet would take it for a formula: OWASP's CSV
+// injection) is prefixed with ' and quoted, so that it is shown as the text it is.
+std::string csv_field(const std::string& text) {
+  const bool formula = !text.empty() && std::string_view("=+-@\t\r").find(text.front()) != std::string_view::npos;
+  const std::string s = formula ? "'" + text : text;
+  if (!formula && s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";

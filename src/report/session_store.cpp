@@ -3,17 +3,71 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
+#include <string_view>
 
 #include "report/postgres_store.hpp"
 #include "report/store_backend.hpp"
 
 namespace dentsph::report {
 
-bool is_postgres_location(const std::string& l) {
-  return l.rfind("postgresql://", 0) == 0 || l.rfind("postgres://", 0) == 0;
+namespace {
+
+// libpq's connection keywords (a key-value address begins with one: "host=db dbname=dentsph").
+constexpr std::string_view kLibpqKeywords[] = {
+    "host", "hostaddr", "port", "dbname", "user", "password", "passfile", "connect_timeout", "options",
+    "application_name", "sslmode", "sslcert", "sslkey", "sslrootcert", "service", "target_session_attrs"};
+
+bool is_key_value_address(const std::string& l) {
+  const std::size_t start = l.find_first_not_of(" \t");
+  if (start == std::string::npos) return false;
+  const std::size_t eq = l.find('=', start);
+  if (eq == std::string::npos) return false;
+  std::string key = l.substr(start, eq - start);
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.pop_back();
+  return std::find(std::begin(kLibpqKeywords), std::end(kLibpqKeywords), key) != std::end(kLibpqKeywords);
 }
 
-std::string masked_location(const std::string& l) {
+// Each "password=VALUE" (a key-value pair or a URI's query parameter) with VALUE replaced by ***:
+// VALUE runs to the next space (or '&' in a URI), or is quoted in '...' with \' inside.
+std::string mask_password_parameters(const std::string& l) {
+  std::string out;
+  std::size_t k = 0;
+  while (true) {
+    const std::size_t p = l.find("password", k);
+    if (p == std::string::npos) break;
+    std::size_t v = p + 8;
+    while (v < l.size() && l[v] == ' ') ++v;
+    const bool starts_key = p == 0 || l[p - 1] == ' ' || l[p - 1] == '\t' || l[p - 1] == '?' || l[p - 1] == '&';
+    if (!starts_key || v >= l.size() || l[v] != '=') {
+      out += l.substr(k, p + 8 - k);
+      k = p + 8;
+      continue;
+    }
+    ++v;
+    while (v < l.size() && l[v] == ' ') ++v;
+    std::size_t end = v;
+    if (end < l.size() && l[end] == '\'') {
+      for (++end; end < l.size() && l[end] != '\''; ++end)
+        if (l[end] == '\\') ++end;
+      end = std::min(end + 1, l.size());
+    } else {
+      while (end < l.size() && l[end] != ' ' && l[end] != '\t' && l[end] != '&') ++end;
+    }
+    out += l.substr(k, v - k) + "***";
+    k = end;
+  }
+  return out + l.substr(k);
+}
+
+}  // namespace
+
+bool is_postgres_location(const std::string& l) {
+  return l.rfind("postgresql://", 0) == 0 || l.rfind("postgres://", 0) == 0 || is_key_value_address(l);
+}
+
+std::string masked_location(const std::string& location) {
+  const std::string l = mask_password_parameters(location);
   const std::size_t scheme = l.find("://"), at = l.find('@');
   if (scheme == std::string::npos || at == std::string::npos || at < scheme) return l;
   const std::size_t colon = l.find(':', scheme + 3);

@@ -28,7 +28,8 @@ class StoreBackend;
 
 class SessionStore {
  public:
-  // `location`: a file (SQLite, created when missing) or a postgresql:// (postgres://) address.
+  // `location`: a file (SQLite, created when missing) or a PostgreSQL address: postgresql:// (or
+  // postgres://), or libpq's key-value form ("host=db.school dbname=dentsph user=tutor").
   // `spool_dir`: where a PostgreSQL store keeps what it could not send (empty: $DENTSPH_STORE_SPOOL,
   // else ~/.local/state/dentsph). Opening a PostgreSQL store sends what its spool holds.
   explicit SessionStore(const std::string& location, const std::filesystem::path& spool_dir = {});
@@ -53,8 +54,11 @@ class SessionStore {
   std::unique_ptr<StoreBackend> backend_;
 };
 
-// `location` with a password in it replaced by ***.
+// `location` with a password in it replaced by ***: a URI's user:password@ and password= parameter,
+// a key-value address's password=.
 std::string masked_location(const std::string& location);
+// A postgresql:// or postgres:// URI, or a libpq key-value address (it begins with a libpq keyword
+// and '=': host, dbname, user, password, port, ...).
 bool is_postgres_location(const std::string& location);
 
 }  // namespace dentsph::report

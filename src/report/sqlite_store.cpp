@@ -12,6 +12,8 @@ namespace dentsph::report {
 
 namespace {
 
+constexpr int kBusyTimeoutMs = 5000;
+
 // A prepared statement, finalised on every path.
 struct Statement {
   sqlite3_stmt* st = nullptr;
@@ -37,9 +39,14 @@ void SqliteStore::fail(const std::string& what) const {
 
 void SqliteStore::exec(const std::string& sql, const std::string& what) {
   char* err = nullptr;
-  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+  if (const int rc = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err); rc != SQLITE_OK) {
     const std::string msg = err ? err : "";
     sqlite3_free(err);
+    // Another program holding its lock past the busy timeout: not a question of what the file is.
+    if ((rc & 0xff) == SQLITE_BUSY || (rc & 0xff) == SQLITE_LOCKED)
+      throw StoreError(fmt::format("{}: the session store is locked by another program (waited {} s); close it, or "
+                                   "run again when it is done ({})",
+                                   location_, kBusyTimeoutMs / 1000, msg));
     throw StoreError(fmt::format("{}: {}: {}", location_, what, msg));
   }
 }
@@ -56,7 +63,7 @@ SqliteStore::SqliteStore(std::string location) : location_(std::move(location)) 
     db_ = nullptr;
     throw StoreError(fmt::format("{}: cannot open the session store ({}); give a writable file", location_, msg));
   }
-  sqlite3_busy_timeout(db_, 5000);  // another workstation's write: wait for it
+  sqlite3_busy_timeout(db_, kBusyTimeoutMs);  // another workstation's write: wait for it
   try {
     exec("BEGIN IMMEDIATE", "not a session store (is it another program's database?)");
     exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)",

@@ -228,6 +228,17 @@ TEST(Report, ClassComparisonTableAndCsv) {
   EXPECT_NE(csv.find("student 1,student 1,class I,2026-01-02T03:04:05Z,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",0.8,needs work,1.0,needs work,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",0.99,good,0.0,good,"), std::string::npos) << csv;
+  // A cell a spreadsheet would take for a formula is text (OWASP's CSV injection): prefixed with '.
+  std::vector<SessionEntry> hostile = {sessions[0], sessions[1], sessions[2]};
+  hostile[0].label = "=HYPERLINK(\"http://x\",\"a\")";
+  hostile[1].label = "@SUM(A1)";
+  hostile[2].label = "-2+3";
+  hostile[2].student = "+1";
+  const std::string safe = class_report_csv(hostile);
+  EXPECT_NE(safe.find("\n\"'=HYPERLINK(\"\"http://x\"\",\"\"a\"\")\","), std::string::npos) << safe;
+  EXPECT_NE(safe.find("\n\"'@SUM(A1)\","), std::string::npos) << safe;
+  EXPECT_NE(safe.find("\n\"'-2+3\",\"'+1\","), std::string::npos) << safe;
+  for (const char* formula : {"\n=", "\n@", "\n-", ",+", ",="}) EXPECT_EQ(safe.find(formula), std::string::npos) << formula;
   const std::string html = class_report_html(sessions, "Class of 2026 & friends");
   EXPECT_NE(html.find("Class of 2026 &amp; friends"), std::string::npos);
   EXPECT_EQ(std::count(html.begin(), html.end(), '\n') > 10, true);
@@ -345,6 +356,14 @@ TEST(Report, StoreRefusesWhatItCannotUse) {
   sqlite3_exec(db, "UPDATE schema_version SET version = 99", nullptr, nullptr, nullptr);
   sqlite3_close(db);
   refused(newer, "newer than this program's");
+  // A store another program holds locked: said after the busy timeout, not "not a session store".
+  const std::string locked = (d / "locked.sqlite").string();
+  { SessionStore s(locked); }
+  ASSERT_EQ(sqlite3_open(locked.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
+  refused(locked, "locked by another program");
+  sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
 }
 
 TEST(Report, TwoWritersAtOnceLoseNothing) {

@@ -163,6 +163,16 @@ TEST(PostgresAddress, PasswordsAreMaskedInMessages) {
   EXPECT_EQ(masked_location("sessions.sqlite"), "sessions.sqlite");
   EXPECT_TRUE(is_postgres_location("postgres://x/y"));
   EXPECT_FALSE(is_postgres_location("postgresql.sqlite"));
+  // libpq's key-value form (an SQLite file of that name was made, the password printed in clear).
+  EXPECT_TRUE(is_postgres_location("host=127.0.0.1 port=1 password=s3cret dbname=x"));
+  EXPECT_TRUE(is_postgres_location("  dbname = dentsph"));
+  EXPECT_FALSE(is_postgres_location("sessions=2026.sqlite"));
+  EXPECT_FALSE(is_postgres_location("runs/host=a.sqlite"));
+  EXPECT_EQ(masked_location("host=127.0.0.1 port=1 password=s3cret dbname=x"), "host=127.0.0.1 port=1 password=*** dbname=x");
+  EXPECT_EQ(masked_location("host=db password = 'two words\\' here' user=tutor"), "host=db password = *** user=tutor");
+  EXPECT_EQ(masked_location("postgresql://db/dentsph?user=tutor&password=s3cret&sslmode=require"),
+            "postgresql://db/dentsph?user=tutor&password=***&sslmode=require");
+  EXPECT_EQ(masked_location("host=db user=passwordless"), "host=db user=passwordless");
 }
 
 }  // namespace

@@ -168,6 +168,25 @@ TEST(Cli, NamesAndTheStoreAreCheckedBeforeTheSession) {
     EXPECT_NE(r.output.find(db), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out / "summary.json")) << "the session ran before the store was checked";
   }
+  // An empty store address is refused (it was taken for none, silently); a report from a store that
+  // is not there names it instead of making an empty one; a libpq key-value address is a PostgreSQL
+  // store (it made an SQLite file of that name) and its password is never printed.
+  expect_refused("run --steps 2 -q --db \"\" --out " + out.string(), {"--db", "an empty session store address"});
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  const fs::path typo = dir() / "typo.sqlite";
+  fs::remove(typo);
+  expect_refused("report --db " + typo.string() + " --out " + (dir() / "typo.html").string(),
+                 {typo.string(), "no such session store"});
+  EXPECT_FALSE(fs::exists(typo)) << "a report made the store it reads";
+  const fs::path kv = dir() / "key_value";
+  const auto spooled = testing::run_command("cd " + dir().string() + " && DENTSPH_STORE_SPOOL=" + (dir() / "spool").string() +
+                                            " " + DENTSPH_CLI + " run --steps 2 -q --out " + kv.string() +
+                                     " --db \"host=127.0.0.1 port=1 password=s3cret dbname=x\"");
+  EXPECT_EQ(spooled.code, 0) << spooled.output;
+  EXPECT_NE(spooled.output.find("password=***"), std::string::npos) << spooled.output;
+  EXPECT_EQ(spooled.output.find("s3cret"), std::string::npos) << spooled.output;
+  for (const auto& e : fs::directory_iterator(dir()))
+    EXPECT_EQ(e.path().filename().string().find("host="), std::string::npos) << "an SQLite file named by the address";
   // UTF-8 names go through to the summary.
   const Result ok = dentsph_cli("run --steps 2 -q --student \"José\" --out " + out.string());
   ASSERT_EQ(ok.code, 0) << ok.output;
