@@ -49,6 +49,22 @@ CLI::Validator store_address() {
       "STORE");
 }
 
+// Whether `target` is a file a run wrote in `folder` (anything there but a page or table of one's
+// own: the run's report.html, tool_force.csv, its recording and particles are its files too).
+bool run_folder_file(const std::filesystem::path& folder, const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path f = fs::weakly_canonical(folder, ec), t = fs::weakly_canonical(target, ec);
+  if (ec || f.empty()) return false;
+  const fs::path rel = t.lexically_relative(f);
+  if (rel.empty() || rel.native().rfind("..", 0) == 0) return false;  // outside the folder
+  if (!fs::exists(t)) return false;  // a new file beside the run's: nothing lost
+  const std::string name = rel.filename().string(), top = rel.begin()->string(), ext = rel.extension().string();
+  if (top == "recording" || top == "particles") return true;
+  if (name == "report.html" || name == "tool_force.csv") return true;
+  return ext != ".html" && ext != ".csv";
+}
+
 }  // namespace
 
 void SessionOptions::add_options(CLI::App& run) {
@@ -110,6 +126,21 @@ int ReportCommand::run() const {
   if (db_.empty() && (!student_.empty() || !exercise_.empty()))
     throw std::invalid_argument("report: --student and --exercise choose sessions of a store: give --db FILE");
   if (out_.empty() && !db_.empty()) throw std::invalid_argument("report --db: give --out FILE.html for the comparison");
+  // The comparison never overwrites what it reads: a run folder's own files (its summary.json
+  // became HTML, exit 0), nor the one with the other.
+  if (!out_.empty()) {
+    std::filesystem::path csv = csv_;
+    if (csv.empty()) csv = std::filesystem::path(out_).replace_extension(".csv");
+    for (const auto& [option, target] : {std::pair<std::string, std::filesystem::path>{"--out", out_}, {"--csv", csv}}) {
+      for (const std::string& d : dirs_)
+        if (run_folder_file(d, target))
+          throw std::invalid_argument(fmt::format("{} {}: that is a file of the run folder {}, which the report reads; "
+                                                  "write the comparison elsewhere (e.g. --out class.html)",
+                                                  option, target.string(), d));
+    }
+    if (std::filesystem::weakly_canonical(out_) == std::filesystem::weakly_canonical(csv))
+      throw std::invalid_argument(fmt::format("--csv {}: the same file as --out; give another", csv.string()));
+  }
 
   if (out_.empty()) {  // each folder's report.html again
     with_progress(dirs_.size(), [&](std::size_t k) {

@@ -21,13 +21,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A run's file is a regular file: a pipe in its place (a FIFO named summary.json) would block the
+// report for ever, a folder or a device would read as nothing or as garbage.
+void require_regular_file(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    throw SessionError(fmt::format("{}: not a regular file (a pipe, a device or a folder); a run writes its own file "
+                                   "there: run the session again",
+                                   file.string()));
+}
+
 std::vector<std::uint8_t> read_bytes(const fs::path& file) {
+  require_regular_file(file);
   std::ifstream in(file, std::ios::binary);
   if (!in) return {};
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 nlohmann::json read_json(const fs::path& file, const char* what) {
+  require_regular_file(file);
   std::ifstream in(file);
   if (!in) throw SessionError(fmt::format("{}: cannot open {}", file.string(), what));
   try {
@@ -40,6 +53,7 @@ nlohmann::json read_json(const fs::path& file, const char* what) {
 
 // The columns `want` (by header name) of a CSV file of numbers, row by row.
 std::vector<std::vector<double>> read_csv(const fs::path& file, const std::vector<std::string>& want) {
+  require_regular_file(file);
   std::FILE* f = std::fopen(file.c_str(), "r");
   if (!f) throw SessionError(fmt::format("{}: cannot open", file.string()));
   std::vector<std::vector<double>> rows;

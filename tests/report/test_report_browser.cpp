@@ -6,11 +6,13 @@
 // chromium.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -18,6 +20,7 @@
 #include <stb/stb_image.h>
 
 #include "report/criteria.hpp"
+#include "report/session_store.hpp"
 #include "report_support.hpp"
 #include "support/cli_process.hpp"
 
@@ -29,6 +32,11 @@ namespace fs = std::filesystem;
 using Result = dentsph::testing::CliResult;
 
 Result shell(const std::string& cmd) { return dentsph::testing::run_command(cmd); }
+
+std::string text_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 std::string chromium() {
   for (const char* c : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
@@ -264,10 +272,34 @@ TEST(ReportBrowser, MissingOrBrokenFoldersAreNamed) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.output.find("summary.json: not valid JSON"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(work() / "x.html"));
-  const Result none = dentsph("report --db " + (work() / "empty.sqlite").string() + " --student nobody --out " +
-                              (work() / "y.html").string());
+  // A store with no session of the student (made as a run's --db makes one): named.
+  const fs::path empty = work() / "empty.sqlite";
+  {
+    report::SessionStore made(empty.string());
+  }
+  const Result none = dentsph("report --db " + empty.string() + " --student nobody --out " + (work() / "y.html").string());
   EXPECT_EQ(none.code, 2);
   EXPECT_NE(none.output.find("no session of student 'nobody'"), std::string::npos) << none.output;
+  // The comparison never overwrites a run folder's own files: its summary.json became HTML.
+  const fs::path run = testing::write_folder("browser_own_files", testing::summary(1, 0, 0, 1, 1));
+  const std::string before = text_of(run / "summary.json");
+  for (const char* target : {"summary.json", "report.html", "tool_force.csv"}) {
+    std::ofstream(run / target, std::ios::app).flush();  // each exists, as a run leaves it
+    const Result own = dentsph("report " + run.string() + " --out " + (run / target).string());
+    EXPECT_EQ(own.code, 2) << target;
+    EXPECT_NE(own.output.find("which the report reads"), std::string::npos) << own.output;
+  }
+  EXPECT_EQ(text_of(run / "summary.json"), before);
+  const Result beside = dentsph("report " + run.string() + " --out " + (run / "compare.html").string());
+  EXPECT_EQ(beside.code, 0) << "a new page beside the run's files: " << beside.output;
+  // A pipe in summary.json's place is named, not read for ever.
+  const fs::path piped = testing::write_folder("browser_fifo", testing::summary(1, 0, 0, 1, 1));
+  fs::remove(piped / "summary.json");
+  ASSERT_EQ(mkfifo((piped / "summary.json").c_str(), 0600), 0);
+  const Result fifo = dentsph::testing::run_command(std::string(DENTSPH_CLI) + " report " + piped.string() + " --out " +
+                                           (work() / "fifo.html").string(), 30);
+  EXPECT_EQ(fifo.code, 2) << fifo.output;
+  EXPECT_NE(fifo.output.find("not a regular file"), std::string::npos) << fifo.output;
 }
 
 TEST(ReportBrowser, ManySessionsShowTheirProgress) {
