@@ -88,8 +88,9 @@ std::uint64_t run_steps(real duration, real dt);
 std::uint64_t state_bytes_per_particle(int max_bonds, bool skin);
 // The memory a scene needs: `held` particles as read and `simulated` in the state.
 std::uint64_t scene_bytes(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin);
-// The memory a scene may take: max_scene_bytes, or the machine's physical memory when less, or the
-// environment's DENTSPH_MEMORY_LIMIT_MB (megabytes) when less.
+// The memory a scene may take: max_scene_bytes, or the machine's physical memory when less, or
+// three quarters of the process's address-space limit (ulimit -v) when less, or the environment's
+// DENTSPH_MEMORY_LIMIT_MB (megabytes) when less.
 std::uint64_t memory_limit_bytes();
 // "" when a scene of `held` and `simulated` particles fits in `limit_bytes`, else the problem.
 std::string memory_problem(std::uint64_t held, std::uint64_t simulated, int max_bonds, bool skin,

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/cure.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/scene.hpp"
 
 namespace dentsph {
@@ -41,6 +42,25 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
   // The paste: lattice sites in the mould, its top layer's centres half a spacing below z = 0.
   const real s = o.spacing, R = 0.5 * o.mould_diameter;
   const int across = int(std::floor(R / s)), layers = std::max(1, int(std::lround(o.mould_length / s)));
+  // Counted before anything is made: a fine spacing in a long mould (0.02 mm in 50 mm: 78 million
+  // particles) is refused instead of allocating until the machine runs out.
+  std::uint64_t per_layer = 0;
+  for (int j = -across; j <= across; ++j)
+    for (int i = -across; i <= across; ++i) {
+      const real x = (i + 0.5) * s, y = (j + 0.5) * s;
+      per_layer += x * x + y * y <= R * R;
+    }
+  const double count = double(per_layer) * layers;
+  const std::string memory = count <= double(limits::max_particles)
+                                 ? limits::memory_problem(0, std::uint64_t(count), ModelParams{}.max_bonds_per_particle,
+                                                          false, limits::memory_limit_bytes())
+                                 : std::string();
+  if (count > double(limits::max_particles) || !memory.empty())
+    throw std::invalid_argument(fmt::format(
+        "depth of cure: a mould {:.3g} mm across and {:.3g} mm long at a spacing of {:.3g} mm holds {:.3g} particles, "
+        "{}: give a coarser spacing (--spacing) or a shorter mould (--mould-length)",
+        o.mould_diameter / mm, o.mould_length / mm, s / mm, count,
+        memory.empty() ? fmt::format("over the limit of {}", limits::max_particles) : memory));
   ModelParams p;
   p.dt = 1e-5;
   set_lattice_spacing(p, s);

@@ -1,6 +1,7 @@
 // The shared checks of dentsph/limits.hpp.
 #include "dentsph/limits.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -71,6 +72,10 @@ std::uint64_t memory_limit_bytes() {
   std::uint64_t limit = max_scene_bytes;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   if (pages > 0 && page > 0) limit = std::min(limit, std::uint64_t(pages) * std::uint64_t(page));
+  // A process limited in its address space (ulimit -v): three quarters of it, the rest for the
+  // program, its libraries and threads' stacks.
+  if (rlimit as{}; getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
+    limit = std::min(limit, std::uint64_t(as.rlim_cur) / 4 * 3);
   // A smaller limit asked for (a shared machine, the fuzzers): DENTSPH_MEMORY_LIMIT_MB.
   if (const char* mb = std::getenv("DENTSPH_MEMORY_LIMIT_MB")) {
     char* end = nullptr;

@@ -32,7 +32,9 @@ class PostgresStore final : public StoreBackend {
  public:
   PostgresStore(std::string location, std::filesystem::path spool)
       : location_(std::move(location)), spool_file_(std::move(spool)) {
-    reach();
+    // Unreachable now: a session added later is kept in the spool, whose folder must be there (said
+    // now, before a run, rather than after it).
+    if (!reach()) make_spool_folder();
   }
   ~PostgresStore() override {
     if (conn_) PQfinish(conn_);
@@ -80,9 +82,20 @@ class PostgresStore final : public StoreBackend {
     throw StoreError(fmt::format("{}: {}: {}", masked_location(location_), what, conn_ ? PQerrorMessage(conn_) : ""));
   }
 
+  void make_spool_folder() const {
+    std::error_code ec;
+    std::filesystem::create_directories(spool_file_.parent_path(), ec);
+    if (ec)
+      throw StoreError(fmt::format("{}: the server cannot be reached ({}), and a session could not be kept locally "
+                                   "until it is: the spool folder {} cannot be made ({}); set DENTSPH_STORE_SPOOL to "
+                                   "a folder you can write",
+                                   masked_location(location_), last_error_, spool_file_.parent_path().string(),
+                                   ec.message()));
+  }
+
   SqliteStore& spool() const {
     if (!spool_) {
-      std::filesystem::create_directories(spool_file_.parent_path());
+      make_spool_folder();
       spool_ = std::make_unique<SqliteStore>(spool_file_.string());
     }
     return *spool_;

@@ -32,7 +32,8 @@ class IisphSolver final : public StepSolver {
     // Particles were added or removed since the scratch was sized (or this is another State): sized
     // again. The lists of material and tool particles follow the State's order: a State reordered
     // since they were made (another one, or a copy stepped meanwhile) is listed again.
-    if (state.layout_stamp != layout_ || has_rheology(model) != x_.rheology) {
+    if (state.layout_stamp != layout_ || has_rheology(model) != x_.rheology ||
+        (model.iisph.viscous_pressure > 0) != x_.with_viscous_pressure) {
       resize(model, state);
     } else if (state.order_stamp != listed_) {
       list_material(state, x_);

@@ -4,7 +4,7 @@
 
 namespace dentsph {
 
-void IisphScratch::resize(const State& state, bool with_rheology, bool with_viscous_pressure) {
+void IisphScratch::resize(const State& state, bool with_rheology, bool with_viscous) {
   const std::size_t n = state.size();
   auto size = [](auto& v, std::size_t k) {
     v.resize(k);
@@ -26,9 +26,10 @@ void IisphScratch::resize(const State& state, bool with_rheology, bool with_visc
   size(tool_force, n);
   size(inv_rho, n);
   size(q, n);
-  if (!with_viscous_pressure || viscous_pressure.size() > n) size(viscous_pressure, 0);
-  viscous_pressure.resize(with_viscous_pressure ? n : 0, 0);
-  size(q_viscous, with_viscous_pressure ? n : 0);
+  if (!with_viscous || viscous_pressure.size() > n) size(viscous_pressure, 0);
+  viscous_pressure.resize(with_viscous ? n : 0, 0);
+  size(q_viscous, with_viscous ? n : 0);
+  with_viscous_pressure = with_viscous;
   size(accel, n);
   size(v_a, n);
   size(cg_p, n);

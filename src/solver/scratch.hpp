@@ -65,6 +65,7 @@ struct IisphScratch {
   // The viscous pressure (viscous_pressure.cpp; empty without iisph.viscous_pressure): Pa by particle
   // id, kept from step to step, and its p / rho^2 this step by particle (0 for walls and the tool).
   std::vector<real> viscous_pressure, q_viscous;
+  bool with_viscous_pressure = false;  // sized for it (a model that turns it on or off is sized again)
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
@@ -98,9 +99,9 @@ struct IisphScratch {
   std::vector<std::uint32_t> link_tool;      // [tool * kToolStride]
 
   // Sizes every array for the particles of `state` (scratch.cpp), those of a non-Newtonian material
-  // where `with_rheology`, the viscous pressure's where `with_viscous_pressure` (kept where particles
+  // where `with_rheology`, the viscous pressure's where `with_viscous` (kept where particles
   // were added, zero again where any were removed: their ids changed).
-  void resize(const State& state, bool with_rheology, bool with_viscous_pressure);
+  void resize(const State& state, bool with_rheology, bool with_viscous);
   std::size_t bytes() const;
 };
 

@@ -187,6 +187,15 @@ TEST(Cli, NamesAndTheStoreAreCheckedBeforeTheSession) {
   EXPECT_EQ(spooled.output.find("s3cret"), std::string::npos) << spooled.output;
   for (const auto& e : fs::directory_iterator(dir()))
     EXPECT_EQ(e.path().filename().string().find("host="), std::string::npos) << "an SQLite file named by the address";
+  // An unreachable server whose spool folder cannot be made: said before the session, naming the
+  // folder and the fix (a filesystem exception after the session before).
+  const auto no_spool = testing::run_command("DENTSPH_STORE_SPOOL=/proc/dentsph-spool " + std::string(DENTSPH_CLI) +
+                                             " run --steps 2 -q --out " + kv.string() +
+                                             " --db postgresql://tutor@127.0.0.1:1/dentsph");
+  EXPECT_EQ(no_spool.code, 2) << no_spool.output;
+  EXPECT_NE(no_spool.output.find("the spool folder /proc/dentsph-spool cannot be made"), std::string::npos)
+      << no_spool.output;
+  EXPECT_NE(no_spool.output.find("DENTSPH_STORE_SPOOL"), std::string::npos) << no_spool.output;
   // UTF-8 names go through to the summary.
   const Result ok = dentsph_cli("run --steps 2 -q --student \"José\" --out " + out.string());
   ASSERT_EQ(ok.code, 0) << ok.output;

@@ -268,6 +268,22 @@ TEST(Robustness, TheMemoryEstimateBoundsARealState) {
   EXPECT_LE(limits::memory_limit_bytes(), limits::max_scene_bytes);
 }
 
+// `material-test depth-of-cure --spacing 0.02 --mould-length 50` (both in their documented ranges)
+// allocated until std::bad_alloc at 3.3 GB: now counted first and refused naming both options, and
+// under an address-space limit (ulimit -v of 2 GB) what fits the machine but not the process is
+// refused too, never a bad_alloc.
+TEST(Robustness, ADepthOfCureMouldTooLargeToHoldIsRefusedBeforeItIsMade) {
+  expect_cli_refused("material-test depth-of-cure --spacing 0.02 --mould-length 50",
+                     {"7.86e+07 particles", "over the limit of 10000000", "--spacing", "--mould-length"});
+  const testing::CliResult r = testing::run_command(
+      "sh -c 'ulimit -v 2000000 && exec " + std::string(DENTSPH_CLI) +
+          " material-test depth-of-cure --spacing 0.1 --mould-length 50'",
+      kCliTimeout);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("a scene may take here"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+}
+
 // ---- class 7: lost work --------------------------------------------------------------------------
 
 // `run --realtime --out DIR` with an unwritable DIR ran the whole session and failed at its end,
