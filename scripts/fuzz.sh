@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene procedure recording mesh protocol input_script)
+[ ${#targets[@]} -gt 0 ] || targets=(scene procedure recording mesh protocol store_address input_script)
 
 cmake --preset fuzz > /dev/null
 cmake --build build/fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")

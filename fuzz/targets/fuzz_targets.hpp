@@ -24,6 +24,8 @@ int mesh(const std::uint8_t* data, std::size_t size);
 // Datagrams of the haptic bridge (each a length byte and its bytes): decoded, and sent to a UDP
 // device that the haptic loop's calls then read and answer.
 int protocol(const std::uint8_t* data, std::size_t size);
+// A session store's address (--db): its backend and its masked form (report/session_store.hpp).
+int store_address(const std::uint8_t* data, std::size_t size);
 // A viewer input script (apps/viewer/input_script.cpp).
 int input_script(const std::uint8_t* data, std::size_t size);
 

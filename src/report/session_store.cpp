@@ -29,7 +29,8 @@ bool is_key_value_address(const std::string& l) {
 }
 
 // Each "password=VALUE" (a key-value pair or a URI's query parameter) with VALUE replaced by ***:
-// VALUE runs to the next space (or '&' in a URI), or is quoted in '...' with \' inside.
+// VALUE runs to the next space, tab or '&' (a URI's next parameter), past a part quoted in '...'
+// with \' inside.
 std::string mask_password_parameters(const std::string& l) {
   std::string out;
   std::size_t k = 0;
@@ -51,9 +52,10 @@ std::string mask_password_parameters(const std::string& l) {
       for (++end; end < l.size() && l[end] != '\''; ++end)
         if (l[end] == '\\') ++end;
       end = std::min(end + 1, l.size());
-    } else {
-      while (end < l.size() && l[end] != ' ' && l[end] != '\t' && l[end] != '&') ++end;
     }
+    // To the next space, tab or '&' (past a closing quote too: what follows it belongs to the value
+    // as a second pass would read it, so that the mask masks to itself).
+    while (end < l.size() && l[end] != ' ' && l[end] != '\t' && l[end] != '&') ++end;
     out += l.substr(k, v - k) + "***";
     k = end;
   }

@@ -27,7 +27,7 @@ struct Target {
 
 const Target kTargets[] = {
     {"scene", fuzz::scene},       {"procedure", fuzz::procedure}, {"recording", fuzz::recording},
-    {"mesh", fuzz::mesh},         {"protocol", fuzz::protocol},
+    {"mesh", fuzz::mesh},         {"protocol", fuzz::protocol},   {"store_address", fuzz::store_address},
 #ifdef DENTSPH_FUZZ_HAVE_VIEWER
     {"input_script", fuzz::input_script},
 #endif
