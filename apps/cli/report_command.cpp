@@ -126,11 +126,12 @@ int ReportCommand::run() const {
   if (db_.empty() && (!student_.empty() || !exercise_.empty()))
     throw std::invalid_argument("report: --student and --exercise choose sessions of a store: give --db FILE");
   if (out_.empty() && !db_.empty()) throw std::invalid_argument("report --db: give --out FILE.html for the comparison");
+  // The comparison's CSV: --csv, or --out with .csv.
+  std::filesystem::path csv = csv_;
+  if (csv.empty() && !out_.empty()) csv = std::filesystem::path(out_).replace_extension(".csv");
   // The comparison never overwrites what it reads: a run folder's own files (its summary.json
   // became HTML, exit 0), nor the one with the other.
   if (!out_.empty()) {
-    std::filesystem::path csv = csv_;
-    if (csv.empty()) csv = std::filesystem::path(out_).replace_extension(".csv");
     for (const auto& [option, target] : {std::pair<std::string, std::filesystem::path>{"--out", out_}, {"--csv", csv}}) {
       for (const std::string& d : dirs_)
         if (run_folder_file(d, target))
@@ -175,8 +176,6 @@ int ReportCommand::run() const {
   }
   if (title.empty()) title = "Sessions side by side";
   write_file(out_, report::class_report_html(sessions, title));
-  std::filesystem::path csv = csv_;
-  if (csv.empty()) csv = std::filesystem::path(out_).replace_extension(".csv");
   write_file(csv, report::class_report_csv(sessions));
   fmt::print("wrote {} and {} ({} sessions)\n", out_, csv.string(), sessions.size());
   return 0;

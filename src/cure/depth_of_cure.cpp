@@ -4,8 +4,10 @@
 #include "dentsph/depth_of_cure.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -42,18 +44,20 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
   // The paste: lattice sites in the mould, its top layer's centres half a spacing below z = 0.
   const real s = o.spacing, R = 0.5 * o.mould_diameter;
   const int across = int(std::floor(R / s)), layers = std::max(1, int(std::lround(o.mould_length / s)));
-  // Counted before anything is made: a fine spacing in a long mould (0.02 mm in 50 mm: 78 million
-  // particles) is refused instead of allocating until the machine runs out.
-  std::uint64_t per_layer = 0;
+  // One layer's sites (x, y), and the whole mould counted from them before anything is made: a fine
+  // spacing in a long mould (0.02 mm in 50 mm: 78 million particles) is refused instead of
+  // allocating until the machine runs out.
+  std::vector<std::array<real, 2>> layer;
   for (int j = -across; j <= across; ++j)
     for (int i = -across; i <= across; ++i) {
       const real x = (i + 0.5) * s, y = (j + 0.5) * s;
-      per_layer += x * x + y * y <= R * R;
+      if (x * x + y * y <= R * R) layer.push_back({x, y});
     }
-  const double count = double(per_layer) * layers;
+  ModelParams p;
+  const double count = double(layer.size()) * layers;
   const std::string memory = count <= double(limits::max_particles)
-                                 ? limits::memory_problem(0, std::uint64_t(count), ModelParams{}.max_bonds_per_particle,
-                                                          false, limits::memory_limit_bytes())
+                                 ? limits::memory_problem(0, std::uint64_t(count), p.max_bonds_per_particle, false,
+                                                          limits::memory_limit_bytes())
                                  : std::string();
   if (count > double(limits::max_particles) || !memory.empty())
     throw std::invalid_argument(fmt::format(
@@ -61,7 +65,6 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
         "{}: give a coarser spacing (--spacing) or a shorter mould (--mould-length)",
         o.mould_diameter / mm, o.mould_length / mm, s / mm, count,
         memory.empty() ? fmt::format("over the limit of {}", limits::max_particles) : memory));
-  ModelParams p;
   p.dt = 1e-5;
   set_lattice_spacing(p, s);
   p.domain_min = {-R - 2 * s, -R - 2 * s, -o.mould_length - 2 * s};
@@ -70,12 +73,9 @@ DepthOfCureResult depth_of_cure_test(const DepthOfCureOptions& o) {
   const Material paste{1.0, 10, 2000, 50};
   const real mass = lattice_particle_mass(paste.rho0, s, model.kernel);
   std::vector<ParticleInit> ps;
+  ps.reserve(std::size_t(count));
   for (int k = 0; k < layers; ++k)
-    for (int j = -across; j <= across; ++j)
-      for (int i = -across; i <= across; ++i) {
-        const real x = (i + 0.5) * s, y = (j + 0.5) * s;
-        if (x * x + y * y <= R * R) ps.push_back(make_particle(Role::material, {x, y, -(k + 0.5) * s}, mass, paste));
-      }
+    for (const auto& [x, y] : layer) ps.push_back(make_particle(Role::material, {x, y, -(k + 0.5) * s}, mass, paste));
   State state;
   state.add_particles(model, ps);
   r.particles = state.size();

@@ -95,9 +95,7 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   rigid.particles.reserve(core.state().size() * 2 + 1024);
   haptics::RuntimeShared shared(empty, world, rigid);
   haptics::HapticLoop haptic(device, opt, shared);
-  // The simulation's virtual coupling hears of a new device session from the haptic loop.
-  RealtimeOptions sim_opt = opt;
-  haptics::SimLoop sim(core, sim_opt, force_scale, shared, scene_rigid_band(scene));
+  haptics::SimLoop sim(core, opt, force_scale, shared, scene_rigid_band(scene));
   haptics::ConsumerLoop consumer(opt, shared);
   haptics::ContactLoop contact(shared);
 

@@ -11,6 +11,7 @@
 #include "physics/integrate.hpp"
 #include "physics/wrench.hpp"
 #include "solver/iisph.hpp"
+#include "solver/pressure_terms.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::iisph {
@@ -23,8 +24,7 @@ Vec3 tool_particle_force(const State& s, const IisphScratch& x, std::uint32_t i)
   Vec3 pressure, viscous;
   for (std::uint32_t e = 0; e < x.n_material[i]; ++e) {
     const std::uint32_t j = row[e].j;
-    // The viscous pressure's (viscous_pressure.cpp): material's alone.
-    pressure += row[e].grad() * (x.q[i] + x.q[j] + (x.q_viscous.empty() ? 0 : x.q_viscous[j]));
+    pressure += row[e].grad() * pair_q(x, i, j);
     // The coupling its contact's strength weakened (interface.cpp).
     const real c = s.diagnostics.interface_capped > 0 ? row[e].visc * x.interface_scale[j] : row[e].visc;
     if (x.rheology) {  // the projected form (rheology.cpp)

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "solver/iisph.hpp"
+#include "solver/pressure_terms.hpp"
 
 namespace dentsph::iisph {
 
@@ -42,7 +43,7 @@ InterfacePass cap_tool_pull(const Model& model, State& s, IisphScratch& x, int t
       const real r = norm(d);
       if (r > 0) line += d / r;
       const Vec3 g = row[q].grad();
-      pressure -= g * (s.mass[i] * (x.q[i] + x.q[j]));  // pushes i off the instrument (p >= 0)
+      pressure -= g * (s.mass[i] * pair_q(x, i, j));  // pushes i off the instrument (p >= 0)
       if (x.rheology)
         viscous += g * (-vol * row[q].visc * dot(vi - s.vel[j], g));  // the projected form (rheology.cpp)
       else

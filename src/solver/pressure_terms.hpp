@@ -42,6 +42,27 @@ inline real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool
   return ap * dt2;
 }
 
+// Row i's density at the end of the step were the particles to move at x.v_a (boundary, tool: their
+// velocity), rho_i + dt sum_j m_j (v_i - v_j) . gradW_ij: material over every neighbour; boundary
+// and tool, the material neighbours' motion alone (what a solve can change).
+inline real density_at_step_end(const State& s, const IisphScratch& x, std::uint32_t i, real dt) {
+  const Vec3* v = x.v_a.data();
+  const SolverPair* row = pressure_row(x, i);
+  const bool material = s.role[i] == Role::material;
+  real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
+  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad());
+  return s.rho[i] + dt * div;
+}
+
+// The p / rho^2 the pressure force between particles i and j carries (its symmetric form's q_i + q_j):
+// the solve's, and the viscous pressure's where it runs (material's alone: 0 for walls and the tool;
+// viscous_pressure.cpp). The tool's wrench and the contact's strength read it (finish.cpp,
+// interface.cpp).
+inline real pair_q(const IisphScratch& x, std::uint32_t i, std::uint32_t j) {
+  const real q = x.q[i] + x.q[j];
+  return x.with_viscous_pressure ? q + x.q_viscous[i] + x.q_viscous[j] : q;
+}
+
 // Row i's right-hand side, rho0 - rho_adv (rho_adv: the density at the end of the step without
 // pressure, from v* in x.v_a), into x.source. With iisph.wall_rest_density, a boundary particle's
 // target is the larger of rho0 and its walls' own density (rho_static): where walls overlap (paste
@@ -49,18 +70,10 @@ inline real pressure_density_change(const IisphScratch& x, std::uint32_t i, bool
 // paste can undo, and a stiff paste's solve pushes it away with the whole excess's pressure (Kp 1e4:
 // megapascals; docs/model.md, "Presets").
 inline void pressure_source(const Model& model, const State& s, IisphScratch& x, std::uint32_t i) {
-  const real dt = model.dt;
-  const Vec3* v = x.v_a.data();  // v* (boundary, tool: their velocity)
-  const SolverPair* row = pressure_row(x, i);
-  const bool material = s.role[i] == Role::material;
-  // material: v_i . S_i - sum_j v_j . m_j gradW_ij over every neighbour; boundary and tool: the
-  // material neighbours' motion alone (what the solve can change).
-  real div = material ? dot(v[i], x.grad_sum[i]) - x.div_fixed[i] : 0;
-  for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div += dot((material ? Vec3{} : v[i]) - v[row[e].j], row[e].grad());
   const real target = s.role[i] == Role::boundary && model.iisph.wall_rest_density
                           ? std::max(s.rho0[i], s.rho_static[s.id[i]])
                           : s.rho0[i];
-  x.source[i] = target - (s.rho[i] + dt * div);
+  x.source[i] = target - density_at_step_end(s, x, i, model.dt);  // from v* in x.v_a
 }
 
 // 1 / (stiffness Kp_i): kg/m^3 per Pa, rho - rho0 = p / (stiffness Kp).

@@ -66,7 +66,8 @@ struct IisphScratch {
   // id, kept from step to step, and its p / rho^2 this step by particle (0 for walls and the tool).
   std::vector<real> viscous_pressure, q_viscous;
   bool with_viscous_pressure = false;  // sized for it (a model that turns it on or off is sized again)
-  std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest)
+  std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest; after the
+                                     // solve, the viscous pressure's: viscous_pressure.cpp)
   std::vector<Vec3> v_a;             // m/s, v* then v* + dt a_p then v** (boundary, tool: their velocity)
   std::vector<Vec3> cg_p, cg_r, cg_ap;  // the viscosity's conjugate gradients: direction, residual, A p
   // The interface's (interface.cpp): the factor its contact's strength weakened each material

@@ -38,33 +38,20 @@ void push_viscous_pressure(const Model& model, State& s, IisphScratch& x, int th
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
     x.q_viscous[i] = s.role[i] == Role::material ? x.viscous_pressure[s.id[i]] * x.inv_rho[i] * x.inv_rho[i] : 0;
-  const std::int64_t nm = std::int64_t(x.material.size());
-  const real dt = model.dt;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t m = 0; m < nm; ++m) {
-    const std::uint32_t i = x.material[m];
-    const SolverPair* row = pressure_row(x, i);
-    // -sum_j m_j (q_i + q_j) gradW_ij, q = 0 for the walls and the instrument (pressure_terms.hpp)
-    Vec3 a = x.grad_sum[i] * x.q_viscous[i];
-    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) a += row[e].grad() * x.q_viscous[row[e].j];
-    x.v_star[i] -= a * dt;
-    x.v_a[i] = x.v_star[i];
-  }
+  // The pressure's own force and update (pressure_terms.hpp), with q = 0 for the walls and the
+  // instrument: x.accel, read by nothing after the solve's, is free.
+  pressure_accelerations(x, x.q_viscous.data(), threads);
+  apply_pressure_accelerations(model, x, threads);
 }
 
 void update_viscous_pressure(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t nm = std::int64_t(x.material.size());
   const real dt = model.dt, alpha = model.iisph.viscous_pressure, k = model.iisph.stiffness;
-  const Vec3* v = x.v_a.data();  // v**
   real most = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : most)
   for (std::int64_t m = 0; m < nm; ++m) {
     const std::uint32_t i = x.material[m];
-    const SolverPair* row = pressure_row(x, i);
-    // The density at the step's end, rho + dt sum_j m_j (v_i - v_j) . gradW_ij (pressure_source's).
-    real div = dot(v[i], x.grad_sum[i]) - x.div_fixed[i];
-    for (std::uint32_t e = 0; e < x.n_material[i]; ++e) div -= dot(v[row[e].j], row[e].grad());
-    const real rho_end = s.rho[i] + dt * div;
+    const real rho_end = density_at_step_end(s, x, i, dt);  // from v**
     const real error = rho_end / s.rho0[i] - 1;
     const MaterialIndex mat = s.material[i];
     real mu = s.mu[i];
