@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dentsph/tooth.hpp"
+#include "ply_check.hpp"
 
 namespace dentsph {
 
@@ -39,106 +40,6 @@ void check_face_indices(const aiScene& scene, const std::string& name) {
                                       name, f, face.mIndices[k], mesh->mNumVertices));
     }
   }
-}
-
-// A PLY file's header, read before assimp sees the file: assimp 5.2 loops for ever on a header
-// without its end_header line (found by fuzz_mesh), and allocates what the header declares
-// whatever the file holds. Refuses both.
-void check_ply_header(const std::filesystem::path& file, const std::string& name, std::uintmax_t size) {
-  std::ifstream in(file, std::ios::binary);
-  std::string first;
-  std::getline(in, first);
-  // Assimp takes a .ply file as PLY whatever its first line, and a "ply" of any case as PLY: a file
-  // named .ply must begin with the magic line, and any that begins with it is checked.
-  std::string magic = first.substr(0, 3);
-  for (char& c : magic) c = char(std::tolower(static_cast<unsigned char>(c)));
-  const bool ply_name = file.extension() == ".ply";
-  if (magic != "ply") {
-    if (ply_name)
-      throw MeshError(fmt::format("{}: is not a PLY file (its first line is not \"ply\"); export it again as PLY", name));
-    return;  // not a PLY file: assimp decides
-  }
-  constexpr std::size_t kMaxHeaderLines = 10000;
-  double declared = 0;  // bytes the elements need at the least: one per property of each
-  double properties = 0, count = 0;
-  bool ascii = false;
-  auto close_element = [&] { declared += count * std::max(1.0, properties); };
-  std::string line;
-  // Assimp 5.2 looped for ever on headers it half understood ("ehement%vertex 4", "end_header"
-  // followed by a vertical tab, found by fuzz_mesh): every header line is printable and one of
-  // PLY's, its names plain words, and end_header stands alone on its line.
-  auto refuse_line = [&](std::size_t n, const std::string& why) {
-    throw MeshError(fmt::format("{}: line {} of its PLY header {}; the file is damaged: export it again", name, n + 2, why));
-  };
-  // A name begins with a letter or an underscore: assimp 5.2 read "element 9999...9vertex 4" (the
-  // digits run into the name) as that many vertices and allocated 100 GB for them (found by
-  // fuzz_mesh).
-  auto plain = [](const std::string& w) {
-    return !w.empty() && !std::isdigit(static_cast<unsigned char>(w[0])) &&
-           std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
-  };
-  static const char* const types[] = {"char",  "uchar",  "short", "ushort",  "int",     "uint",    "float",  "double",
-                                      "int8",  "uint8",  "int16", "uint16",  "int32",   "uint32",  "float32", "float64"};
-  auto type = [&](const std::string& w) { return std::find(std::begin(types), std::end(types), w) != std::end(types); };
-  for (std::size_t n = 0; n < kMaxHeaderLines && std::getline(in, line); ++n) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line);
-    std::string word;
-    words >> word;
-    const bool text = std::all_of(line.begin(), line.end(), [](unsigned char c) { return c >= 0x20 || c == '\t'; });
-    if (!text && !word.empty() && !std::isdigit(static_cast<unsigned char>(word[0])))
-      refuse_line(n, "holds a byte that is not text");
-    if (word == "end_header" && line != "end_header") refuse_line(n, "has more than end_header on it");
-    if (word == "property") {
-      std::vector<std::string> w;
-      for (std::string t; words >> t;) w.push_back(t);
-      const bool scalar = w.size() == 2 && type(w[0]) && plain(w[1]);
-      const bool list = w.size() == 4 && w[0] == "list" && type(w[1]) && type(w[2]) && plain(w[3]);
-      if (!scalar && !list) refuse_line(n, "is not \"property TYPE NAME\" nor \"property list TYPE TYPE NAME\"");
-    }
-    if (word == "format") {
-      std::string f;
-      words >> f;
-      ascii = f == "ascii";
-    }
-    if (word == "end_header") {
-      close_element();
-      if (declared > double(size))
-        throw MeshError(fmt::format("{}: its PLY header declares elements of at least {:.3g} bytes, but the file holds "
-                                    "{}; the file is truncated or damaged: export it again",
-                                    name, declared, size));
-      // An ASCII body is numbers: assimp's reader was seen to corrupt the heap on a session of
-      // damaged ones (one with NUL bytes in its body; docs/fuzzing.md).
-      if (ascii) {
-        std::size_t body_line = n + 3;
-        for (char c; in.get(c);) {
-          if (c == '\n') ++body_line;
-          if (!std::strchr("0123456789+-.eE \t\r\n", c) || c == '\0')
-            throw MeshError(fmt::format("{}: line {} of its ASCII PLY body holds a byte that is not part of a number; "
-                                        "the file is damaged: export it again",
-                                        name, body_line));
-        }
-      }
-      return;
-    }
-    if (word == "element") {
-      close_element();
-      std::string element;
-      words >> element >> count;
-      if (!plain(element)) refuse_line(n, "names an element that is not a plain word");
-      if (!words || !(count >= 0)) count = 0;
-      properties = 0;
-    } else if (word == "property") {
-      properties += 1;
-    } else if (!word.empty() && (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '-' || word[0] == '.')) {
-      break;  // data before end_header
-    } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
-      refuse_line(n, fmt::format("begins with \"{}\", not format, comment, obj_info, element, property or end_header",
-                                 word.size() > 40 ? word.substr(0, 40) + "..." : word));
-    }
-  }
-  throw MeshError(fmt::format("{}: is not a complete PLY file (its header has no end_header line); export it again",
-                              name));
 }
 
 // An OBJ file is text whose face lines name vertices it has: assimp 5.2's OBJ importer freed memory
@@ -214,7 +115,7 @@ LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
   if (ext != ".stl" && ext != ".obj" && ext != ".ply")
     throw MeshError(fmt::format("{}: is not an STL, OBJ or PLY file (by its name); save it as one, with its extension",
                                 name));
-  check_ply_header(file, name, size);
+  check_ply(file, name, size);
   if (ext == ".obj") check_obj_text(file, name);
 
   Assimp::Importer importer;

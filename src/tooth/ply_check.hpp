@@ -1,0 +1,15 @@
+// The checks a PLY file passes before assimp reads it (mesh_load.cpp): its header, and for an
+// ASCII file its body against what the header declares.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace dentsph {
+
+// Throws MeshError, naming the file as `name` and the line, when a file that begins with "ply"
+// (or is named .ply) is not a complete, well-formed PLY file. Returns for other files.
+void check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size);
+
+}  // namespace dentsph
