@@ -8,7 +8,8 @@
 // Lok 1999), exact for a linear field wherever the neighbours span space, at a wall and a free surface
 // too (the boundary's particles, all at the wall's velocity, would bend a sheared layer's gradient
 // there: measured 12% off the profile of a sheared power-law paste with them); its shear rate
-// sqrt(2 D:D), its effective viscosity (physics/rheology.hpp; paste the cure has
+// sqrt(2 D:D), raised to the instrument's slip rate where that is larger (below), its effective
+// viscosity (physics/rheology.hpp; paste the cure has
 // changed keeps its Newtonian viscosity), and then every row's weights c_ij = mu_ij times the unit
 // weight, mu_ij = (mu_i + mu_j) / 2 between two material particles and mu_i against the boundary and
 // the tool (the paste's own viscosity at the wall; a tool row weighs its material neighbour's).
@@ -80,8 +81,32 @@ real update_viscosity(const Model& model, State& s, IisphScratch& x, int threads
       add_outer(M, s.pos[j] - xi, w);
     }
     corrected(A, M, L);
+    real gamma = rheology::shear_rate(L);
+    // The instrument's slip: paste beside a moving instrument is sheared at least at the rate of
+    // the instrument's slip past it: each of the instrument's particles around it moves relative to
+    // it across their line, over their distance (at least h / 2); their mean by their gradient's
+    // weight. Its material neighbours alone do not see that where the paste lay at rest, which then
+    // kept the regularisation's cap against an instrument sweeping past (156 N in the universal
+    // procedure with the viscous pressure), and a film one particle thick between the instrument
+    // and a wall sat at the cap (docs/model.md, "Rheology"). Where the paste flows with the
+    // instrument (a rheometer's plate) the mean is under the gradient's rate (the pairs along the
+    // surface slip less than the one across it) and changes little. The instrument's particles are
+    // left out of the gradient itself, as the walls' are: their second layer, moving as their
+    // first, bends a sheared layer's gradient there.
+    real slip = 0, weight = 0;
+    for (std::size_t q = stride - x.n_other[i]; q < stride; ++q) {
+      const std::uint32_t j = row[q].j;
+      if (s.role[j] != Role::tool) continue;
+      const Vec3 d = s.pos[j] - xi, u = s.vel[j] - vi;  // the tool's velocity this step
+      const real r2 = dot(d, d);
+      const Vec3 across = r2 > 0 ? u - d * (dot(u, d) / r2) : u;
+      const real w = norm(row[q].grad());
+      slip += w * norm(across) / std::max(std::sqrt(r2), 0.5 * model.kernel.h);
+      weight += w;
+    }
+    if (weight > 0) gamma = std::max(gamma, slip / weight);
     const MaterialIndex mat = s.material[i];
-    const real mu = (mat & kCuredMaterial) ? s.mu[i] : rheology::effective_viscosity(model.materials[mat], rheology::shear_rate(L));
+    const real mu = (mat & kCuredMaterial) ? s.mu[i] : rheology::effective_viscosity(model.materials[mat], gamma);
     if (!first && x.mu_eff[i] > 0) change = std::max(change, std::abs(mu - x.mu_eff[i]) / x.mu_eff[i]);
     x.mu_eff[i] = mu;
     lo = std::min(lo, mu);
