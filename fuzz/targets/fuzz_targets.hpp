@@ -28,6 +28,8 @@ int protocol(const std::uint8_t* data, std::size_t size);
 int store_address(const std::uint8_t* data, std::size_t size);
 // A viewer input script (apps/viewer/input_script.cpp).
 int input_script(const std::uint8_t* data, std::size_t size);
+int report_folder(const std::uint8_t* data, std::size_t size);
+int realtime_options(const std::uint8_t* data, std::size_t size);
 
 }  // namespace dentsph::fuzz
 

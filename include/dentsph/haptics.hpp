@@ -234,6 +234,10 @@ struct RealtimeResult {
 // Runs `scene` with `device` until the device finishes, duration_s passes or *stop is set.
 // Throws UnstableTimeStep (like run_offline) and std::invalid_argument for bad options.
 RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOptions& options);
+// What run_realtime checks before it starts: throws std::invalid_argument naming the option and
+// its range when one of `options`, with the run's force scale (device N per simulated N), is out
+// of it (a NaN included).
+void check_realtime_options(const RealtimeOptions& options, double force_scale);
 
 // The realtime sections of summary.json ("haptic", "sim", "consumer", "device") as a JSON object.
 std::string realtime_json(const RealtimeResult& r);

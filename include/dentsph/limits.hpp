@@ -32,6 +32,15 @@ inline constexpr std::uint64_t max_scene_bytes = std::uint64_t(16) << 30;  // 16
 // costs time, never correctness), so no domain is refused for its size.
 inline constexpr std::int64_t max_grid_cells = std::int64_t(1) << 22;
 
+// ---- meshes -------------------------------------------------------------------------------------
+
+// Triangles of a tooth mesh (--mesh, a scene's tooth.mesh): the CBCT molars of ../shared/data have
+// about 44,000; 2 million took 2.4 GB and 23 s to load and repair.
+inline constexpr std::uint64_t max_mesh_triangles = 1'000'000;
+// Bytes loading and repairing a mesh takes per triangle at its peak (assimp's scene, the soup,
+// the repaired mesh; measured 1.2 KB for 2 million triangles): checked against memory_limit_bytes().
+inline constexpr std::uint64_t mesh_bytes_per_triangle = 1200;
+
 // ---- lattices -----------------------------------------------------------------------------------
 
 // A lattice's spacing is at least h / 10 (about 4200 neighbours within h; finer lattices make

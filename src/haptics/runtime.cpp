@@ -39,9 +39,7 @@ ForceMode force_mode_from_name(const std::string& name) {
   throw std::invalid_argument("force mode '" + name + "': use direct or coupling");
 }
 
-namespace {
-
-void check_options(const RealtimeOptions& o, double force_scale) {
+void check_realtime_options(const RealtimeOptions& o, double force_scale) {
   auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
   if (!(o.haptic_rate_hz >= 500 && o.haptic_rate_hz <= 4000))
     bad(fmt::format("haptic rate {} Hz: use 500 to 4000 Hz", o.haptic_rate_hz));
@@ -74,11 +72,9 @@ void check_options(const RealtimeOptions& o, double force_scale) {
     bad("watchdog: timeouts must be positive, ramps non-negative");
 }
 
-}  // namespace
-
 RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOptions& opt) {
   const double force_scale = opt.force_scale.value_or(double(scene.force_scale));
-  check_options(opt, force_scale);
+  check_realtime_options(opt, force_scale);
   // The simulation first: it checks dt and starts the backend before any thread starts.
   SimulationOptions sim_options{opt.backend, opt.threads, opt.allow_unstable};
   if (opt.pace_realtime && opt.solve_share > 0) sim_options.solve_budget_s = opt.solve_share * double(scene.model.dt);

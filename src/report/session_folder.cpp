@@ -32,8 +32,25 @@ void require_regular_file(const fs::path& file) {
                                    file.string()));
 }
 
+// A session folder's files are a run's: a summary of about 10 KB, pictures of a few hundred KB, a
+// force log of about 100 bytes a step. Larger than these limits a file is not a run's, and reading
+// it would take the machine's memory (a 300 MB summary.json made a 944 MB report using 2.2 GB).
+constexpr std::uintmax_t kMaxJsonBytes = std::uintmax_t(16) << 20;
+constexpr std::uintmax_t kMaxPictureBytes = std::uintmax_t(64) << 20;
+constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t(1) << 30;  // a run of 10 million steps
+
+void require_at_most(const fs::path& file, std::uintmax_t limit, const char* what) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (!ec && size > limit)
+    throw SessionError(fmt::format("{}: {} MB, more than the {} MB {} can be (README, \"Resource limits\"); it is "
+                                   "not the file a run wrote: give the folder a run wrote",
+                                   file.string(), size >> 20, limit >> 20, what));
+}
+
 std::vector<std::uint8_t> read_bytes(const fs::path& file) {
   require_regular_file(file);
+  require_at_most(file, kMaxPictureBytes, "a run's picture");
   std::ifstream in(file, std::ios::binary);
   if (!in) return {};
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -41,22 +58,31 @@ std::vector<std::uint8_t> read_bytes(const fs::path& file) {
 
 nlohmann::json read_json(const fs::path& file, const char* what) {
   require_regular_file(file);
+  require_at_most(file, kMaxJsonBytes, what);
   std::ifstream in(file);
   if (!in) throw SessionError(fmt::format("{}: cannot open {}", file.string(), what));
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // A parse error, or a number out of range (1e30992: found by fuzz_report_folder).
     throw SessionError(fmt::format("{}: not valid JSON ({}); the run that wrote it did not finish: run it again",
                                    file.string(), e.what()));
   }
 }
 
 // The columns `want` (by header name) of a CSV file of numbers, row by row.
-std::vector<std::vector<double>> read_csv(const fs::path& file, const std::vector<std::string>& want) {
+// A CSV row's wanted columns, in the order asked (at most five).
+struct Row {
+  double v[5] = {};
+  double operator[](std::size_t i) const { return v[i]; }
+};
+
+std::vector<Row> read_csv(const fs::path& file, const std::vector<std::string>& want) {
   require_regular_file(file);
+  require_at_most(file, kMaxCsvBytes, "a run's log");
   std::FILE* f = std::fopen(file.c_str(), "r");
   if (!f) throw SessionError(fmt::format("{}: cannot open", file.string()));
-  std::vector<std::vector<double>> rows;
+  std::vector<Row> rows;
   std::vector<int> column(want.size(), -1);
   char buf[4096];
   int line = 0;
@@ -102,9 +128,9 @@ std::vector<std::vector<double>> read_csv(const fs::path& file, const std::vecto
       throw SessionError(fmt::format("{}: line {}: {} columns, the header has {}; the file is damaged (cut short?)",
                                      file.string(), line, all.size(), columns));
     }
-    std::vector<double> row;
-    for (int c : column) row.push_back(all[std::size_t(c)]);
-    rows.push_back(std::move(row));
+    Row row;
+    for (std::size_t w = 0; w < column.size(); ++w) row.v[w] = all[std::size_t(column[w])];
+    rows.push_back(row);
   }
   std::fclose(f);
   return rows;

@@ -11,9 +11,11 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
+#include "dentsph/limits.hpp"
 #include "dentsph/tooth.hpp"
 #include "ply_check.hpp"
 
@@ -48,10 +50,12 @@ void check_face_indices(const aiScene& scene, const std::string& name) {
 // text, every statement one this knows by its full name (assimp goes by the first letter), and
 // every face's vertices `i`, `i/t`, `i//n` or `i/t/n` with i a vertex defined before it (1-based,
 // or negative: counted back from the last).
-void check_obj_text(const std::filesystem::path& file, const std::string& name) {
+// Returns the triangles its faces make (a face of k corners, k - 2).
+std::uint64_t check_obj_text(const std::filesystem::path& file, const std::string& name) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
   long long vertices = 0, number = 0;
+  std::uint64_t triangles = 0;
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -72,7 +76,9 @@ void check_obj_text(const std::filesystem::path& file, const std::string& name) 
       ++vertices;
     } else if (word == "f" || word == "l" || word == "p") {
       std::string corner;
+      std::uint64_t corners = 0;
       while (words >> corner) {
+        ++corners;
         std::size_t used = 0;
         long long index = 0;
         try {
@@ -89,8 +95,53 @@ void check_obj_text(const std::filesystem::path& file, const std::string& name) 
                                       name, number, corner.size() > 40 ? corner.substr(0, 40) + "..." : corner,
                                       vertices));
       }
+      if (word == "f" && corners > 2) triangles += corners - 2;
     }
   }
+  return triangles;
+}
+
+// The triangles of an STL file: a binary one's count, where its size is the count's (84 + 50 n
+// bytes), else an ASCII one's facets, counted by their "endfacet".
+std::uint64_t stl_triangles(const std::filesystem::path& file, std::uintmax_t size) {
+  std::ifstream in(file, std::ios::binary);
+  char head[84] = {};
+  in.read(head, sizeof head);
+  if (in.gcount() == 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, head + 80, 4);
+    if (size == 84 + 50 * std::uintmax_t(n)) return n;
+  }
+  in.clear();
+  in.seekg(0);
+  static constexpr std::string_view word = "endfacet";
+  std::vector<char> buffer(1 << 20);
+  std::string carry;
+  std::uint64_t facets = 0;
+  while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
+    std::string chunk = carry + std::string(buffer.data(), std::size_t(in.gcount()));
+    for (std::size_t at = chunk.find(word); at != std::string::npos; at = chunk.find(word, at + word.size())) ++facets;
+    // A word cut by the chunk's end is found whole in the next one (7 characters cannot hold one).
+    const std::size_t keep = std::min(chunk.size(), word.size() - 1);
+    carry = chunk.substr(chunk.size() - keep);
+  }
+  return facets;
+}
+
+// Refuses a mesh of more triangles than the limit, or than the memory its loading takes allows,
+// before assimp reads it.
+void check_mesh_size(const std::string& name, std::uint64_t triangles) {
+  if (triangles > limits::max_mesh_triangles)
+    throw MeshError(fmt::format("{}: holds {} triangles, more than the {} a tooth mesh may have (README, \"Resource "
+                                "limits\"; a CBCT molar has about 44,000); decimate it (e.g. MeshLab's Quadric Edge "
+                                "Collapse Decimation) and load it again",
+                                name, triangles, limits::max_mesh_triangles));
+  const std::uint64_t need = triangles * limits::mesh_bytes_per_triangle, limit = limits::memory_limit_bytes();
+  if (need > limit)
+    throw MeshError(fmt::format("{}: its {} triangles take about {} MB to load, more than the {} MB this run may use "
+                                "(the machine's memory, ulimit -v, DENTSPH_MEMORY_LIMIT_MB); decimate it or allow "
+                                "more memory",
+                                name, triangles, need >> 20, limit >> 20));
 }
 
 }  // namespace
@@ -115,8 +166,8 @@ LoadedMesh load_mesh(const std::filesystem::path& file, MeshUnits units) {
   if (ext != ".stl" && ext != ".obj" && ext != ".ply")
     throw MeshError(fmt::format("{}: is not an STL, OBJ or PLY file (by its name); save it as one, with its extension",
                                 name));
-  check_ply(file, name, size);
-  if (ext == ".obj") check_obj_text(file, name);
+  const std::uint64_t ply_faces = check_ply(file, name, size);
+  check_mesh_size(name, ext == ".obj" ? check_obj_text(file, name) : ext == ".stl" ? stl_triangles(file, size) : ply_faces);
 
   Assimp::Importer importer;
   // Read first with no processing but assimp's own validation, which refuses a face that names a

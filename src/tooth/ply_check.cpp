@@ -139,7 +139,7 @@ void check_ascii_body(std::istream& in, std::size_t first_line, const std::vecto
 
 }  // namespace
 
-void check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size) {
+std::uint64_t check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string first;
   std::getline(in, first);
@@ -151,7 +151,7 @@ void check_ply(const std::filesystem::path& file, const std::string& name, std::
   if (magic != "ply") {
     if (ply_name)
       throw MeshError(fmt::format("{}: is not a PLY file (its first line is not \"ply\"); export it again as PLY", name));
-    return;  // not a PLY file: assimp decides
+    return 0;  // not a PLY file: assimp decides
   }
   constexpr std::size_t kMaxHeaderLines = 10000;
   std::vector<Element> elements;
@@ -195,7 +195,10 @@ void check_ply(const std::filesystem::path& file, const std::string& name, std::
                                     "{}; the file is truncated or damaged: export it again",
                                     name, declared, size));
       if (ascii) check_ascii_body(in, n + 3, elements, name);
-      return;
+      std::uint64_t faces = 0;
+      for (const Element& e : elements)
+        if (e.name == "face") faces += std::uint64_t(e.count);
+      return faces;
     } else if (word == "element") {
       Element e;
       words >> e.name >> e.count;

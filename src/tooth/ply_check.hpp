@@ -9,7 +9,8 @@
 namespace dentsph {
 
 // Throws MeshError, naming the file as `name` and the line, when a file that begins with "ply"
-// (or is named .ply) is not a complete, well-formed PLY file. Returns for other files.
-void check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size);
+// (or is named .ply) is not a complete, well-formed PLY file. Returns the count its header gives
+// the element "face" (each face at least a triangle), 0 for other files.
+std::uint64_t check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size);
 
 }  // namespace dentsph

@@ -15,6 +15,7 @@
 #include <iterator>
 #include <regex>
 #include <string>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
@@ -300,6 +301,21 @@ TEST(ReportBrowser, MissingOrBrokenFoldersAreNamed) {
                                            (work() / "fifo.html").string(), 30);
   EXPECT_EQ(fifo.code, 2) << fifo.output;
   EXPECT_NE(fifo.output.find("not a regular file"), std::string::npos) << fifo.output;
+  // Files larger than a run writes are refused before they are read (a 300 MB summary.json made a
+  // 944 MB report using 2.2 GB): sparse files here, taking no disk.
+  for (const auto& [file, size, what] : {std::tuple{"summary.json", 300u << 20, "16 MB the run's summary can be"},
+                                         std::tuple{"tooth_cut.png", 100u << 20, "64 MB a run's picture can be"},
+                                         std::tuple{"tool_force.csv", 1500u << 20, "1024 MB a run's log can be"}}) {
+    const fs::path huge = testing::write_folder(std::string("browser_huge_") + file, testing::summary(1, 0, 0, 1, 1));
+    std::ofstream(huge / file, std::ios::app).flush();
+    fs::resize_file(huge / file, size);
+    const Result r = dentsph("report " + huge.string() + " --out " + (work() / "huge.html").string());
+    EXPECT_EQ(r.code, 2) << file << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(file) + ": " + std::to_string(size >> 20) + " MB, more than the " + what),
+              std::string::npos) << r.output;
+    fs::remove_all(huge);
+  }
+  EXPECT_FALSE(fs::exists(work() / "huge.html"));
 }
 
 TEST(ReportBrowser, ManySessionsShowTheirProgress) {

@@ -28,6 +28,7 @@ struct Target {
 const Target kTargets[] = {
     {"scene", fuzz::scene},       {"procedure", fuzz::procedure}, {"recording", fuzz::recording},
     {"mesh", fuzz::mesh},         {"protocol", fuzz::protocol},   {"store_address", fuzz::store_address},
+    {"report_folder", fuzz::report_folder}, {"realtime_options", fuzz::realtime_options},
 #ifdef DENTSPH_FUZZ_HAVE_VIEWER
     {"input_script", fuzz::input_script},
 #endif

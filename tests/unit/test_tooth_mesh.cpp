@@ -2,6 +2,9 @@
 // built to need it, each refusal and its message, and the built-in crown.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -222,6 +225,58 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
   EXPECT_NE(load_refusal(dir / "back_face.obj").find("\"-5\" names no vertex"), std::string::npos);
   std::ofstream(dir / "control.obj") << vertices << "f 1 2\x01 3\n";
   EXPECT_NE(load_refusal(dir / "control.obj").find("control.obj: line 5 is not text"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// A mesh of more triangles than a tooth needs is refused before assimp reads it (2 million took
+// 2.4 GB and 23 s), and so is one whose loading would take more memory than the run may use: each
+// counted from what the file says, a binary STL's header (the files here are sparse: 100 MB that
+// take no disk), an ASCII STL's facets, a PLY header's faces, an OBJ's face lines.
+TEST(ToothMesh, AMeshOfMoreTrianglesThanTheLimitOrTheMemoryIsRefusedBeforeItIsRead) {
+  const fs::path dir = temp_dir("mesh_size");
+  auto binary_stl = [&](const fs::path& f, std::uint32_t n) {
+    {
+      std::ofstream o(f, std::ios::binary);
+      char head[84] = {};
+      std::memcpy(head + 80, &n, 4);
+      o.write(head, sizeof head);
+    }
+    fs::resize_file(f, 84 + 50 * std::uintmax_t(n));
+  };
+  binary_stl(dir / "two_million.stl", 2'000'000);
+  const std::string big = load_refusal(dir / "two_million.stl");
+  EXPECT_NE(big.find("two_million.stl: holds 2000000 triangles, more than the 1000000 a tooth mesh may have"),
+            std::string::npos) << big;
+  EXPECT_NE(big.find("decimate it"), std::string::npos) << big;
+  std::ofstream(dir / "many.ply") << "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                                     "property float y\nproperty float z\nelement face 1500000\n"
+                                     "property list uchar int vertex_indices\nend_header\n";
+  fs::resize_file(dir / "many.ply", 40'000'000);
+  EXPECT_NE(load_refusal(dir / "many.ply").find("many.ply: holds 1500000 triangles"), std::string::npos);
+  // Under a memory limit of 32 MB (DENTSPH_MEMORY_LIMIT_MB) 60,000 triangles (72 MB to load) are
+  // refused naming the memory; an ASCII STL's facets and an OBJ's faces are counted too.
+  binary_stl(dir / "sixty_thousand.stl", 60'000);
+  {
+    std::ofstream o(dir / "ascii.stl");
+    o << "solid s\n";
+    for (int k = 0; k < 30'000; ++k)
+      o << "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+    o << "endsolid s\n";
+    std::ofstream obj(dir / "quads.obj");
+    obj << "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\n";
+    for (int k = 0; k < 15'000; ++k) obj << "f 1 2 3 4\n";
+  }
+  ASSERT_EQ(setenv("DENTSPH_MEMORY_LIMIT_MB", "32", 1), 0);
+  const std::string memory = load_refusal(dir / "sixty_thousand.stl");
+  const std::string ascii = load_refusal(dir / "ascii.stl");
+  const std::string quads = load_refusal(dir / "quads.obj");
+  ASSERT_EQ(unsetenv("DENTSPH_MEMORY_LIMIT_MB"), 0);
+  EXPECT_NE(memory.find("sixty_thousand.stl: its 60000 triangles take about 68 MB to load, more than the 32 MB"),
+            std::string::npos) << memory;
+  EXPECT_NE(ascii.find("ascii.stl: its 30000 triangles take about 34 MB"), std::string::npos) << ascii;
+  EXPECT_NE(quads.find("quads.obj: its 30000 triangles take about 34 MB"), std::string::npos) << quads;
+  // Without the limit the ASCII STL is read (and refused for what it is: one triangle, many times).
+  EXPECT_EQ(load_refusal(dir / "ascii.stl").find("triangles take about"), std::string::npos);
   fs::remove_all(dir);
 }
 
