@@ -181,30 +181,21 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
   // An ASCII body is walked as its header declares it: assimp 5.2 asked for gigabytes on a body
   // that ended inside its first vertex with a number of 63 digits (found by fuzz_mesh).
   const std::string tetra = "end_header\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n";
-  std::ofstream(dir / "long_number.ply") << header << "end_header\n" << std::string(63, '7');
-  const std::string long_number = load_refusal(dir / "long_number.ply");
-  EXPECT_NE(long_number.find("long_number.ply: line 10 of its ASCII PLY body holds a number of more than 32 characters"),
-            std::string::npos) << long_number;
-  std::ofstream(dir / "short_body.ply") << header << tetra;
-  const std::string short_body = load_refusal(dir / "short_body.ply");
-  EXPECT_NE(short_body.find("short_body.ply: its ASCII PLY body ends before the v of face 4 of the 4 its header declares; "
-                            "the file is truncated"),
-            std::string::npos) << short_body;
-  std::ofstream(dir / "long_body.ply") << header << tetra << "3 1 2 3\n5\n";
-  const std::string long_body = load_refusal(dir / "long_body.ply");
-  EXPECT_NE(long_body.find("long_body.ply: line 18 of its ASCII PLY body holds more numbers than its header declares "
-                           "(\"5\" after the last face)"),
-            std::string::npos) << long_body;
-  std::ofstream(dir / "huge_coordinate.ply") << header << "end_header\n0 0 0\n1e39 0 0\n";
-  const std::string huge_coordinate = load_refusal(dir / "huge_coordinate.ply");
-  EXPECT_NE(huge_coordinate.find("huge_coordinate.ply: line 11 of its ASCII PLY body holds \"1e39\" for the x of vertex 2, "
-                                 "which is not a float number"),
-            std::string::npos) << huge_coordinate;
-  std::ofstream(dir / "long_list.ply") << header << tetra << "300 1 2 3\n";
-  const std::string long_list = load_refusal(dir / "long_list.ply");
-  EXPECT_NE(long_list.find("long_list.ply: line 17 of its ASCII PLY body holds \"300\" for the v of face 4, which is "
-                           "not a uchar number"),
-            std::string::npos) << long_list;
+  auto refused = [&](const std::string& file, const std::string& text, const std::string& message) {
+    std::ofstream(dir / file) << text;
+    const std::string got = load_refusal(dir / file);
+    EXPECT_NE(got.find(file + ": " + message), std::string::npos) << got;
+  };
+  refused("long_number.ply", header + "end_header\n" + std::string(63, '7'),
+          "line 10 of its ASCII PLY body holds a number of more than 32 characters");
+  refused("short_body.ply", header + tetra,
+          "its ASCII PLY body ends before the v of face 4 of the 4 its header declares; the file is truncated");
+  refused("long_body.ply", header + tetra + "3 1 2 3\n5\n",
+          "line 18 of its ASCII PLY body holds more numbers than its header declares (\"5\" after the last face)");
+  refused("huge_coordinate.ply", header + "end_header\n0 0 0\n1e39 0 0\n",
+          "line 11 of its ASCII PLY body holds \"1e39\" for the x of vertex 2, which is not a float number");
+  refused("long_list.ply", header + tetra + "300 1 2 3\n",
+          "line 17 of its ASCII PLY body holds \"300\" for the v of face 4, which is not a uchar number");
   // The same body whole, its faces' list named as assimp reads it: accepted.
   std::ofstream(dir / "whole.ply") << header.substr(0, header.size() - 2) << "vertex_indices\n" << tetra << "3 1 2 3\n";
   EXPECT_NO_THROW((void)load_mesh(dir / "whole.ply", MeshUnits::millimetres));
