@@ -30,7 +30,7 @@ export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1"
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Runs a second of each target on the project's 2-core machine (idle, 150 s runs from the seeds).
-declare -A runs_per_s=([scene]=190 [procedure]=1300 [recording]=1350 [mesh]=1300 [protocol]=1400 [store_address]=50000 [input_script]=25000 [report_folder]=600 [realtime_options]=25000)
+declare -A runs_per_s=([scene]=190 [procedure]=1300 [recording]=1350 [mesh]=1300 [protocol]=1400 [store_address]=50000 [input_script]=25000 [report_folder]=1500 [realtime_options]=25000)
 # The longest an input may take before libFuzzer calls it a hang (s). A legal dental scene file is
 # built whole (the tooth lined, and for the iisph solver, the dental default, its wall field): a
 # Class II cavity takes 0.5 s natively and 17 to 26 s under ASan and coverage, so the scene target
