@@ -1,5 +1,5 @@
-// check_ply(): a PLY file's header, and an ASCII file's body against it, read before assimp sees
-// the file. Assimp 5.2 loops for ever on a header without its end_header line, allocates what the
+// check_ply(): a PLY file's header, and its body (ASCII or binary) against it, read before assimp
+// sees the file. Assimp 5.2 loops for ever on a header without its end_header line, allocates what the
 // header declares whatever the file holds, and asked for gigabytes on an ASCII body that ended
 // inside its first vertex with a number of 63 digits (each found by fuzz_mesh: docs/fuzzing.md).
 #include "ply_check.hpp"
@@ -137,6 +137,72 @@ void check_ascii_body(std::istream& in, std::size_t first_line, const std::vecto
                                 name, numbers.line(), more, elements.empty() ? "element" : elements.back().name));
 }
 
+// The bytes of a value of a PLY type.
+std::size_t size_of(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "double" || t == "float64") return 8;
+  return 4;  // int, uint, float and their sized names
+}
+
+// A list's length read from `bytes` of its count type, in the file's byte order; -1 when it is
+// not a whole number of its type's range (a negative signed length).
+double list_length(const unsigned char* bytes, const std::string& t, bool big_endian) {
+  unsigned char b[8] = {};
+  const std::size_t n = size_of(t);
+  for (std::size_t k = 0; k < n; ++k) b[k] = bytes[big_endian ? n - 1 - k : k];
+  std::uint64_t u = 0;
+  std::memcpy(&u, b, n);  // little-endian host: the value's low bytes first
+  const bool is_signed = t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+  if (is_signed && (u >> (8 * n - 1)) & 1) return -1;
+  if (t == "float" || t == "float32") {
+    float f;
+    std::memcpy(&f, b, 4);
+    return std::isfinite(f) && f >= 0 && f == std::floor(f) ? double(f) : -1;
+  }
+  if (t == "double" || t == "float64") {
+    double d;
+    std::memcpy(&d, b, 8);
+    return std::isfinite(d) && d >= 0 && d == std::floor(d) ? d : -1;
+  }
+  return double(u);
+}
+
+// Walks a binary body as the header declares it, reading it once in order: every element's
+// properties, each list as long as its length says. Refuses a body that ends early, naming the
+// element and the property.
+void check_binary_body(std::istream& in, const std::vector<Element>& elements, bool big_endian,
+                       const std::string& name) {
+  std::streambuf& buf = *in.rdbuf();
+  char scratch[4096];
+  for (const Element& e : elements)
+    for (double i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        auto skip = [&](double bytes) {
+          while (bytes > 0) {
+            const std::streamsize n = std::streamsize(std::min<double>(bytes, sizeof scratch));
+            if (buf.sgetn(scratch, n) != n)
+              throw MeshError(fmt::format("{}: its binary PLY body ends before the {} of {} {:.0f} of the {:.0f} its "
+                                          "header declares; the file is truncated: export it again",
+                                          name, p.name, e.name, i + 1, e.count));
+            bytes -= double(n);
+          }
+        };
+        if (!p.list) {
+          skip(double(size_of(p.type)));
+          continue;
+        }
+        const std::size_t n = size_of(p.count_type);
+        skip(double(n));
+        const double length = list_length(reinterpret_cast<const unsigned char*>(scratch), p.count_type, big_endian);
+        if (length < 0)
+          throw MeshError(fmt::format("{}: its binary PLY body gives the {} of {} {:.0f} a length that is not a count; "
+                                      "the file is damaged: export it again",
+                                      name, p.name, e.name, i + 1));
+        skip(length * double(size_of(p.type)));
+      }
+}
+
 }  // namespace
 
 std::uint64_t check_ply(const std::filesystem::path& file, const std::string& name, std::uintmax_t size) {
@@ -155,7 +221,7 @@ std::uint64_t check_ply(const std::filesystem::path& file, const std::string& na
   }
   constexpr std::size_t kMaxHeaderLines = 10000;
   std::vector<Element> elements;
-  bool ascii = false;
+  bool ascii = false, big_endian = false;
   std::string line;
   // Assimp 5.2 looped for ever on headers it half understood ("ehement%vertex 4", "end_header"
   // followed by a vertical tab, found by fuzz_mesh): every header line is printable and one of
@@ -186,6 +252,7 @@ std::uint64_t check_ply(const std::filesystem::path& file, const std::string& na
       std::string f;
       words >> f;
       ascii = f == "ascii";
+      big_endian = f == "binary_big_endian";
     } else if (word == "end_header") {
       // Bytes the elements need at the least: one per property of each.
       double declared = 0;
@@ -194,7 +261,10 @@ std::uint64_t check_ply(const std::filesystem::path& file, const std::string& na
         throw MeshError(fmt::format("{}: its PLY header declares elements of at least {:.3g} bytes, but the file holds "
                                     "{}; the file is truncated or damaged: export it again",
                                     name, declared, size));
-      if (ascii) check_ascii_body(in, n + 3, elements, name);
+      if (ascii)
+        check_ascii_body(in, n + 3, elements, name);
+      else
+        check_binary_body(in, elements, big_endian, name);
       std::uint64_t faces = 0;
       for (const Element& e : elements)
         if (e.name == "face") faces += std::uint64_t(e.count);

@@ -1,5 +1,5 @@
-// The checks a PLY file passes before assimp reads it (mesh_load.cpp): its header, and for an
-// ASCII file its body against what the header declares.
+// The checks a PLY file passes before assimp reads it (mesh_load.cpp): its header, and its body
+// (ASCII or binary) against what the header declares.
 #pragma once
 
 #include <cstdint>

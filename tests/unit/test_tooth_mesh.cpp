@@ -2,6 +2,7 @@
 // built to need it, each refusal and its message, and the built-in crown.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -196,6 +197,32 @@ TEST(ToothMesh, WhatAssimpWouldHangOrAbortOnIsRefusedFirst) {
           "line 11 of its ASCII PLY body holds \"1e39\" for the x of vertex 2, which is not a float number");
   refused("long_list.ply", header + tetra + "300 1 2 3\n",
           "line 17 of its ASCII PLY body holds \"300\" for the v of face 4, which is not a uchar number");
+  // A binary body is walked the same way: each list's length read, the file long enough for it.
+  {
+    const std::string binary_header = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+                                      "property float y\nproperty float z\nelement face 4\n"
+                                      "property list uchar int vertex_indices\nend_header\n";
+    std::string body;
+    for (const float v : {0.f, 0.f, 0.f, 10.f, 0.f, 0.f, 0.f, 10.f, 0.f, 0.f, 0.f, 10.f})
+      body.append(reinterpret_cast<const char*>(&v), 4);
+    for (const auto& f : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+      body += char(3);
+      body.append(reinterpret_cast<const char*>(f.data()), 12);
+    }
+    auto write = [&](const std::string& file, const std::string& bytes) {
+      std::ofstream(dir / file, std::ios::binary) << binary_header << bytes;
+    };
+    write("binary_whole.ply", body);
+    EXPECT_NO_THROW((void)load_mesh(dir / "binary_whole.ply", MeshUnits::millimetres));
+    // The last face's list says 200 indices where its 3 are: the file is 788 bytes short.
+    std::string long_list = body;
+    long_list[long_list.size() - 13] = char(200);
+    write("binary_long_list.ply", long_list);
+    const std::string got = load_refusal(dir / "binary_long_list.ply");
+    EXPECT_NE(got.find("binary_long_list.ply: its binary PLY body ends before the vertex_indices of face 4 of the 4 its "
+                       "header declares; the file is truncated"),
+              std::string::npos) << got;
+  }
   // The same body whole, its faces' list named as assimp reads it: accepted.
   std::ofstream(dir / "whole.ply") << header.substr(0, header.size() - 2) << "vertex_indices\n" << tetra << "3 1 2 3\n";
   EXPECT_NO_THROW((void)load_mesh(dir / "whole.ply", MeshUnits::millimetres));
