@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -70,14 +71,16 @@ nlohmann::json read_json(const fs::path& file, const char* what) {
   }
 }
 
-// The columns `want` (by header name) of a CSV file of numbers, row by row.
-// A CSV row's wanted columns, in the order asked (at most five).
+// A CSV row's wanted columns, in the order asked (at most five), held flat.
 struct Row {
-  double v[5] = {};
+  static constexpr std::size_t kColumns = 5;
+  double v[kColumns] = {};
   double operator[](std::size_t i) const { return v[i]; }
 };
 
+// The columns `want` (by header name) of a CSV file of numbers, row by row.
 std::vector<Row> read_csv(const fs::path& file, const std::vector<std::string>& want) {
+  if (want.size() > Row::kColumns) throw std::logic_error("read_csv: at most five columns");
   require_regular_file(file);
   require_at_most(file, kMaxCsvBytes, "a run's log");
   std::FILE* f = std::fopen(file.c_str(), "r");

@@ -115,15 +115,18 @@ std::uint64_t stl_triangles(const std::filesystem::path& file, std::uintmax_t si
   in.clear();
   in.seekg(0);
   static constexpr std::string_view word = "endfacet";
-  std::vector<char> buffer(1 << 20);
-  std::string carry;
+  // Read in chunks, each after the last one's final 7 characters: a word the chunk's end cut is
+  // found whole in the next (7 characters cannot hold one whole).
+  std::string chunk;
   std::uint64_t facets = 0;
-  while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
-    std::string chunk = carry + std::string(buffer.data(), std::size_t(in.gcount()));
-    for (std::size_t at = chunk.find(word); at != std::string::npos; at = chunk.find(word, at + word.size())) ++facets;
-    // A word cut by the chunk's end is found whole in the next one (7 characters cannot hold one).
+  for (;;) {
     const std::size_t keep = std::min(chunk.size(), word.size() - 1);
-    carry = chunk.substr(chunk.size() - keep);
+    chunk.erase(0, chunk.size() - keep);
+    chunk.resize(keep + (1 << 20));
+    in.read(chunk.data() + keep, std::streamsize(chunk.size() - keep));
+    if (in.gcount() <= 0) break;
+    chunk.resize(keep + std::size_t(in.gcount()));
+    for (std::size_t at = chunk.find(word); at != std::string::npos; at = chunk.find(word, at + word.size())) ++facets;
   }
   return facets;
 }

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -95,18 +96,43 @@ class BodyNumbers {
   const std::string& name_;
 };
 
-// Walks an ASCII body as the header declares it: every element's every property present, each
-// a number its type holds, each list as long as its length says. Refuses a body that ends early
-// or holds more than the header declares.
+// Walks a body as the header declares it: every element's every property, each list as long as
+// its length says. `value(e, index, p, type)` reads the next value of `type` (std::nullopt at the
+// end of the file); `where()` says where the last one was, for a length that is not a count.
+template <class Value, class Where>
+void walk_body(const std::vector<Element>& elements, const char* kind, const std::string& name, Value value,
+               Where where) {
+  for (const Element& e : elements)
+    for (double i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        auto next = [&](const std::string& type) {
+          const std::optional<double> v = value(e, i, p, type);
+          if (!v)
+            throw MeshError(fmt::format("{}: its {} PLY body ends before the {} of {} {:.0f} of the {:.0f} its header "
+                                        "declares; the file is truncated: export it again",
+                                        name, kind, p.name, e.name, i + 1, e.count));
+          return *v;
+        };
+        if (!p.list) {
+          next(p.type);
+          continue;
+        }
+        const double length = next(p.count_type);
+        if (!(length >= 0) || length != std::floor(length))
+          throw MeshError(fmt::format("{}: {} gives the {} of {} {:.0f} a length of {}; the file is damaged: export "
+                                      "it again",
+                                      name, where(), p.name, e.name, i + 1, length));
+        for (double k = 0; k < length; ++k) next(p.type);
+      }
+}
+
+// An ASCII body: each value a number its type holds; nothing after the last element.
 void check_ascii_body(std::istream& in, std::size_t first_line, const std::vector<Element>& elements,
                       const std::string& name) {
   BodyNumbers numbers(in, first_line, name);
-  auto read = [&](const Element& e, double index, const Property& p, const std::string& type) {
+  auto read = [&](const Element& e, double index, const Property& p, const std::string& type) -> std::optional<double> {
     const std::string token = numbers.next();
-    if (token.empty())
-      throw MeshError(fmt::format("{}: its ASCII PLY body ends before the {} of {} {:.0f} of the {:.0f} its header "
-                                  "declares; the file is truncated: export it again",
-                                  name, p.name, e.name, index + 1, e.count));
+    if (token.empty()) return std::nullopt;
     char* end = nullptr;
     const double v = std::strtod(token.c_str(), &end);
     const Range r = range_of(type);
@@ -117,20 +143,8 @@ void check_ascii_body(std::istream& in, std::size_t first_line, const std::vecto
                                   name, numbers.line(), token, p.name, e.name, index + 1, type));
     return v;
   };
-  for (const Element& e : elements)
-    for (double i = 0; i < e.count; ++i)
-      for (const Property& p : e.properties) {
-        if (!p.list) {
-          read(e, i, p, p.type);
-          continue;
-        }
-        const double length = read(e, i, p, p.count_type);
-        if (length < 0)
-          throw MeshError(fmt::format("{}: line {} of its ASCII PLY body gives the {} of {} {:.0f} a length of {}; "
-                                      "the file is damaged: export it again",
-                                      name, numbers.line(), p.name, e.name, i + 1, length));
-        for (double k = 0; k < length; ++k) read(e, i, p, p.type);
-      }
+  walk_body(elements, "ASCII", name, read,
+            [&] { return fmt::format("line {} of its ASCII PLY body", numbers.line()); });
   if (const std::string more = numbers.next(); !more.empty())
     throw MeshError(fmt::format("{}: line {} of its ASCII PLY body holds more numbers than its header declares "
                                 "(\"{}\" after the last {}); the file is damaged: export it again",
@@ -145,62 +159,39 @@ std::size_t size_of(const std::string& t) {
   return 4;  // int, uint, float and their sized names
 }
 
-// A list's length read from `bytes` of its count type, in the file's byte order; -1 when it is
-// not a whole number of its type's range (a negative signed length).
-double list_length(const unsigned char* bytes, const std::string& t, bool big_endian) {
+// The value of a PLY type held in `bytes`, in the file's byte order.
+double decode(const unsigned char* bytes, const std::string& t, bool big_endian) {
   unsigned char b[8] = {};
   const std::size_t n = size_of(t);
   for (std::size_t k = 0; k < n; ++k) b[k] = bytes[big_endian ? n - 1 - k : k];
-  std::uint64_t u = 0;
-  std::memcpy(&u, b, n);  // little-endian host: the value's low bytes first
-  const bool is_signed = t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
-  if (is_signed && (u >> (8 * n - 1)) & 1) return -1;
   if (t == "float" || t == "float32") {
     float f;
     std::memcpy(&f, b, 4);
-    return std::isfinite(f) && f >= 0 && f == std::floor(f) ? double(f) : -1;
+    return f;
   }
   if (t == "double" || t == "float64") {
     double d;
     std::memcpy(&d, b, 8);
-    return std::isfinite(d) && d >= 0 && d == std::floor(d) ? d : -1;
+    return d;
   }
+  std::uint64_t u = 0;
+  std::memcpy(&u, b, n);  // little-endian host: the value's low bytes first
+  const bool is_signed = t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+  if (is_signed && n < 8 && (u >> (8 * n - 1)) & 1) return double(std::int64_t(u | (~std::uint64_t(0) << (8 * n))));
   return double(u);
 }
 
-// Walks a binary body as the header declares it, reading it once in order: every element's
-// properties, each list as long as its length says. Refuses a body that ends early, naming the
-// element and the property.
+// A binary body, read once in order: the file long enough for every value.
 void check_binary_body(std::istream& in, const std::vector<Element>& elements, bool big_endian,
                        const std::string& name) {
   std::streambuf& buf = *in.rdbuf();
-  char scratch[4096];
-  for (const Element& e : elements)
-    for (double i = 0; i < e.count; ++i)
-      for (const Property& p : e.properties) {
-        auto skip = [&](double bytes) {
-          while (bytes > 0) {
-            const std::streamsize n = std::streamsize(std::min<double>(bytes, sizeof scratch));
-            if (buf.sgetn(scratch, n) != n)
-              throw MeshError(fmt::format("{}: its binary PLY body ends before the {} of {} {:.0f} of the {:.0f} its "
-                                          "header declares; the file is truncated: export it again",
-                                          name, p.name, e.name, i + 1, e.count));
-            bytes -= double(n);
-          }
-        };
-        if (!p.list) {
-          skip(double(size_of(p.type)));
-          continue;
-        }
-        const std::size_t n = size_of(p.count_type);
-        skip(double(n));
-        const double length = list_length(reinterpret_cast<const unsigned char*>(scratch), p.count_type, big_endian);
-        if (length < 0)
-          throw MeshError(fmt::format("{}: its binary PLY body gives the {} of {} {:.0f} a length that is not a count; "
-                                      "the file is damaged: export it again",
-                                      name, p.name, e.name, i + 1));
-        skip(length * double(size_of(p.type)));
-      }
+  unsigned char bytes[8];
+  auto read = [&](const Element&, double, const Property&, const std::string& type) -> std::optional<double> {
+    const std::streamsize n = std::streamsize(size_of(type));
+    if (buf.sgetn(reinterpret_cast<char*>(bytes), n) != n) return std::nullopt;
+    return decode(bytes, type, big_endian);
+  };
+  walk_body(elements, "binary", name, read, [] { return std::string("its binary PLY body"); });
 }
 
 }  // namespace
