@@ -30,7 +30,9 @@ struct AssessParams {
                               // are judged this far from it (the SPH gap at a wall)
   real leak_depth = 0;        // m, 0: spacing / 2. Material deeper in the tooth has leaked
   real lost_distance = 5e-3;  // m, material farther than this from the cavity's bounds is lost
-  real min_void_mm3 = 0;      // mm^3, enclosed regions smaller than this are not voids
+  // mm^3, enclosed regions smaller than this are porosity, not voids; 0: one particle's volume
+  // (spacing^3), what the model resolves
+  real min_void_mm3 = 0;
 };
 
 // Where an enclosed void lies, for a tutor: in the tooth frame, in mm.
@@ -48,10 +50,16 @@ struct VoidPlace {
 // The metrics of one state. Volumes in mm^3 (the unit a dentist reads), forces in N.
 struct Assessment {
   real fill_fraction = 0;     // filled cavity voxels / cavity voxels, in [0, 1]
-  int void_count = 0;         // enclosed empty regions reaching into the cavity
+  int void_count = 0;         // enclosed empty regions reaching into the cavity, of at least
+                              // min_void_mm3
   real void_volume_mm3 = 0;   // their volume inside the cavity
   real largest_void_mm3 = 0;  // the largest of them
   std::vector<VoidPlace> voids;  // each of them, in the order found
+  // Enclosed empty regions reaching into the cavity but smaller than min_void_mm3 (one
+  // particle's volume by default): porosity below what the model resolves, not a defect.
+  int pore_count = 0;
+  real pore_volume_mm3 = 0;   // their volume inside the cavity
+  real min_void_mm3 = 0;      // the smallest void counted (AssessParams::min_void_mm3, resolved)
   real overfill_mm3 = 0;      // filled voxels outside the cavity and the tooth, in the band
   std::uint32_t leaked_particles = 0;    // deeper than leak_depth in the tooth, or off the domain
   std::uint32_t lost_particles = 0;      // non-finite, or farther than lost_distance

@@ -54,8 +54,9 @@ AssessParams resolved(AssessParams p) {
           "m must be > 0 (0: half a spacing)");
   require(std::isfinite(p.lost_distance) && p.lost_distance > 0, "lost_distance", p.lost_distance,
           "m must be > 0");
-  require(std::isfinite(p.min_void_mm3) && p.min_void_mm3 >= 0, "min_void_mm3", p.min_void_mm3,
-          "mm^3 must be >= 0");
+  if (p.min_void_mm3 == 0) p.min_void_mm3 = s * s * s / mm3;
+  require(std::isfinite(p.min_void_mm3) && p.min_void_mm3 > 0, "min_void_mm3", p.min_void_mm3,
+          "mm^3 must be > 0 (0: one particle's volume, spacing^3)");
   return p;
 }
 
@@ -202,6 +203,9 @@ Assessment CavityAssessor::assess(const State& state, const Model& model, const 
   a.void_count = voids.count;
   a.void_volume_mm3 = voids.cavity_voxels * v3 / mm3;
   a.largest_void_mm3 = voids.largest * v3 / mm3;
+  a.pore_count = voids.pores;
+  a.pore_volume_mm3 = voids.pore_cavity_voxels * v3 / mm3;
+  a.min_void_mm3 = p.min_void_mm3;
   for (const Voids::Region& r : voids.regions) {
     VoidPlace v;
     const Vec3 local = g.origin + Vec3{(r.i + 0.5) * g.edge, (r.j + 0.5) * g.edge, (r.k + 0.5) * g.edge};

@@ -20,11 +20,14 @@ nlohmann::json number(real v) {
 
 std::string Assessment::report() const {
   std::string out = fmt::format(
-      "filling: {:.1f}% of the {:.2f} mm^3 cavity filled, {} void{} ({:.3f} mm^3{}), "
+      "filling: {:.1f}% of the {:.2f} mm^3 cavity filled, {} void{} ({:.3f} mm^3{}){}, "
       "overfill {:.2f} mm^3\n",
       100 * fill_fraction, cavity_volume_mm3, void_count, void_count == 1 ? "" : "s",
       void_volume_mm3,
       void_count > 1 ? fmt::format(", largest {:.3f} mm^3", largest_void_mm3) : std::string(),
+      pore_count > 0 ? fmt::format(" and {} pore{} under {:.3f} mm^3 ({:.3f} mm^3, below the model's resolution)",
+                                   pore_count, pore_count == 1 ? "" : "s", min_void_mm3, pore_volume_mm3)
+                     : std::string(),
       overfill_mm3);
   out += fmt::format(
       "material: {} particles, {} leaked (in the tooth or off the domain), {} lost, {} outside "
@@ -50,6 +53,9 @@ std::string assessment_json(const Assessment& a) {
                           {"volume_mm3", number(v.volume_mm3)},
                           {"wall_distance_mm", number(v.wall_distance_mm)},
                           {"against", v.against}});
+  j["pore_count"] = a.pore_count;
+  j["pore_volume_mm3"] = number(a.pore_volume_mm3);
+  j["min_void_mm3"] = number(a.min_void_mm3);
   j["overfill_mm3"] = number(a.overfill_mm3);
   j["leaked_particles"] = a.leaked_particles;
   j["lost_particles"] = a.lost_particles;

@@ -76,7 +76,11 @@ Voids find_voids(const VoxelGrid& g, std::vector<std::uint8_t>& mark,
     stack.push_back(std::uint32_t(v));
     Voids::Region region = flood(g, mark, stack);
     const std::uint32_t cavity = region.cavity_voxels;
-    if (cavity < min_voxels) continue;
+    if (cavity < min_voxels) {
+      out.pores += cavity > 0;
+      out.pore_cavity_voxels += cavity;
+      continue;
+    }
     ++out.count;
     out.cavity_voxels += cavity;
     out.largest = std::max(out.largest, cavity);

@@ -21,13 +21,18 @@ struct Voids {
     double i = 0, j = 0, k = 0;
   };
   std::vector<Region> regions;
+  // Enclosed components holding some cavity voxels but fewer than min_cavity_voxels: porosity
+  // below what the model resolves, counted apart.
+  int pores = 0;
+  std::uint32_t pore_cavity_voxels = 0;
 };
 
 // `mark` ([g.size()]): kSolid where a voxel is tooth or filled, kEmpty where it is cavity or
 // air and not filled, kOpen where it is empty and taken by the tool (open space, like the box's
 // faces: the tool reaches the outside through its handle). Used as scratch. A component is a void
 // when it holds at least `min_cavity_voxels` (>= 1) cavity voxels; only those count in the volume
-// (air voxels in it lie above the margin, in excess material that is carved away).
+// (air voxels in it lie above the margin, in excess material that is carved away). A component
+// with fewer (but some) cavity voxels is a pore.
 Voids find_voids(const VoxelGrid& g, std::vector<std::uint8_t>& mark,
                  std::uint32_t min_cavity_voxels);
 

@@ -136,12 +136,21 @@ std::vector<Criterion> filling_criteria(const nlohmann::json& s, const nlohmann:
 
   const auto voids = number_at(s, "assessment.void_count");
   const auto void_mm3 = number_at(s, "assessment.void_volume_mm3");
+  // Gaps under one particle's volume are porosity below what the model resolves: named, not judged.
+  const auto min_void = number_at(s, "assessment.min_void_mm3");
   c = make("voids", "Voids (enclosed gaps)", "assessment.void_count", voids,
-           voids ? fmt::format("{:.0f} ({:.3f} mm^3)", *voids, void_mm3.value_or(0)) : "", "none",
+           voids ? fmt::format("{:.0f} ({:.3f} mm^3)", *voids, void_mm3.value_or(0)) : "",
+           min_void ? fmt::format("none of {:.3f} mm^3 (a particle's volume) or more", *min_void) : "none",
            "Press each increment down and against the walls before adding the next; do not bridge over gaps.");
   if (voids) c.verdict = judge(*voids == 0);
   if (s.contains("assessment") && s["assessment"].contains("voids") && s["assessment"]["voids"].is_array())
     for (const nlohmann::json& v : s["assessment"]["voids"]) c.details.push_back(describe_void(v));
+  const auto pores = number_at(s, "assessment.pore_count");
+  if (pores && *pores > 0 && min_void)
+    c.details.push_back(fmt::format("{:.0f} smaller gap{} ({:.3f} mm^3 in all), each under {:.3f} mm^3: porosity below "
+                                    "what the simulation resolves, not judged",
+                                    *pores, *pores == 1 ? "" : "s",
+                                    number_at(s, "assessment.pore_volume_mm3").value_or(0), *min_void));
   out.push_back(c);
 
   const auto over = number_at(s, "assessment.overfill_mm3");

@@ -201,7 +201,8 @@ static void check_figures(const fs::path& file, const nlohmann::json& summary) {
       {"assessment.cavity_volume_mm3", 0, kMax},    {"assessment.leaked_particles", 0, kMax},
       {"assessment.lost_particles", 0, kMax},       {"assessment.peak_device_force_N", 0, kMax},
       {"assessment.mean_device_force_N", 0, kMax},  {"tool.peak_device_force_N", 0, kMax},
-      {"tool.force_scale", 0, kMax},
+      {"tool.force_scale", 0, kMax},                {"assessment.pore_count", 0, kMax},
+      {"assessment.pore_volume_mm3", 0, kMax},      {"assessment.min_void_mm3", 0, kMax},
   };
   for (const Range& r : kRanges) {
     // Present but not a number, or a number out of range (JSON has no NaN; an overflowed literal

@@ -52,6 +52,19 @@ TEST(Report, CriteriaJudgeAtTheirThresholds) {
   EXPECT_EQ(by_id(bad, "voids").details.size(), 1u);
   EXPECT_NE(by_id(bad, "voids").details[0].find("against the floor, 1.8 mm below"), std::string::npos)
       << by_id(bad, "voids").details[0];
+  // Gaps under a particle's volume are named as porosity in the details and do not fail the voids.
+  nlohmann::json porous = summary(0.95, 0, 0.25 * 32.5, 9.0, 4.5);
+  porous["assessment"]["pore_count"] = 3;
+  porous["assessment"]["pore_volume_mm3"] = 0.01;
+  porous["assessment"]["min_void_mm3"] = 0.027;
+  const auto porous_criteria = filling_criteria(porous, proc);
+  const Criterion& pores = by_id(porous_criteria, "voids");
+  EXPECT_EQ(pores.verdict, Verdict::good);
+  EXPECT_EQ(pores.rule, "none of 0.027 mm^3 (a particle's volume) or more");
+  ASSERT_EQ(pores.details.size(), 1u);
+  EXPECT_NE(pores.details[0].find("3 smaller gaps (0.010 mm^3 in all), each under 0.027 mm^3: porosity"),
+            std::string::npos)
+      << pores.details[0];
   // Without an assessment or increments: not measured, never good.
   const auto none = filling_criteria(nlohmann::json{{"steps", 1}}, nullptr);
   EXPECT_EQ(by_id(none, "fill").verdict, Verdict::not_measured);
