@@ -221,7 +221,7 @@ int main(int argc, char** argv) {
   run->add_option("--viscous-pressure", run_viscous_pressure,
                   "The iisph solver's viscous pressure step, 0 to 1: a viscous paste kept at its volume (0.5 "
                   "suggested; docs/model.md, \"The viscous pressure\"); default: the scene's "
-                  "simulation.iisph.viscous_pressure (0, none)")
+                  "simulation.iisph.viscous_pressure (0.5 for a --material preset, otherwise 0, none)")
       ->check(CLI::Range(0.0, 1.0));
 
   BenchOptions bench_opt;

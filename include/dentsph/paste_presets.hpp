@@ -53,6 +53,11 @@ PastePreset paste_preset(const std::string& name, real temperature_c = 23);
 inline constexpr real kPasteActivation = 3462;  // K
 real paste_temperature_factor(real temperature_c);
 
+// The viscous pressure's step (IisphParams::viscous_pressure) the presets are solved with, in the
+// dental scenes and the handling tests: without it a stiff paste stays compressed by 2 to 10%
+// (docs/model.md, "The viscous pressure").
+inline constexpr real kPresetViscousPressure = 0.5;
+
 // The paste preset a procedure file names in its "material" (docs/procedure-format.md), if any; none
 // for an empty path (the built-in procedure names none). What fills a procedure is the caller's
 // choice: `run --material` or a dental scene's "material" over the procedure's. Throws SceneError
@@ -62,7 +67,7 @@ std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& f
 // The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
 // solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of
 // iterations leaves a stiff paste's viscosity far from solved). The iisph solver alone: the preset
-// is non-Newtonian. The paste's contact with the instruments keeps no strength there
+// is non-Newtonian, with the viscous pressure (kPresetViscousPressure). The paste's contact with the instruments keeps no strength there
 // (Material::interface_strength 0; docs/model.md, "Tack").
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
 

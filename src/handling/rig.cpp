@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/step.hpp"
 
@@ -26,6 +27,7 @@ ModelParams rig_params(real s, const Vec3& lo, const Vec3& hi, real dt, const Ve
   p.iisph.max_iterations = 200;
   p.iisph.viscosity_tolerance = 1e-4;
   p.iisph.viscosity_iterations = 500;
+  p.iisph.viscous_pressure = kPresetViscousPressure;
   return p;
 }
 

@@ -55,7 +55,7 @@ constexpr PresetRow kPresets[] = {
      "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
     {"packable", 11400, 0.5, 1e5, 0, 2200, "composite", 6750, 19100,
      "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C"},
-    {"amalgam", 89000, 0.5, 6.9e5, 0, 11600, "amalgam", 0, 0,
+    {"amalgam", 43000, 0.5, 2.3e5, 0, 11600, "amalgam", 0, 0,
      "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
 };
 
@@ -131,6 +131,7 @@ DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams
   dp.iisph.pressure_solve = PressureSolve::cg;
   dp.iisph.max_iterations = 50;
   dp.iisph.wall_rest_density = true;
+  dp.iisph.viscous_pressure = kPresetViscousPressure;
   return dp;
 }
 

@@ -214,10 +214,15 @@ TEST(Filling, IisphFillsAndCuresTheBuiltInCrown) { fills_and_cures_the_crown(Sol
 // The built-in procedure with its light on the `universal` preset (docs/model.md, "Presets"): the
 // stiff non-Newtonian paste completes, with nothing leaked or lost, every increment cured, and the
 // force in newtons. Before iisph.wall_rest_density it diverged at 41.8 s (with flowable at 1.0 s).
-// Measured: fill 0.944, peak 1.24 N (yield stress 20 kPa, the expansion step at 0.5). Its 0.95
-// target was met by a hair (0.9504, 1.68 N) before the instrument's slip entered the paste's shear
-// rate (src/solver/rheology.cpp): the paste beside the instrument now flows where it is sheared and
-// is packed denser (below), a departure of 0.6 points held here at 0.94.
+// The presets are solved with the viscous pressure (kPresetViscousPressure): the paste keeps its
+// volume under the instrument. Without it the compression the paste has at a step's start was far
+// over what the pressure solve predicts (measured 7.05% against 0.032%), the viscosity solve after
+// the pressure undoing its correction in clusters under the instrument, and the fill was 0.944 (a
+// part of it paste packed denser than it is). Measured with it (one thread, the test build): fill
+// 0.947, compression 0.082% (a step's at most 1.63%), the largest density error a solve left
+// 0.285%, peak 1.75 N (docs/model.md, "The viscous pressure"). The 0.95 fill the procedure asks
+// for is missed by 0.3 points (the paste keeps its volume and stands higher over the margin, with
+// more voids: 11, 1.54 mm^3): a departure, held at 0.94.
 TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   Scene sc = default_dental_procedure(dental_params_for(paste_preset("universal")));
   sc.output.snapshot_interval = 0;
@@ -227,9 +232,11 @@ TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   ASSERT_EQ(s.status, "completed") << s.message;
   const auto a = nlohmann::json::parse(s.assessment_json);
   const auto c = nlohmann::json::parse(s.cure_json);
-  std::printf("universal preset, crown: fill %.3f, %d voids (%.3f mm^3), leaked %d, lost %d, peak force %.3g N\n",
+  std::printf("universal preset, crown: fill %.3f, %d voids (%.3f mm^3), %d pores (%.3f mm^3), leaked %d, lost %d, peak "
+              "force %.3g N\n",
               a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
-              a["leaked_particles"].get<int>(), a["lost_particles"].get<int>(), s.peak_tool_force_N);
+              a["pore_count"].get<int>(), a["pore_volume_mm3"].get<double>(), a["leaked_particles"].get<int>(),
+              a["lost_particles"].get<int>(), s.peak_tool_force_N);
   EXPECT_GE(a["fill_fraction"].get<double>(), 0.94);
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
@@ -237,17 +244,18 @@ TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   EXPECT_GT(s.peak_tool_force_N, 0.5) << "a paste in SI units presses back with newtons, not 1e-4 N";
   EXPECT_LT(s.peak_tool_force_N, 5.0);
   ASSERT_EQ(c["increments"].size(), 3u);
-  // The departure docs/model.md records ("Measured compression"; measured 7.05% against 0.032%,
-  // 3.28% before the instrument's slip entered the shear rate): the compression the paste has at a
-  // step's start is far over what the pressure solve predicts, the viscosity solve after it undoing
-  // its correction in clusters under the instrument (the viscous pressure removes it). Held here so
-  // that a change in either shows.
+  // The paste within 1% of its volume: the compression it has at a step's start, on average over
+  // the run and at the worst step's mean.
   const SolverStatistics& st = s.solver_statistics;
-  std::printf("compression measured %.3g%% (a step's at most %.3g%%), predicted density error %.3g%%\n",
-              100 * st.compression_mean(), 100 * st.compression_mean_max, 100 * st.density_error_mean());
-  EXPECT_GT(st.compression_mean(), 10 * st.density_error_mean());
-  EXPECT_GT(st.compression_mean(), 0.01);
-  EXPECT_LT(st.compression_mean(), 0.1);
+  std::printf("compression measured %.3g%% (a step's at most %.3g%%), predicted density error %.3g%% (most %.3g%%), "
+              "viscous pressure at most %.3g kPa\n",
+              100 * st.compression_mean(), 100 * st.compression_mean_max, 100 * st.density_error_mean(),
+              100 * st.density_error_max, st.viscous_pressure_max / 1e3);
+  EXPECT_EQ(s.viscous_pressure, kPresetViscousPressure);
+  EXPECT_GT(st.viscous_pressure_max, 0);
+  EXPECT_LT(st.compression_mean(), 0.01);
+  EXPECT_LT(st.compression_mean_max, 0.05);
+  EXPECT_LT(st.density_error_max, 0.01) << "the issue's 1%: no solve left a particle over it";
 }
 // The same with the pressure solve's budget at 400 iterations: the solve must not diverge where the
 // tool presses paste against set paste. With the expansion step's length at 1 it did: a density

@@ -231,6 +231,7 @@ TEST(Cli, AMaterialPresetFillsAtForceScaleOne) {
   EXPECT_DOUBLE_EQ(s.at("tool").at("force_scale").get<double>(), 1.0);
   EXPECT_GT(s.at("solver").at("viscosity").at("rheology").at("iterations").get<double>(), 0) << "the paste is non-Newtonian";
   EXPECT_NE(r.output.find("rheology:"), std::string::npos) << r.output;
+  EXPECT_EQ(s.at("solver").at("viscous_pressure").at("step"), 0.5) << "a preset is solved with the viscous pressure";
   // The compression measured at each step's start, beside the solve's predicted density error.
   const nlohmann::json& compression = s.at("solver").at("compression");
   EXPECT_GE(compression.at("mean").get<double>(), 0);

@@ -327,6 +327,7 @@ TEST(PastePresets, AnchoredToTheirPublishedViscosityAndOrdered) {
     EXPECT_EQ(dp.paste, dental);
     EXPECT_GE(dp.wall.Kp, dp.paste.Kp) << "walls at least as stiff as the paste";
     EXPECT_EQ(dp.solver, Solver::iisph);
+    EXPECT_EQ(dp.iisph.viscous_pressure, kPresetViscousPressure) << "the paste keeps its volume";
   }
   // The one published ratio no constant was set from (the rheometer checks it): the flowable's to a
   // conventional composite's, Lee, Son & Um 2003's 0.04 to 0.56.
