@@ -17,15 +17,18 @@ namespace dentsph {
 struct IncrementCure {
   int index = 0;                   // 0: the scene's own paste; k: the k-th increment dispensed
   std::uint32_t particles = 0;
-  real thickness = 0;              // m, along `up`: the median over columns two spacings square of
-                                   // the column's lowest particle to its highest, plus a spacing
+  real thickness = 0;              // m, along `up`: the median over its columns (layer_thickness.hpp:
+                                   // each column's paste volume over its area)
+  real thickness_p90 = 0;          // m, the 90th percentile over its columns: its thickest part
   real top_dose = 0, base_dose = 0;    // J/m^2, mean over its columns' top and base layers (a spacing deep)
   real top_alpha = 0, base_alpha = 0;  // mean conversion of the same layers
   real adequate_fraction = 0;      // share of its particles with alpha >= criterion * top_alpha
   real under_cured_volume = 0;     // m^3
-  // Where its under-cured paste lies: from `under_cured_from` to `under_cured_to` below its top (m);
-  // both 0 when there is none.
+  // Where its under-cured paste lies: from `under_cured_from` to `under_cured_to` below its top (m),
+  // each a depth in its column as layer_thickness.hpp measures it (so within its column's
+  // thickness); both 0 when there is none.
   real under_cured_from = 0, under_cured_to = 0;
+  real under_cured_column_thickness = 0;  // m, the thickest column holding under-cured paste (0: none)
   std::string message;             // e.g. "increment 2 is 3.6 mm thick: its base received ..."
 };
 

@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "dentsph/layer_thickness.hpp"
+
 namespace dentsph {
 
 namespace {
@@ -23,16 +25,20 @@ std::string increment_name(int index) {
 
 std::string increment_message(const IncrementCure& c, real criterion) {
   const std::string name = increment_name(c.index);
-  if (c.top_alpha <= 0) return fmt::format("{} is {:.1f} mm thick and was not cured: no light reached it", name, c.thickness / mm);
+  if (c.top_alpha <= 0) return fmt::format("{} is {:.2f} mm thick and was not cured: no light reached it", name, c.thickness / mm);
   const real under = 1 - c.adequate_fraction;
   const std::string head =
-      fmt::format("{} is {:.1f} mm thick: its base received {:.2g} J/cm2", name, c.thickness / mm, c.base_dose / 1e4);
+      fmt::format("{} is {:.2f} mm thick: its base received {:.2g} J/cm2", name, c.thickness / mm, c.base_dose / 1e4);
   if (under <= 0)
     return fmt::format("{}, bottom/top conversion {:.2f}: adequately cured throughout", head, c.base_alpha / c.top_alpha);
   const int digits = 100 * under < 1 ? 1 : 0;  // "0.4%", never "0%" of paste that is under-cured
-  return fmt::format("{} and {:.{}f}% of it is under-cured (conversion below {:.0f}% of its top's), from {:.1f} mm below its "
-                     "top down to {:.1f} mm",
-                     head, 100 * under, digits, 100 * criterion, c.under_cured_from / mm, c.under_cured_to / mm);
+  // Under-cured paste below the median's depth lies where the increment is thicker: say how thick.
+  const std::string where = c.under_cured_to > c.thickness + 0.05 * mm
+                                ? fmt::format(", where it is up to {:.2f} mm thick", c.under_cured_column_thickness / mm)
+                                : std::string();
+  return fmt::format("{} and {:.{}f}% of it is under-cured (conversion below {:.0f}% of its top's), from {:.2f} mm below its "
+                     "top down to {:.2f} mm{}",
+                     head, 100 * under, digits, 100 * criterion, c.under_cured_from / mm, c.under_cured_to / mm, where);
 }
 
 }  // namespace
@@ -45,58 +51,53 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
   const CureState& c = s.cure;
   const real sp = cm.spacing;
   constexpr real inf = std::numeric_limits<real>::infinity();
-  struct Acc {
-    std::uint32_t n = 0;
-    real lo = inf, hi = -inf;
-  };
   // The paste assessed: curable, finite, not above the ceiling (drawn up on the instrument) nor
   // below the floor (fallen out of the cavity).
   auto assessed = [&](std::uint32_t i) {
     const real h = dot(s.pos[i], up);
     return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(h > ceiling) && !(h < floor);
   };
-  // Each increment is measured in columns along `up`, two spacings square: a column's top and base
-  // are its highest and lowest particle, so paste drawn up a wall in a thin film makes a tall
-  // column at that wall and leaves the increment's (median) thickness alone.
-  const Vec3 side = std::abs(up.x) < 0.8 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 e1 = cross(up, side) / norm(cross(up, side));
-  const Vec3 e2 = cross(up, e1);
-  using Cell = std::pair<long, long>;
-  auto cell_of = [&](std::uint32_t i) {
-    return Cell{std::lround(std::floor(dot(s.pos[i], e1) / (2 * sp))), std::lround(std::floor(dot(s.pos[i], e2) / (2 * sp)))};
-  };
-  std::map<int, std::map<Cell, Acc>> acc;  // increment -> column -> its particles and extent along up
+  // Each increment is measured in columns along `up`, two spacings square (layer_thickness: its
+  // thickness and each particle's depth as the paste's volume over the column's area).
+  std::map<int, std::vector<std::uint32_t>> members;  // increment -> its assessed particles
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];
     if (c.curable[id] && is_finite(s.pos[i]) && !assessed(i)) ++a.left_out;
-    if (!assessed(i)) continue;
-    Acc& g = acc[c.increment[id]][cell_of(i)];
-    const real h = dot(s.pos[i], up);
-    ++g.n, g.lo = std::min(g.lo, h), g.hi = std::max(g.hi, h);
+    if (assessed(i)) members[c.increment[id]].push_back(i);
   }
-  for (const auto& [index, columns] : acc) {
+  for (const auto& [index, particles] : members) {
     IncrementCure r;
     r.index = index;
-    std::vector<real> thick;
-    for (const auto& [cell, g] : columns) r.particles += g.n, thick.push_back(g.hi - g.lo + sp);
-    std::nth_element(thick.begin(), thick.begin() + std::ptrdiff_t(thick.size() / 2), thick.end());
-    r.thickness = thick[thick.size() / 2];
-    // Top and base layers: a spacing deep from either end of each column.
+    r.particles = std::uint32_t(particles.size());
+    std::vector<Vec3> points;
+    points.reserve(particles.size());
+    for (const std::uint32_t i : particles) points.push_back(s.pos[i]);
+    const LayerThickness layer = layer_thickness(points, up, sp);
+    r.thickness = layer.median;
+    r.thickness_p90 = layer.p90;
+    // Top and base layers: within half a spacing of each column's highest and lowest particle.
+    struct Extent {
+      real lo = inf, hi = -inf;
+    };
+    std::vector<Extent> extent(layer.column_particles.size());
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      Extent& e = extent[layer.column[k]];
+      const real h = dot(points[k], up);
+      e.lo = std::min(e.lo, h), e.hi = std::max(e.hi, h);
+    }
     std::uint32_t n_top = 0, n_base = 0;
-    for (std::uint32_t i = 0; i < s.size(); ++i) {
-      const std::uint32_t id = s.id[i];
-      if (!assessed(i) || c.increment[id] != index) continue;
-      const Acc& g = columns.at(cell_of(i));
-      const real h = dot(s.pos[i], up);
-      if (h > g.hi - 0.5 * sp) r.top_dose += c.dose[id], r.top_alpha += c.alpha[id], ++n_top;
-      if (h < g.lo + 0.5 * sp) r.base_dose += c.dose[id], r.base_alpha += c.alpha[id], ++n_base;
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const std::uint32_t id = s.id[particles[k]];
+      const Extent& e = extent[layer.column[k]];
+      const real h = dot(points[k], up);
+      if (h > e.hi - 0.5 * sp) r.top_dose += c.dose[id], r.top_alpha += c.alpha[id], ++n_top;
+      if (h < e.lo + 0.5 * sp) r.base_dose += c.dose[id], r.base_alpha += c.alpha[id], ++n_base;
     }
     r.top_dose /= n_top, r.top_alpha /= n_top, r.base_dose /= n_base, r.base_alpha /= n_base;
     std::uint32_t adequate = 0;
     real from = inf, to = -inf;
-    for (std::uint32_t i = 0; i < s.size(); ++i) {
-      const std::uint32_t id = s.id[i];
-      if (!assessed(i) || c.increment[id] != index) continue;
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const std::uint32_t i = particles[k], id = s.id[i];
       const bool ok = r.top_alpha > 0 && c.alpha[id] >= criterion * r.top_alpha;
       const real volume = s.mass[i] / s.rho0[i];
       a.paste_volume += volume;
@@ -105,8 +106,11 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
         continue;
       }
       r.under_cured_volume += volume;
-      const real depth = columns.at(cell_of(i)).hi - dot(s.pos[i], up);  // below its column's top particle's centre
-      from = std::min(from, depth), to = std::max(to, depth + sp);
+      // Its depth in its column, and the paste it stands for below that (layer_thickness.hpp).
+      const real share = sp / real(layer.column_cells[layer.column[k]]);
+      from = std::min(from, layer.depth[k]), to = std::max(to, layer.depth[k] + share);
+      r.under_cured_column_thickness =
+          std::max(r.under_cured_column_thickness, layer.column_thickness(layer.column[k], sp));
     }
     r.adequate_fraction = real(adequate) / real(r.particles);
     if (to > from) r.under_cured_from = std::max<real>(0, from), r.under_cured_to = to;
@@ -142,6 +146,7 @@ std::string cure_assessment_json(const CureAssessment& a) {
     x["increment"] = r.index;
     x["particles"] = r.particles;
     x["thickness_mm"] = r.thickness / mm;
+    x["thickness_p90_mm"] = r.thickness_p90 / mm;
     x["top_dose_J_per_cm2"] = r.top_dose / 1e4;
     x["base_dose_J_per_cm2"] = r.base_dose / 1e4;
     x["top_conversion"] = r.top_alpha;
@@ -150,6 +155,7 @@ std::string cure_assessment_json(const CureAssessment& a) {
     x["adequately_cured_fraction"] = r.adequate_fraction;
     x["under_cured_volume_mm3"] = r.under_cured_volume / (mm * mm * mm);
     x["under_cured_depth_mm"] = json::array({r.under_cured_from / mm, r.under_cured_to / mm});
+    x["under_cured_column_thickness_mm"] = r.under_cured_column_thickness / mm;
     x["message"] = r.message;
     incs.push_back(x);
   }

@@ -90,7 +90,7 @@ std::vector<Criterion> cure_criteria(const nlohmann::json& s) {
     Criterion c = make(fmt::format("cure_{}", index),
                        index == 0 ? std::string("The initial paste cured") : fmt::format("Increment {} cured", index),
                        fmt::format("cure.increments.{}.adequately_cured_fraction", k), adequate,
-                       adequate ? fmt::format("{:.0f} % adequately cured, {:.1f} mm thick", 100 * *adequate,
+                       adequate ? fmt::format("{:.0f} % adequately cured, {:.2f} mm thick", 100 * *adequate,
                                               x.value("thickness_mm", 0.0))
                                 : "",
                        fmt::format("bottom/top conversion at least {:.1f}, and in {:.0f} % of it or more", criterion,

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "dentsph/layer_thickness.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph::report {
@@ -22,13 +23,6 @@ std::uint32_t material_count(const State& s) {
   std::uint32_t n = 0;
   for (std::uint32_t i = 0; i < s.size(); ++i) n += s.is_paste(i);
   return n;
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const auto k = v.begin() + std::ptrdiff_t(std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5)));
-  std::nth_element(v.begin(), k, v.end());
-  return *k;
 }
 
 }  // namespace
@@ -90,19 +84,13 @@ std::vector<IncrementThickness> ProcedureLog::thickness(const Scene& scene, cons
     IncrementThickness t;
     t.index = int(k + 1);
     t.particles = counts[k];
-    std::map<std::pair<long, long>, std::uint32_t> columns;  // (x, y) cell -> particles
-    for (std::size_t q = next; q < next + counts[k]; ++q) {
-      const Vec3& w = state.pos[material[q]];
-      if (!is_finite(w)) continue;
-      const Vec3 l = fr.to_local(w);
-      ++columns[{std::lround(std::floor(l.x / (2 * s))), std::lround(std::floor(l.y / (2 * s)))}];
-    }
+    std::vector<Vec3> points;
+    for (std::size_t q = next; q < next + counts[k]; ++q)
+      if (is_finite(state.pos[material[q]])) points.push_back(state.pos[material[q]]);
     next += counts[k];
-    // A column of 2 x 2 spacings holding n particles of s^3 each: a layer n s / 4 thick.
-    std::vector<double> thick;
-    for (const auto& [cell, n] : columns) thick.push_back(n * s / 4 * 1e3);
-    t.median_mm = quantile(thick, 0.5);
-    t.p90_mm = quantile(thick, 0.9);
+    const LayerThickness layer = layer_thickness(points, fr.z, s);
+    t.median_mm = layer.median * 1e3;
+    t.p90_mm = layer.p90 * 1e3;
     out.push_back(t);
   }
   return out;

@@ -166,7 +166,7 @@ TEST(Report, LightCuringSectionJudgesEachIncrement) {
   EXPECT_NE(html.find("id=\"cure-message\">6.50 mm3 of paste under-cured"), std::string::npos);
   EXPECT_NE(html.find(thick), std::string::npos);
   EXPECT_NE(html.find("data-key=\"cure.increments.1.adequately_cured_fraction\" data-value=\"0.59\">59 % adequately "
-                      "cured, 3.6 mm thick<"),
+                      "cured, 3.60 mm thick<"),
             std::string::npos);
   EXPECT_NE(html.find("\"label\":\"curing light on\""), std::string::npos);
 }
