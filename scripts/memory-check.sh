@@ -88,6 +88,12 @@ PY
 check report-16MB-summary "0" "^wrote" "$bin" report "$work/run_big" --out "$work/big.html"
 truncate -s 300M "$work/run_big/summary.json"
 check report-300MB-summary "2" "300 MB, more than the 16 MB" "$bin" report "$work/run_big" --out "$work/big2.html"
+# replay: a realtime session's recording replayed, and one whose haptic.csv is larger than a
+# session writes (600 MB, a sparse file): refused before it is read.
+check realtime-short "0" "^wrote" "$bin" run --realtime --device scripted --duration 0.5 --threads 1 -q --out "$work/rt"
+check replay "0" "^wrote" "$bin" replay "$work/rt/recording" --threads 1 --out "$work/replayed"
+truncate -s 600M "$work/rt/recording/haptic.csv"
+check replay-600MB-recording "2" "600 MB, more than the 512 MB" "$bin" replay "$work/rt/recording" --out "$work/replayed2"
 # The benchmark's short sweep.
 check bench-quick "0" "steps/s" "$bin" bench --quick --repeats 1
 

@@ -1,7 +1,9 @@
 // A session's recording as three CSV files (17 significant digits: doubles read back exactly).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -40,12 +42,29 @@ struct Column {
   double max = 0;
 };
 
+// The largest a recording's file can be (README, "Resource limits"): a session's haptic.csv is
+// about 290 bytes a tick (120 s at the 4 kHz the runtime allows: 140 MB), its steps.csv about 125
+// bytes a step (120 s of the paper's 50 us steps: 300 MB), its session.json under a kilobyte. A
+// larger file is not a session's, and reading it would take about twice its size in memory.
+constexpr std::uintmax_t kMaxRecordingCsvBytes = std::uintmax_t(512) << 20;
+constexpr std::uintmax_t kMaxSessionJsonBytes = std::uintmax_t(1) << 20;
+
+void require_at_most(const std::filesystem::path& p, std::uintmax_t limit) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(p, ec);
+  if (!ec && size > limit)
+    throw std::runtime_error(fmt::format("{}: {} MB, more than the {} MB a recording's file can be (README, \"Resource "
+                                         "limits\"); it is not a session's recording: record the session again",
+                                         p.string(), size >> 20, limit >> 20));
+}
+
 // Rows of numbers after a header line that must match; errors name file, line and column. Every
 // number must be finite, whole numbers whole and in range, and the unit quaternion starting at
 // column `quat` (if any) of unit length: a recording that holds a NaN is refused here, not
 // replayed into a comparison of NaN forces.
 std::vector<std::vector<double>> read_rows(const std::filesystem::path& p, const char* header,
                                            const std::vector<Column>& columns, int quat = -1) {
+  require_at_most(p, kMaxRecordingCsvBytes);
   std::ifstream in(p);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open the recording file", p.string()));
   std::string line;
@@ -173,6 +192,7 @@ Recording load_recording(const std::filesystem::path& dir) {
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
   // The session's settings, as save_recording writes them (dispense_volume, backend and solver are
   // absent in older recordings: the scene's default, the CPU, the scene's solver).
+  if (std::filesystem::exists(dir / "session.json")) require_at_most(dir / "session.json", kMaxSessionJsonBytes);
   if (std::ifstream in(dir / "session.json"); in) {
     const std::string file = (dir / "session.json").string();
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);

@@ -553,6 +553,26 @@ TEST(Recording, SavesAndLoadsExactly) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("steps.csv: line 2"), std::string::npos) << e.what();
   }
+  // A file larger than a session writes is refused before it is read (a sparse file of 600 MB):
+  // reading it would take about twice its size in memory.
+  save_recording(dir, r);
+  std::filesystem::resize_file(dir / "haptic.csv", std::uintmax_t(600) << 20);
+  try {
+    load_recording(dir);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("haptic.csv: 600 MB, more than the 512 MB a recording's file can be"),
+              std::string::npos)
+        << e.what();
+  }
+  save_recording(dir, r);
+  std::filesystem::resize_file(dir / "session.json", std::uintmax_t(2) << 20);
+  try {
+    load_recording(dir);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("session.json: 2 MB, more than the 1 MB"), std::string::npos) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 
