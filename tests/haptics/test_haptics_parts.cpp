@@ -553,26 +553,20 @@ TEST(Recording, SavesAndLoadsExactly) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("steps.csv: line 2"), std::string::npos) << e.what();
   }
-  // A file larger than a session writes is refused before it is read (a sparse file of 600 MB):
-  // reading it would take about twice its size in memory.
-  save_recording(dir, r);
-  std::filesystem::resize_file(dir / "haptic.csv", std::uintmax_t(600) << 20);
-  try {
-    load_recording(dir);
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("haptic.csv: 600 MB, more than the 512 MB a recording's file can be"),
-              std::string::npos)
-        << e.what();
-  }
-  save_recording(dir, r);
-  std::filesystem::resize_file(dir / "session.json", std::uintmax_t(2) << 20);
-  try {
-    load_recording(dir);
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("session.json: 2 MB, more than the 1 MB"), std::string::npos) << e.what();
-  }
+  // A file larger than a session writes is refused before it is read (sparse files): reading it
+  // would take about twice its size in memory.
+  auto refused_when = [&](const char* file, std::uintmax_t mb, const std::string& expected) {
+    save_recording(dir, r);
+    std::filesystem::resize_file(dir / file, mb << 20);
+    try {
+      load_recording(dir);
+      ADD_FAILURE() << file << " of " << mb << " MB was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  refused_when("haptic.csv", 600, "haptic.csv: 600 MB, more than the 512 MB a recording's file can be");
+  refused_when("session.json", 2, "session.json: 2 MB, more than the 1 MB");
   std::filesystem::remove_all(dir);
 }
 
