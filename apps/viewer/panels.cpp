@@ -168,9 +168,9 @@ void assessment_panel(const Snapshot& s) {
   ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Assessment", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("filled     %.1f %% of %.2f mm^3", 100 * double(a.fill_fraction), double(a.cavity_volume_mm3));
-  ImGui::Text("voids      %d (%.3f mm^3)", a.void_count, double(a.void_volume_mm3));
-  ImGui::Text("pores      %d (%.3f mm^3, each under %.3f mm^3)", a.pore_count, double(a.pore_volume_mm3),
-              double(a.min_void_mm3));
+  // Pores (gaps under a particle's volume) on the voids' line: the panel keeps its height.
+  ImGui::Text("voids      %d (%.3f mm^3); pores %d (%.3f mm^3)", a.void_count, double(a.void_volume_mm3), a.pore_count,
+              double(a.pore_volume_mm3));
   ImGui::Text("overfill   %.3f mm^3", double(a.overfill_mm3));
   ImGui::Text("leaked     %u   lost %u   of %u", a.leaked_particles, a.lost_particles, a.material_particles);
   ImGui::Text("tool force peak %.3g N, mean %.3g N on the device", double(a.peak_device_force_N),
