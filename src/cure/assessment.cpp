@@ -58,7 +58,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     return c.curable[s.id[i]] && is_finite(s.pos[i]) && !(h > ceiling) && !(h < floor);
   };
   // Each increment is measured in columns along `up`, two spacings square (layer_thickness: its
-  // thickness and each particle's depth as the paste's volume over the column's area).
+  // thickness and each particle's depth as the paste's volume over the area it covers).
   std::map<int, std::vector<std::uint32_t>> members;  // increment -> its assessed particles
   for (std::uint32_t i = 0; i < s.size(); ++i) {
     const std::uint32_t id = s.id[i];
