@@ -22,9 +22,8 @@ struct LayerThickness {
   std::vector<std::uint32_t> column_particles;  // particles in each column
   std::vector<std::uint32_t> column_cells;      // its cells holding paste, 1 to 4
   std::vector<real> depth;              // m, each point's depth: the paste above it in its column
-  real column_thickness(std::uint32_t c, real spacing) const {
-    return column_particles[c] * spacing / column_cells[c];
-  }
+  real spacing = 0;                     // m, the particles' spacing it was measured with
+  real column_thickness(std::uint32_t c) const { return column_particles[c] * spacing / column_cells[c]; }
 };
 
 // The layer the `points` (m, world) make, measured along `up` (any length) with particles

@@ -80,7 +80,29 @@ inline constexpr int max_light_presses_per_s = 4;
 // without a tooth: the grid domain's volume).
 inline constexpr real max_material_per_cavity = 2;
 
+// ---- files read back ----------------------------------------------------------------------------
+
+// A file larger than the program writes is not its file, and reading it would take the machine's
+// memory (a 300 MB summary.json made a 944 MB report using 2.2 GB); each is refused, before it is
+// read, at these sizes.
+// A run's session folder, as `report` reads it: a summary of about 10 KB, pictures of a few
+// hundred KB, a force log of about 100 bytes a step (1 GB: a run of 10 million steps).
+inline constexpr std::uint64_t max_session_json_bytes = std::uint64_t(16) << 20;
+inline constexpr std::uint64_t max_session_picture_bytes = std::uint64_t(64) << 20;
+inline constexpr std::uint64_t max_session_csv_bytes = std::uint64_t(1) << 30;
+// A realtime session's recording, as `replay` reads it: haptic.csv, at most 600 bytes a tick (23
+// numbers), for 120 s of ticks (the runtime's recording capacity) at the 4 kHz it allows, 288 MB;
+// steps.csv, at most 320 bytes a step (12 numbers), for max_recorded_steps, so that every
+// recording the runtime writes is read back; session.json, under a kilobyte.
+inline constexpr std::uint64_t max_recording_haptic_bytes = std::uint64_t(512) << 20;
+inline constexpr std::uint64_t max_recording_steps_bytes = max_recorded_steps * 320;
+inline constexpr std::uint64_t max_recording_json_bytes = std::uint64_t(1) << 20;
+
 // ---- shared checks: "" when fine, else the problem (the caller adds the field and the fix) -----
+
+// A file of more than `limit_bytes`: "FILE: N MB, more than the L MB WHAT can be (README, "Resource
+// limits")", else "" (also when its size cannot be read: opening it says why).
+std::string file_size_problem(const std::string& file, std::uint64_t limit_bytes, const char* what);
 
 // A lattice spacing (m) for a kernel of support h (m): finite, within [h * min_spacing_per_h, h];
 // the message in `unit`, of `scale` m per unit.

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -110,7 +109,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
       const real share = sp / real(layer.column_cells[layer.column[k]]);
       from = std::min(from, layer.depth[k]), to = std::max(to, layer.depth[k] + share);
       r.under_cured_column_thickness =
-          std::max(r.under_cured_column_thickness, layer.column_thickness(layer.column[k], sp));
+          std::max(r.under_cured_column_thickness, layer.column_thickness(layer.column[k]));
     }
     r.adequate_fraction = real(adequate) / real(r.particles);
     if (to > from) r.under_cured_from = std::max<real>(0, from), r.under_cured_to = to;

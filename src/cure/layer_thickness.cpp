@@ -25,6 +25,7 @@ real quantile(std::vector<real> v, double q) {
 
 LayerThickness layer_thickness(const std::vector<Vec3>& points, const Vec3& up_in, real spacing) {
   LayerThickness t;
+  t.spacing = spacing;
   if (points.empty()) return t;
   const Vec3 up = up_in / norm(up_in);
   const Vec3 side = std::abs(up.x) < 0.8 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
@@ -61,7 +62,7 @@ LayerThickness layer_thickness(const std::vector<Vec3>& points, const Vec3& up_i
   for (const std::uint32_t i : order) t.depth[i] = above[t.column[i]]++ * spacing / t.column_cells[t.column[i]];
   std::vector<real> thick;
   thick.reserve(t.column_particles.size());
-  for (std::uint32_t c = 0; c < t.column_particles.size(); ++c) thick.push_back(t.column_thickness(c, spacing));
+  for (std::uint32_t c = 0; c < t.column_particles.size(); ++c) thick.push_back(t.column_thickness(c));
   t.median = quantile(thick, 0.5);
   t.p90 = quantile(thick, 0.9);
   return t;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/haptics/recording.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/model.hpp"
 
 namespace dentsph {
@@ -42,29 +43,20 @@ struct Column {
   double max = 0;
 };
 
-// The largest a recording's file can be (README, "Resource limits"): a session's haptic.csv is
-// about 290 bytes a tick (120 s at the 4 kHz the runtime allows: 140 MB), its steps.csv about 125
-// bytes a step (120 s of the paper's 50 us steps: 300 MB), its session.json under a kilobyte. A
-// larger file is not a session's, and reading it would take about twice its size in memory.
-constexpr std::uintmax_t kMaxRecordingCsvBytes = std::uintmax_t(512) << 20;
-constexpr std::uintmax_t kMaxSessionJsonBytes = std::uintmax_t(1) << 20;
-
-void require_at_most(const std::filesystem::path& p, std::uintmax_t limit) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(p, ec);
-  if (!ec && size > limit)
-    throw std::runtime_error(fmt::format("{}: {} MB, more than the {} MB a recording's file can be (README, \"Resource "
-                                         "limits\"); it is not a session's recording: record the session again",
-                                         p.string(), size >> 20, limit >> 20));
+// A recording's file no larger than the runtime writes (limits.hpp, "files read back").
+void require_at_most(const std::filesystem::path& p, std::uint64_t limit) {
+  if (const std::string problem = limits::file_size_problem(p.string(), limit, "a recording's file");
+      !problem.empty())
+    throw std::runtime_error(problem + "; it is not a session's recording: record the session again");
 }
 
 // Rows of numbers after a header line that must match; errors name file, line and column. Every
 // number must be finite, whole numbers whole and in range, and the unit quaternion starting at
 // column `quat` (if any) of unit length: a recording that holds a NaN is refused here, not
 // replayed into a comparison of NaN forces.
-std::vector<std::vector<double>> read_rows(const std::filesystem::path& p, const char* header,
+std::vector<std::vector<double>> read_rows(const std::filesystem::path& p, const char* header, std::uint64_t max_bytes,
                                            const std::vector<Column>& columns, int quat = -1) {
-  require_at_most(p, kMaxRecordingCsvBytes);
+  require_at_most(p, max_bytes);
   std::ifstream in(p);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open the recording file", p.string()));
   std::string line;
@@ -164,7 +156,7 @@ Recording load_recording(const std::filesystem::path& dir) {
   Recording r;
   std::vector<Column> haptic = reals(23);
   haptic[21] = haptic[22] = {true, u32};  // status, pose_sequence
-  for (const auto& row : read_rows(dir / "haptic.csv", kHapticHeader, haptic, 4)) {
+  for (const auto& row : read_rows(dir / "haptic.csv", kHapticHeader, limits::max_recording_haptic_bytes, haptic, 4)) {
     HapticSample s;
     s.t = row[0];
     s.device_position = {row[1], row[2], row[3]};
@@ -180,7 +172,7 @@ Recording load_recording(const std::filesystem::path& dir) {
   }
   std::vector<Column> steps = reals(12);
   steps[0] = {true, u53};  // step
-  for (const auto& row : read_rows(dir / "steps.csv", kStepsHeader, steps, 5)) {
+  for (const auto& row : read_rows(dir / "steps.csv", kStepsHeader, limits::max_recording_steps_bytes, steps, 5)) {
     StepSample s;
     s.step = std::uint64_t(row[0]);
     s.wall_t = row[1];
@@ -188,11 +180,11 @@ Recording load_recording(const std::filesystem::path& dir) {
     s.tool_force = {row[9], row[10], row[11]};
     r.steps.push_back(s);
   }
-  for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, {{true, u53}, {true, u32}}))
+  for (const auto& row : read_rows(dir / "events.csv", kEventsHeader, limits::max_recording_steps_bytes, {{true, u53}, {true, u32}}))
     r.events.push_back({std::uint64_t(row[0]), std::uint32_t(row[1])});
   // The session's settings, as save_recording writes them (dispense_volume, backend and solver are
   // absent in older recordings: the scene's default, the CPU, the scene's solver).
-  if (std::filesystem::exists(dir / "session.json")) require_at_most(dir / "session.json", kMaxSessionJsonBytes);
+  if (std::filesystem::exists(dir / "session.json")) require_at_most(dir / "session.json", limits::max_recording_json_bytes);
   if (std::ifstream in(dir / "session.json"); in) {
     const std::string file = (dir / "session.json").string();
     const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);

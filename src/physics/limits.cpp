@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -92,6 +94,14 @@ std::string memory_problem(std::uint64_t held, std::uint64_t simulated, int max_
   return fmt::format("needs about {:.3g} GiB ({} particles simulated, {} held as read), over the {:.3g} GiB a scene may "
                      "take here",
                      double(need) / double(1 << 30), simulated, held, double(limit_bytes) / double(1 << 30));
+}
+
+std::string file_size_problem(const std::string& file, std::uint64_t limit_bytes, const char* what) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec || size <= limit_bytes) return "";
+  return fmt::format("{}: {} MB, more than the {} MB {} can be (README, \"Resource limits\")", file, size >> 20,
+                     limit_bytes >> 20, what);
 }
 
 }  // namespace dentsph::limits

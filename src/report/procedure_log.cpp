@@ -1,10 +1,8 @@
 // The procedure's log and the increments' thickness (procedure_log.hpp).
 #include "report/procedure_log.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <map>
 #include <optional>
 #include <stdexcept>
 

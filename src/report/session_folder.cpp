@@ -1,6 +1,8 @@
 // Reading a run folder for the report (session_folder.hpp).
 #include "report/session_folder.hpp"
 
+#include "dentsph/limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,25 +35,15 @@ void require_regular_file(const fs::path& file) {
                                    file.string()));
 }
 
-// A session folder's files are a run's: a summary of about 10 KB, pictures of a few hundred KB, a
-// force log of about 100 bytes a step. Larger than these limits a file is not a run's, and reading
-// it would take the machine's memory (a 300 MB summary.json made a 944 MB report using 2.2 GB).
-constexpr std::uintmax_t kMaxJsonBytes = std::uintmax_t(16) << 20;
-constexpr std::uintmax_t kMaxPictureBytes = std::uintmax_t(64) << 20;
-constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t(1) << 30;  // a run of 10 million steps
-
-void require_at_most(const fs::path& file, std::uintmax_t limit, const char* what) {
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(file, ec);
-  if (!ec && size > limit)
-    throw SessionError(fmt::format("{}: {} MB, more than the {} MB {} can be (README, \"Resource limits\"); it is "
-                                   "not the file a run wrote: give the folder a run wrote",
-                                   file.string(), size >> 20, limit >> 20, what));
+// A session folder's files are a run's (limits.hpp, "files read back").
+void require_at_most(const fs::path& file, std::uint64_t limit, const char* what) {
+  if (const std::string problem = limits::file_size_problem(file.string(), limit, what); !problem.empty())
+    throw SessionError(problem + "; it is not the file a run wrote: give the folder a run wrote");
 }
 
 std::vector<std::uint8_t> read_bytes(const fs::path& file) {
   require_regular_file(file);
-  require_at_most(file, kMaxPictureBytes, "a run's picture");
+  require_at_most(file, limits::max_session_picture_bytes, "a run's picture");
   std::ifstream in(file, std::ios::binary);
   if (!in) return {};
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -59,7 +51,7 @@ std::vector<std::uint8_t> read_bytes(const fs::path& file) {
 
 nlohmann::json read_json(const fs::path& file, const char* what) {
   require_regular_file(file);
-  require_at_most(file, kMaxJsonBytes, what);
+  require_at_most(file, limits::max_session_json_bytes, what);
   std::ifstream in(file);
   if (!in) throw SessionError(fmt::format("{}: cannot open {}", file.string(), what));
   try {
@@ -82,7 +74,7 @@ struct Row {
 std::vector<Row> read_csv(const fs::path& file, const std::vector<std::string>& want) {
   if (want.size() > Row::kColumns) throw std::logic_error("read_csv: at most five columns");
   require_regular_file(file);
-  require_at_most(file, kMaxCsvBytes, "a run's log");
+  require_at_most(file, limits::max_session_csv_bytes, "a run's log");
   std::FILE* f = std::fopen(file.c_str(), "r");
   if (!f) throw SessionError(fmt::format("{}: cannot open", file.string()));
   std::vector<Row> rows;

@@ -173,7 +173,7 @@ TEST(LayerThickness, IsThePastesVolumeOverTheAreaItCoversInEachColumn) {
   for (std::size_t i = 0; i < five.size(); ++i) {
     const real top_down = (10 - 0.5) * s - five[i].z;  // from the top layer's centre
     EXPECT_NEAR(edges.depth[i], std::floor(top_down / s + 1e-9) * s, s) << i;
-    EXPECT_LT(edges.depth[i], edges.column_thickness(edges.column[i], s)) << i;
+    EXPECT_LT(edges.depth[i], edges.column_thickness(edges.column[i])) << i;
   }
   // A layer missing in the middle: 9 layers of paste, not the 10 its extent spans.
   std::vector<Vec3> gap;
