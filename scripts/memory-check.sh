@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs each command of the program under an address-space limit (ulimit -v, default 2 GiB) on its
-# largest documented input (README, "Resource limits"), and checks that each ends with a result
+# largest documented input (docs/limits.md), and checks that each ends with a result
 # (exit 0) or a refusal (exit 2), never std::bad_alloc, an abort or a signal.
 #
 #   scripts/memory-check.sh [BUILD_DIR] [LIMIT_MB]      (default: build/release, 2048)

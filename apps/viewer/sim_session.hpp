@@ -30,7 +30,7 @@
 
 namespace dentsph::viewer {
 
-// Paste parameters a user may change while the simulation runs (MODEL.md's names).
+// Paste parameters a user may change while the simulation runs (docs/model.md's names).
 struct MaterialEdit {
   real Kp = 0, Ka = 0, mu = 0;          // paste: m^2/s^2, Pa, Pa s (a non-Newtonian paste's consistency, Pa s^n)
   real A = 0, B = 0, eps = 0, zeta = 0;  // adhesion kernel: m, m, -, -

@@ -1,4 +1,4 @@
-// Adhesion bonds: per-pair hysteresis (MODEL.md), kept by stable particle id so that the bonds
+// Adhesion bonds: per-pair hysteresis (docs/model.md, "Adhesion hysteresis"), kept by stable particle id so that the bonds
 // survive the reordering of every step. Each particle has a fixed-capacity list of partners; an
 // insertion into a full list is refused and counted, never silent.
 #pragma once

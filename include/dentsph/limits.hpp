@@ -1,4 +1,4 @@
-// The largest things a run accepts (README, "Resource limits"). Every input that could make a
+// The largest things a run accepts (docs/limits.md). Every input that could make a
 // run take unbounded time or memory is checked against one of these before the work starts, and
 // refused with the field that asks for it and the fix; the checks share these numbers and the
 // functions below, so that a scene file, a procedure file, the command line and the library say

@@ -1,4 +1,4 @@
-// Model: everything that stays fixed during a step (MODEL.md; cf. MuJoCo's mjModel).
+// Model: everything that stays fixed during a step (docs/model.md; cf. MuJoCo's mjModel).
 // Build one with make_model(); its derived constants are filled in and checked there.
 #pragma once
 
@@ -190,7 +190,7 @@ inline void set_lattice_spacing(ModelParams& p, real s) {
 // whose message names the offending field and says how to fix it.
 Model make_model(const ModelParams& p);
 
-// C_d of MODEL.md: 1 / (x*^zeta - x*^eps) with x* = (zeta/eps)^(1/(eps-zeta)).
+// C_d of docs/model.md ("Kernels"): 1 / (x*^zeta - x*^eps) with x* = (zeta/eps)^(1/(eps-zeta)).
 real adhesion_normalisation(real eps, real zeta);
 
 }  // namespace dentsph

@@ -1,4 +1,4 @@
-// State: everything a step changes (MODEL.md; cf. MuJoCo's mjData). Particles are stored as
+// State: everything a step changes (docs/model.md; cf. MuJoCo's mjData). Particles are stored as
 // structure of arrays, one array per quantity, all of length size(), in the current order
 // (sorted by grid cell after every step). A particle's stable id never changes; index_of_id
 // maps it to its current index.
@@ -17,7 +17,7 @@ namespace dentsph {
 
 struct Model;
 
-// How a particle moves (MODEL.md, "Particles").
+// How a particle moves (docs/model.md, "Particles").
 enum class Role : std::uint8_t {
   material = 0,  // integrated
   boundary = 1,  // static ghost particles (walls)
@@ -41,7 +41,7 @@ inline ParticleInit make_particle(Role role, const Vec3& pos, real mass, const M
   return {role, pos, vel, mass, material, material_index};
 }
 
-// The wrench the particles exert on the tool (MODEL.md, "Haptic force").
+// The wrench the particles exert on the tool (docs/model.md, "Haptic force").
 struct ToolWrench {
   Vec3 force;   // N, sum over tool particles of m_i a_i (without gravity)
   Vec3 torque;  // N m, about the tool pose's origin

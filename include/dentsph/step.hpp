@@ -1,4 +1,5 @@
-// One simulation step: the paper's six stages (MODEL.md, "One step").
+// One simulation step of the model's solver (solver.hpp): the paper's six stages (docs/model.md,
+// "One step") or the iisph solver's ("Solvers"); the all-pairs reference; the time-step limits.
 #pragma once
 
 #include <chrono>
@@ -54,7 +55,7 @@ void step_all_pairs(const Model& model, State& state);
 // Mean number of neighbours within h per particle (self excluded), over the 27-cell grid.
 real mean_neighbours(const Model& model, State& state);
 
-// Time-step limits (MODEL.md, "Stability"; docs/model.md, "Solvers"), in seconds. Which hold
+// Time-step limits (docs/model.md, "Stability" and "Solvers"), in seconds. Which hold
 // depends on the model's solver (StepSolver::set_limits): the paper's explicit step has its acoustic, viscous and force
 // limits; the iisph solver treats pressure, viscosity and adhesion so that none of those binds, and
 // is limited by the velocity CFL condition dt <= cfl h / max|v| alone.

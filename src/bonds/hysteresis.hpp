@@ -1,4 +1,4 @@
-// Bond hysteresis (MODEL.md, "Adhesion hysteresis"): a pair bonds when r < A, stays bonded while
+// Bond hysteresis (docs/model.md, "Adhesion hysteresis"): a pair bonds when r < A, stays bonded while
 // r <= B, and unbonds when r > B. Each particle updates only its own list, from the same squared
 // distance its partner sees (|r_i - r_j|^2 is bit-identical both ways), so the decision is
 // symmetric and a per-particle loop is free of write conflicts. Boundary particles keep no lists

@@ -24,7 +24,7 @@ CureModel make_cure_model(const Model& model, const CureMaterial& paste, real sp
   CureModel cm;
   cm.paste = paste;
   cm.spacing = spacing;
-  // The viscous limit dt <= 0.125 h^2 rho0 / mu (MODEL.md, "Stability"), kept at half of it: rho0 is
+  // The viscous limit dt <= 0.125 h^2 rho0 / mu (docs/model.md, "Stability"), kept at half of it: rho0 is
   // the bulk's, and the pair terms of a particle at the surface, at a third of it, are up to ten
   // times the bulk's (m_j / rho_j and 1 / rho_i). At 0.8 of it, two surface particles of a cured
   // filling's second increment (rho 625 of 2000, mu 1.42 Pa s, adhesion risen 5%, dt 50 us) grew

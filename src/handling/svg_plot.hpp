@@ -1,5 +1,5 @@
 // A curve of a handling test as an SVG plot (axes with their ticks and labels, a legend, a
-// published range as a bar): a picture a browser or the README shows as it is, with no library.
+// published range as a bar): a picture a browser or docs/model.md shows as it is, with no library.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// The adhesion bonds' rules (MODEL.md, "Adhesion hysteresis"), written once for the CPU step
+// The adhesion bonds' rules (docs/model.md, "Adhesion hysteresis"), written once for the CPU step
 // (bonds/hysteresis.hpp, step/forces.cpp) and the CUDA stage bodies (backend/cuda/bond_slots.hpp,
 // forces.hpp): a pair bonds when closer than A and may bond at all, and lets go when stretched past
 // B; each event is counted once per pair. The stores that hold the bonds differ (BondStore on the

@@ -1,4 +1,4 @@
-// Stage 6's law for one particle (MODEL.md, "Integration"): semi-implicit (symplectic) Euler for
+// Stage 6's law for one particle (docs/model.md, "One step", step 6): semi-implicit (symplectic) Euler for
 // material, a = f / rho + g, v += dt a, r += dt v; boundary particles at rest; tool particles moved
 // to the rigid transform of the new tool pose with the velocity that move implies. Written once
 // for the CPU step (step/integrate.cpp) and the CUDA stage body (backend/cuda/integrate.hpp); each

@@ -1,4 +1,4 @@
-// SPH smoothing kernels (MODEL.md, "Kernels"): pure functions of their arguments, host and device.
+// SPH smoothing kernels (docs/model.md, "Kernels"): pure functions of their arguments, host and device.
 // Mueller et al. 2003 for poly6, spiky and viscosity; the paper's eq. 12 for adhesion.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Pair interactions of the force stage (MODEL.md step 5), shared by every backend. Each returns
+// Pair interactions of the force stage (docs/model.md, "One step", step 5), shared by every backend. Each returns
 // the force density that j exerts on i, in N/m^3. m_i/rho_i times it is antisymmetric in (i, j),
 // so internal forces conserve momentum.
 #pragma once
@@ -41,7 +41,7 @@ DENTSPH_HD inline Vec3 adhesion(const Side& i, const Side& j, const Vec3& d, rea
 }
 
 // Whether a pair may bond at all: its mean adhesion strength is positive (so tool and wall,
-// both with Ka = 0, never bond; MODEL.md, "Particles"), and at least one side is material (two
+// both with Ka = 0, never bond; docs/model.md, "Particles"), and at least one side is material (two
 // particles that never move relative to each other, wall-wall or tool-tool, have nothing to
 // hold together).
 DENTSPH_HD inline bool can_bond(Role role_i, Role role_j, real Ka_i, real Ka_j) {

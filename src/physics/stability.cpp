@@ -1,4 +1,4 @@
-// Time-step limits (MODEL.md, "Stability"). Kp has the units of a squared sound speed
+// Time-step limits (docs/model.md, "Stability"). Kp has the units of a squared sound speed
 // (dP/drho = Kp), so c = sqrt(max Kp) over every particle that can push material. Which of them bind
 // is the model's solver's to say (StepSolver::set_limits, motion_limit): the paper's explicit step
 // has all of them, the iisph solver (implicit in pressure and viscosity) the velocity CFL condition

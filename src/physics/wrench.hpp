@@ -1,4 +1,4 @@
-// One tool particle's part of the wrench on the tool (MODEL.md, "Haptic force"): its m a = f V
+// One tool particle's part of the wrench on the tool (docs/model.md, "Haptic force"): its m a = f V
 // (f the force density, V = m / rho; gravity left out) and that force's moment about the tool's
 // origin. Written once for the paper's CPU step (step/tool_wrench.cpp), the CUDA stage body
 // (backend/cuda/tool_wrench.hpp) and the iisph solver (solver/finish.cpp, which has the force

@@ -121,7 +121,7 @@ ToolPart parse_tool(const Reader& tool, const SceneMaterials& materials, const K
                     ParticleBudget& budget, Solver solver);
 
 // Where the keyframes and events of a file land. A scene file gives world metres (the default);
-// a procedure file (procedure_json.cpp) gives millimetres in a tooth's frame.
+// a procedure file (dental_procedure.cpp) gives millimetres in a tooth's frame.
 struct Placement {
   const char* length_unit = "m";  // in the fields' hints
   real length_scale = 1;          // m per file length unit

@@ -167,7 +167,7 @@ ModelParams read_simulation(const Reader& root, Domain& domain) {
   return p;
 }
 
-// "adhesion": the support [A, B] of the adhesion kernel and its exponents (MODEL.md eq. 12).
+// "adhesion": the support [A, B] of the adhesion kernel and its exponents (docs/model.md, "Kernels": the paper's eq. 12).
 AdhesionParams read_adhesion(const Reader& root) {
   const Reader a = root.object("adhesion", "the adhesion kernel {\"A\": 0.012, \"B\": 0.03}");
   a.only({"A", "B", "eps", "zeta"});

@@ -1,4 +1,4 @@
-// Stage 3: rho_i = sum_j m_j W_poly6(r_ij) over all roles, self included (MODEL.md; the paper's
+// Stage 3: rho_i = sum_j m_j W_poly6(r_ij) over all roles, self included (docs/model.md, "One step"; the paper's
 // eq. 6 has a stray minus sign). Boundary particles never move, so the part of a boundary
 // particle's density that comes from other boundary particles is computed once
 // (compute_static_density) and each step adds only its moving neighbours, from its list.

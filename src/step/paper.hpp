@@ -1,4 +1,4 @@
-// The paper's explicit, weakly compressible step (MODEL.md, "One step"): its six stages on the grid
+// The paper's explicit, weakly compressible step (docs/model.md, "One step"): its six stages on the grid
 // (stages.hpp), and the solver object that runs it (paper_solver.cpp).
 #pragma once
 

@@ -1,6 +1,6 @@
 // The paper's step as a solver object (dentsph/solver.hpp). Its scratch is the State's (the grid's
 // buffers, sized with the particles), so it has none of its own; it is explicit in pressure,
-// viscosity and adhesion, so the acoustic, viscous and force limits bind it (MODEL.md, "Stability").
+// viscosity and adhesion, so the acoustic, viscous and force limits bind it (docs/model.md, "Stability").
 #include <algorithm>
 #include <cmath>
 #include <limits>

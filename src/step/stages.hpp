@@ -1,4 +1,4 @@
-// The stages of one step (MODEL.md, "One step"), one file each. paper_step.cpp calls them in the
+// The stages of one step (docs/model.md, "One step"), one file each. paper_step.cpp calls them in the
 // paper's order; brute_force.cpp replaces the grid stages by all-pairs loops.
 #pragma once
 

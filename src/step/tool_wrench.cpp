@@ -1,4 +1,4 @@
-// Force and torque of the particles on the tool (MODEL.md, "Haptic force"): the sum over tool
+// Force and torque of the particles on the tool (docs/model.md, "Haptic force"): the sum over tool
 // particles of m_i a_i without gravity, a_i = f_i / rho_i, and its moment about the tool origin
 // (each particle's term: physics/wrench.hpp).
 #include "physics/wrench.hpp"

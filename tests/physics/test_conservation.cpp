@@ -1,4 +1,4 @@
-// Internal forces conserve momentum (MODEL.md, "One step"): with no gravity, boundary or tool,
+// Internal forces conserve momentum (docs/model.md, "One step"): with no gravity, boundary or tool,
 // total momentum stays constant to rounding over 1000 steps.
 #include <gtest/gtest.h>
 

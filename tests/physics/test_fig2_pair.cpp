@@ -1,4 +1,4 @@
-// The paper's Fig. 2 as a two-particle test (MODEL.md, "Adhesion hysteresis"). A tool particle is
+// The paper's Fig. 2 as a two-particle test (docs/model.md, "Adhesion hysteresis"). A tool particle is
 // pushed towards a material particle and pulled away again along x; the material particle is
 // held at the origin (reset after every step), so the distance follows the script; the force on the tool shows the seven stages, and the loading
 // and unloading force-distance curves differ (the area between them is positive).

@@ -134,7 +134,7 @@ TEST(Cli, NumericOptionsOutOfRangeAreRefused) {
   const Result o = dentsph_cli(std::string(rt) + "--workspace-origin 0 nan 0");
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("--workspace-origin"), std::string::npos) << o.output;
-  // --help shows each range (the README says so).
+  // --help shows each range (docs/command-line.md says so).
   const Result help = dentsph_cli("run --help");
   EXPECT_NE(help.output.find("FLOAT in 1 to 1e+07"), std::string::npos) << help.output;
   EXPECT_NE(help.output.find("FLOAT in 0.0001 to 10000"), std::string::npos) << help.output;

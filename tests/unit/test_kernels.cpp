@@ -1,4 +1,4 @@
-// The smoothing kernels (MODEL.md, "Kernels"): normalisation by quadrature, derivatives against
+// The smoothing kernels (docs/model.md, "Kernels"): normalisation by quadrature, derivatives against
 // finite differences, and the adhesion kernel's zeros, sign and peak.
 #include <gtest/gtest.h>
 

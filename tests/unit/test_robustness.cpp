@@ -1,4 +1,4 @@
-// Robust against every input (README, "Resource limits"): what would hang, take the machine's
+// Robust against every input (docs/limits.md): what would hang, take the machine's
 // memory or lose work is refused before it starts, naming the file, the field and the fix. Each
 // test holds the cases of one class of defect.
 #include <gtest/gtest.h>

@@ -408,7 +408,7 @@ TEST(SceneParse, DefaultMassGivesRestDensityInside) {
 // ---- the example scenes
 // ----------------------------------------------------------------------------
 
-// Acoustic limit of MODEL.md: dt <= lambda h / sqrt(max Kp).
+// Acoustic limit of docs/model.md, "Stability": dt <= lambda h / sqrt(max Kp).
 real acoustic_limit(const Scene& sc) {
   real kp = 0;
   for (const ParticleInit& p : sc.particles) kp = std::max(kp, p.material.Kp);
