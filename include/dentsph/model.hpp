@@ -33,6 +33,9 @@ struct KernelCoeffs {
   real adh_scale = 0;    // Cd / h^4, 1/m^4
   real cubic = 0;        // 8 / (pi h^3), 1/m^3: the cubic spline of support h (an iisph gradient)
   real spiky_lattice = 0;  // spiky_grad / kSpikyLatticeGradient, 1/m^6: the iisph solver's spiky gradient
+  // The density is the cubic spline's sum instead of poly6's (the iisph solver's density_kernel
+  // "cubic"; make_model sets it); the lattice mass (lattice_particle_mass) follows it.
+  bool cubic_density = false;
 };
 
 // On a simple cubic lattice of spacing h / 2 whose particles have the poly6 lattice mass
@@ -76,6 +79,13 @@ enum class Solver { paper, iisph };
 enum class PressureGradient { spiky, cubic };
 const char* gradient_name(PressureGradient g);  // "spiky", "cubic"
 std::optional<PressureGradient> gradient_from_name(std::string_view name);
+// The kernel the iisph solver sums its density with (docs/model.md, "One kernel for the density
+// and its rate"): the paper's poly6, or the cubic spline, whose gradient is then the pressure's
+// (gradient "cubic"), so that the density the solve predicts for the step's end is the rate of the
+// density it then sums.
+enum class DensityKernel { poly6, cubic };
+const char* density_kernel_name(DensityKernel k);  // "poly6", "cubic"
+std::optional<DensityKernel> density_kernel_from_name(std::string_view name);
 // How the iisph solver solves its pressure (docs/model.md, "The pressure solve"): relaxed Jacobi
 // (solver/pressure.cpp; a correction travels about one particle layer an iteration, so its iterations
 // grow with the square of the scene's depth in layers) or projected conjugate gradients
@@ -122,6 +132,8 @@ struct IisphParams {
   // the same paste on both solvers (docs/model.md), 1 takes the equation of state as written.
   real stiffness = 0.5;
   PressureGradient gradient = PressureGradient::spiky;
+  // The density's kernel; "cubic" needs gradient "cubic" (check_iisph_params).
+  DensityKernel density_kernel = DensityKernel::poly6;
   // The viscous pressure's step alpha (docs/model.md, "The viscous pressure"; 0: none, the solver as
   // it was): a viscous paste's pressure built up across steps, one Uzawa iteration of the coupled
   // pressure and viscosity a step, so that the viscosity solved after the pressure does not leave the

@@ -1,4 +1,5 @@
-// Particle mass for a lattice at rest density: m = rho0 / sum_j W_poly6(|r_ij|) over the lattice.
+// Particle mass for a lattice at rest density: m = rho0 / sum_j W(|r_ij|) over the lattice, W the
+// density's kernel (poly6, or the cubic spline where KernelCoeffs::cubic_density).
 #include <cmath>
 #include <stdexcept>
 
@@ -20,7 +21,8 @@ real lattice_particle_mass(real rho0, real spacing, const KernelCoeffs& kernel) 
   for (int i = -n; i <= n; ++i)
     for (int j = -n; j <= n; ++j)
       for (int k = -n; k <= n; ++k)
-        sum += kernels::poly6(spacing * spacing * real(i * i + j * j + k * k), kernel);
+        sum += kernel.cubic_density ? kernels::cubic(spacing * std::sqrt(real(i * i + j * j + k * k)), kernel)
+                                    : kernels::poly6(spacing * spacing * real(i * i + j * j + k * k), kernel);
   return rho0 / sum;
 }
 

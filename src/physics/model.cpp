@@ -37,6 +37,20 @@ std::optional<PressureGradient> gradient_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+const char* density_kernel_name(DensityKernel k) {
+  switch (k) {
+    case DensityKernel::poly6: return "poly6";
+    case DensityKernel::cubic: return "cubic";
+  }
+  return "unknown";
+}
+
+std::optional<DensityKernel> density_kernel_from_name(std::string_view name) {
+  for (DensityKernel k : {DensityKernel::poly6, DensityKernel::cubic})
+    if (name == density_kernel_name(k)) return k;
+  return std::nullopt;
+}
+
 const char* pressure_solve_name(PressureSolve s) {
   switch (s) {
     case PressureSolve::jacobi: return "jacobi";
@@ -85,6 +99,11 @@ void check_iisph_params(const IisphParams& ip) {
   if (!(ip.viscous_pressure >= 0 && ip.viscous_pressure <= 1))
     fail("iisph.viscous_pressure",
          fmt::format("must be in [0, 1], got {}; 0 for none, 0.5 is the presets' (docs/model.md)", ip.viscous_pressure));
+  if (ip.density_kernel == DensityKernel::cubic && ip.gradient != PressureGradient::cubic)
+    fail("iisph.density_kernel",
+         fmt::format("\"cubic\" needs the pressure's gradient to be the same kernel's, got gradient \"{}\"; set "
+                     "iisph.gradient to \"cubic\", or density_kernel to \"poly6\"",
+                     gradient_name(ip.gradient)));
   if (!(ip.stiffness > 0 && ip.stiffness <= 1))
     fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
 }
@@ -129,6 +148,7 @@ Model make_model(const ModelParams& p) {
   m.adhesion = a;
   m.adhesion.Cd = adhesion_normalisation(a.eps, a.zeta);
   m.kernel = kernels::make_coeffs(p.h, m.adhesion);
+  m.kernel.cubic_density = p.solver == Solver::iisph && p.iisph.density_kernel == DensityKernel::cubic;
   m.max_bonds_per_particle = p.max_bonds_per_particle;
   m.cfl_lambda = p.cfl_lambda;
   m.neighbour_skin = p.neighbour_skin;

@@ -46,7 +46,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
       "iisph", "the iisph solver's settings {\"stiffness\": 0.5, \"max_iterations\": 12, ...} (docs/model.md)");
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
-           "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "rheology_iterations",
+           "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "density_kernel", "rheology_iterations",
            "rheology_tolerance", "wall_rest_density", "viscous_pressure"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
@@ -64,6 +64,15 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
       i->fail("gradient", fmt::format("unknown gradient \"{}\"", *g),
               "give \"spiky\" (the paper's kernel, lattice-scaled) or \"cubic\" (the cubic spline; docs/model.md)");
     p.gradient = *grad;
+  }
+  if (const std::optional<std::string> k =
+          i->optional_string("density_kernel", "the density's kernel: \"poly6\" or \"cubic\"")) {
+    const std::optional<DensityKernel> kernel = density_kernel_from_name(*k);
+    if (!kernel)
+      i->fail("density_kernel", fmt::format("unknown density kernel \"{}\"", *k),
+              "give \"poly6\" (the paper's, the default) or \"cubic\" (the cubic spline, with gradient \"cubic\"; "
+              "docs/model.md)");
+    p.density_kernel = *kernel;
   }
   p.stiffness = i->number_or("stiffness", p.stiffness,
                              "the share of Kp the solve's equation of state takes: 0.5 the paper's paste's "

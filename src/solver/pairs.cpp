@@ -1,5 +1,6 @@
 // The iisph solver's pair pass: every particle's density (the paper's, rho_i = sum_j m_j
-// W_poly6(r_ij), self included; a boundary particle's boundary part is static, rho_static) and its
+// W_poly6(r_ij), self included, or with the cubic spline's W where the model's kernel says so
+// (KernelCoeffs::cubic_density); a boundary particle's boundary part is static, rho_static) and its
 // row of neighbours within h:
 //  - a material particle lists every neighbour: m_j gradW(r_i - r_j) (the spiky kernel's or the
 //    cubic spline's, model.iisph.gradient) and the viscosity weight
@@ -77,9 +78,13 @@ class RowBuilder {
     // a_ii = -dt^2 / rho_i^2 diag_x: p_i moves i itself (material: |S_i|^2) and its material
     // neighbours (m_i sum_j m_j |gradW_ij|^2); pressure.cpp.
     x.diag_x[i_] = (material ? norm2(S_) : 0) + mi_ * g2_;
-    const real h6 = k_.h2 * k_.h2 * k_.h2;
-    s_.rho[i_] = role_ == Role::boundary ? s_.rho_static[s_.id[i_]] + k_.poly6 * rho_sum_
-                                         : k_.poly6 * (mi_ * h6 + rho_sum_);
+    if (k_.cubic_density) {
+      s_.rho[i_] = role_ == Role::boundary ? s_.rho_static[s_.id[i_]] + rho_sum_ : mi_ * k_.cubic + rho_sum_;
+    } else {
+      const real h6 = k_.h2 * k_.h2 * k_.h2;
+      s_.rho[i_] = role_ == Role::boundary ? s_.rho_static[s_.id[i_]] + k_.poly6 * rho_sum_
+                                           : k_.poly6 * (mi_ * h6 + rho_sum_);
+    }
     x.inv_rho[i_] = 1 / s_.rho[i_];
     overflow += overflow_;
   }
@@ -105,6 +110,9 @@ class RowBuilder {
       w.visc[e] = unit_ ? (g != 0 ? projected_ * r / ((r2 + 0.01 * k_.h2) * mj * std::abs(g)) : 0)
                         : 0.5 * (mu_i_ + mu[w.j[e]]) * mj * k_.visc_lap * (k_.h - r);
     }
+    // The cubic spline's density terms, m_j W(r_ij) (finish() then applies no constant).
+    if (k_.cubic_density)
+      for (std::uint32_t e = 0; e < n; ++e) w.rho[e] = mass[w.j[e]] * kernels::cubic(std::sqrt(w.r2[e]), k_);
   }
 
   // The gathered neighbours into the row.

@@ -171,12 +171,25 @@ real density_and_neighbours(const Model& model, State& s, std::int64_t i) {
   return density_over_list(model, s, i, [&](std::uint32_t q, std::uint32_t) { return clamp_at_zero(a.h2 - r2_at[q]); });
 }
 
+
+// A boundary particle's density from the boundary alone with the cubic spline (the iisph solver's
+// density_kernel "cubic"), self included as the solver's pair pass leaves it out.
+real cubic_boundary_density(const Model& model, const State& s, std::int64_t i) {
+  real sum = s.mass[i] * model.kernel.cubic;
+  grid::for_each_neighbour_range(model.grid, s.grid, s.pos[i], grid::Visit::boundary, [&](std::uint32_t b, std::uint32_t e) {
+    for (std::uint32_t j = b; j < e; ++j)
+      if (j != std::uint32_t(i)) sum += s.mass[j] * kernels::cubic(norm(s.pos[i] - s.pos[j]), model.kernel);
+  });
+  return sum;
+}
+
 }  // namespace
 
 void compute_static_density(const Model& model, State& s) {
   for (std::uint32_t i = 0; i < s.size(); ++i)
-    s.rho_static[s.id[i]] =
-        s.role[i] == Role::boundary ? density_sum(model, s, i, grid::Visit::boundary, Coords::sorted) : 0;
+    s.rho_static[s.id[i]] = s.role[i] != Role::boundary ? 0
+                            : model.kernel.cubic_density ? cubic_boundary_density(model, s, i)
+                                                         : density_sum(model, s, i, grid::Visit::boundary, Coords::sorted);
   s.rho_static_valid = true;
 }
 

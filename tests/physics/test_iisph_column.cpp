@@ -7,7 +7,7 @@
 //
 // The liquid: spacing s = 1 mm (h = 2 mm), rho0 = 1000 kg/m^3, Kp = 100 m^2/s^2 (a sound speed of
 // 10 m/s: the column's bottom is compressed by rho g D / (0.5 Kp) = 0.6%), no adhesion, at 1 Pa s
-// (below: water's viscosity does not settle on this discretisation). The step: the velocity limit
+// (water's viscosity settles only with the density and its rate of one kernel: the last test). The step: the velocity limit
 // dt <= cfl h / v_max, with v_max = sqrt(2 g D) the speed of a fall through the column's whole depth
 // D (the fastest any of its liquid can move, as when the column collapses): 1.04 ms, 13 times the
 // paper's acoustic limit (80 us); and a quarter of it.
@@ -37,13 +37,21 @@ real velocity_limited_step() {
   return cfl * h / std::sqrt(2 * g * depth);
 }
 
-Column column(real dt, PressureSolve solve, int max_iterations) {
+// cubic: the density and the pressure's gradient of one kernel, the cubic spline (iisph.density_kernel
+// "cubic"), at water's viscosity.
+constexpr real water_mu = 1e-3;
+Column column(real dt, PressureSolve solve, int max_iterations, bool cubic = false) {
   ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{nx + 5, nx + 5, nz + 8} * s, dt, {0, 0, -g});
   p.solver = Solver::iisph;
   p.iisph.pressure_solve = solve;
   p.iisph.max_iterations = max_iterations;
+  if (cubic) {
+    p.iisph.gradient = PressureGradient::cubic;
+    p.iisph.density_kernel = DensityKernel::cubic;
+  }
   Column c{make_model(p), {}};
-  const Material liquid{mu, Kp, rho0, 0}, wall{mu, 1.5 * Kp, rho0, 0};
+  const real viscosity = cubic ? water_mu : mu;
+  const Material liquid{viscosity, Kp, rho0, 0}, wall{viscosity, 1.5 * Kp, rho0, 0};
   c.state.add_particles(c.model, testing::column_in_container(c.model, s, nx, nz, liquid, wall));
   return c;
 }
@@ -95,11 +103,10 @@ class Profile {
                     count_ = std::vector<real>(nz + 2, 0);
 };
 
-// The column run at 1 Pa s (the dental paste's viscosity) for `seconds`, its pressure averaged over
-// the last 0.25 s. At water's viscosity (1e-3 Pa s) it does not come to rest on any solve: started
-// on a cubic lattice (not how a liquid packs under its weight) it rearranges, its particles at 0.14
+// The column run for `seconds`, its pressure averaged over the last 0.25 s. With the poly6 density at
+// water's viscosity (1e-3 Pa s) it does not come to rest on any solve: its particles move at 0.14
 // and 0.37 m/s after 1.5 s (1 ms and 0.26 ms steps, cg at a mean density error of 1e-4), and 0.3 to
-// 0.4 m/s at 13 us: the discretisation's, not the solve's (docs/model.md, "The pressure solve").
+// 0.4 m/s at 13 us (docs/model.md, "One kernel for the density and its rate").
 struct Settled {
   Profile window;
   real iterations_mean = 0;
@@ -189,6 +196,54 @@ TEST(DeepColumn, ConjugateGradientsNeedFewerIterationsThanJacobiWhileItSettles) 
   EXPECT_EQ(cg.on_budget, 0);
   EXPECT_LT(cg.iterations_max, 0.6 * jacobi.iterations_max);
   EXPECT_LT(cg.iterations_mean, 0.8 * jacobi.iterations_mean);
+}
+
+
+
+// At water's viscosity, the density and its rate of one kernel (iisph.density_kernel "cubic",
+// docs/model.md, "One kernel for the density and its rate"). With the paper's poly6 density and
+// either gradient, the same column relaxed the same way heats up once it is released (measured, with
+// the targets 1e-4 and 1e-3: 0.5 s after, a kinetic energy of 1.8 uJ, 35 mm/s rms, the fastest
+// particle at 99 mm/s; at a quarter of the step 13 uJ, 94 mm/s rms, 263 mm/s): the solve predicts
+// the density's change with one kernel's gradient, the next step sums the density with another and
+// corrects the difference within its step, so the smaller the step the faster the heating. With one
+// kernel the prediction is the density's own rate (at the targets 1e-4 and 1e-3: 0.002 uJ, 1.2 mm/s
+// rms). The start: 0.5 s from the lattice at the velocity limit with the velocities damped by 0.9 a
+// step (a relaxed packing: the liquid's rest, not its dynamics), then free at that step to 1.25 s,
+// and from there at that step and at a quarter of it to 1.5 s. Measured over the last 0.25 s: dp/dd
+// 1.0139 rho g at both steps, 0.66 mm/s rms at both, the fastest particle at 7.2 and 7.1 mm/s.
+// Departure: the "every particle under 1 mm/s" is not reached: a few particles by the floor
+// keep moving at up to 5 to 7 mm/s (1.5 to 4.5 mm/s after 3 s with targets ten times tighter).
+TEST(DeepColumn, AtWatersViscosityOneKernelForTheDensityKeepsItAtRest) {
+  const real dt = velocity_limited_step();
+  Column c = column(dt, PressureSolve::cg, 200, /*cubic=*/true);
+  c.model.iisph.density_error = 1e-5;
+  c.model.iisph.max_density_error = 1e-4;
+  while (c.state.time < 0.5) {
+    step(c.model, c.state, StepOptions{1, nullptr});
+    for (Vec3& v : c.state.vel) v *= 0.9;
+  }
+  settle(c, dt, 1.25);
+  Column q = c;
+  const Settled large = settle(c, dt, 1.5), quarter = settle(q, dt / 4, 1.5);
+  for (const Column* col : {&c, &q}) {
+    real ke = 0, m = 0;
+    for (std::uint32_t i = 0; i < col->state.size(); ++i)
+      if (col->state.role[i] == Role::material) {
+        ke += col->state.mass[i] * dot(col->state.vel[i], col->state.vel[i]);
+        m += col->state.mass[i];
+      }
+    const real rms = std::sqrt(ke / m);
+    std::printf("rms speed %.3g mm/s\n", rms * 1e3);
+    EXPECT_LT(rms, 1e-3) << "m/s: the liquid at rest on the whole";
+  }
+  for (const Settled* r : {&large, &quarter}) {
+    EXPECT_EQ(r->on_budget, 0) << "every step's solve reached its tolerance";
+    EXPECT_NEAR(r->window.slope / (rho0 * g), 1.0, 0.02) << "dp/dd against rho g";
+    EXPECT_LT(std::abs(r->window.intercept), 0.03 * rho0 * g * nz * s) << "Pa: through zero at the surface";
+    EXPECT_LT(r->window.max_speed, 1e-2) << "m/s: no particle moving on";
+  }
+  EXPECT_NEAR(large.window.slope, quarter.window.slope, 0.01 * rho0 * g) << "the same pressure at both steps";
 }
 
 }  // namespace

@@ -231,6 +231,12 @@ TEST(SceneParse, ReadsTheIisphSolversSettings) {
   EXPECT_EQ(sc.model.iisph.viscosity_iterations, 12);
   EXPECT_EQ(sc.model.iisph.cfl, 0.3);
   EXPECT_EQ(sc.model.iisph.min_iterations, IisphParams{}.min_iterations) << "not given: the default";
+  EXPECT_EQ(sc.model.iisph.density_kernel, DensityKernel::poly6) << "the default";
+  j["simulation"]["solver"] = "iisph";
+  j["simulation"]["iisph"] = {{"gradient", "cubic"}, {"density_kernel", "cubic"}};
+  EXPECT_EQ(parse(j).model.iisph.density_kernel, DensityKernel::cubic);
+  EXPECT_TRUE(parse(j).model.kernel.cubic_density);
+  j["simulation"].erase("solver");
   j["simulation"]["iisph"] = {{"gradient", "spiky"}};
   EXPECT_EQ(parse(j).model.iisph.gradient, PressureGradient::spiky);
   EXPECT_EQ(parse(j).model.iisph.pressure_solve, PressureSolve::jacobi) << "the default";
@@ -600,6 +606,11 @@ const BrokenCase broken_cases[] = {
      "simulation.iisph.max_iterations", "must be in [2, 1000], got 5000"},
     {"iisph unknown gradient", [](json& j) { j["simulation"]["iisph"] = {{"gradient", "wendland"}}; },
      "simulation.iisph.gradient", "give \"spiky\" (the paper's kernel, lattice-scaled) or \"cubic\""},
+    {"iisph unknown density kernel", [](json& j) { j["simulation"]["iisph"] = {{"density_kernel", "wendland"}}; },
+     "simulation.iisph.density_kernel", "give \"poly6\" (the paper's, the default) or \"cubic\""},
+    {"iisph cubic density with the spiky gradient",
+     [](json& j) { j["simulation"]["iisph"] = {{"density_kernel", "cubic"}}; }, "simulation.iisph.density_kernel",
+     "set iisph.gradient to \"cubic\""},
     {"gravity of 1e308", [](json& j) { j["simulation"]["gravity"] = {0, 0, -1e308}; }, "simulation.gravity",
      "over the largest of 1000 m/s^2"},
     {"a denormal particle mass", [](json& j) { j["blocks"][1]["mass"] = 5e-324; }, "blocks[1].mass",

@@ -103,6 +103,55 @@ TEST(Solvers, EachStepsABlockOfPasteSettlingInAContainer) {
   }
 }
 
+// The iisph solver's density kernel (iisph.density_kernel, docs/model.md, "One kernel for the density
+// and its rate"): with either, a particle of a column's lattice (walls included) whose neighbourhood
+// is whole has the rest density after the first step's pair pass: the lattice mass, the material's
+// density and the walls' static density all sum the same kernel. The cubic spline needs the cubic
+// gradient; the paper's step keeps poly6 whatever the setting.
+TEST(Solvers, EachDensityKernelPutsTheLatticeAtItsRestDensity) {
+  const real s = kSpacing;
+  constexpr int nx = 4, nz = 6;
+  for (const DensityKernel kernel : {DensityKernel::poly6, DensityKernel::cubic}) {
+    SCOPED_TRACE(density_kernel_name(kernel));
+    ModelParams p = testing::params_for_spacing(s, Vec3{-5, -5, -5} * s, Vec3{nx + 5, nx + 5, nz + 8} * s, 1e-4);
+    p.solver = Solver::iisph;
+    p.iisph.gradient = PressureGradient::cubic;
+    p.iisph.density_kernel = kernel;
+    Model model = make_model(p);
+    EXPECT_EQ(model.kernel.cubic_density, kernel == DensityKernel::cubic);
+    State st;
+    const Material liquid{1, 100, 1000, 0}, wall{1, 150, 1000, 0};
+    st.add_particles(model, testing::column_in_container(model, s, nx, nz, liquid, wall));
+    step(model, st, {});
+    int whole = 0;
+    for (std::uint32_t i = 0; i < st.size(); ++i) {
+      if (st.role[i] != Role::material || st.pos[i].z > (nz - 3) * s) continue;  // two layers under the top
+      EXPECT_NEAR(st.rho[i], 1000, 1e-6 * 1000) << "particle " << st.id[i] << " at " << st.pos[i].z / s;
+      ++whole;
+    }
+    EXPECT_EQ(whole, nx * nx * (nz - 2));
+  }
+  // Either kernel sums more than the rest density at another one's lattice mass: they differ by 1%.
+  ModelParams p = testing::params_for_spacing(s, Vec3{-1, -1, -1}, Vec3{1, 1, 1});
+  const real poly6_mass = lattice_particle_mass(1000, s, make_model(p).kernel);
+  p.solver = Solver::iisph;
+  p.iisph.gradient = PressureGradient::cubic;
+  p.iisph.density_kernel = DensityKernel::cubic;
+  EXPECT_NEAR(lattice_particle_mass(1000, s, make_model(p).kernel) / poly6_mass, 1.0098, 0.0005);
+  // The paper's step sums poly6 whatever the iisph setting; the cubic density needs the cubic gradient.
+  p.solver = Solver::paper;
+  EXPECT_FALSE(make_model(p).kernel.cubic_density);
+  p.solver = Solver::iisph;
+  p.iisph.gradient = PressureGradient::spiky;
+  try {
+    (void)make_model(p);
+    ADD_FAILURE() << "the cubic density with the spiky gradient was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("iisph.density_kernel"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("set iisph.gradient to \"cubic\""), std::string::npos) << e.what();
+  }
+}
+
 // The iisph solver says when its pressure solve stopped on its budget rather than its tolerance, and
 // how far the viscosity's fixed iterations left its residual: with a budget of 2 iterations and a
 // target of 1e-6 every step stops on the budget, with 1000 and 0.5% none does; and the viscosity
