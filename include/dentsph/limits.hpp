@@ -97,6 +97,9 @@ inline constexpr std::uint64_t max_session_csv_bytes = std::uint64_t(1) << 30;
 inline constexpr std::uint64_t max_recording_haptic_bytes = std::uint64_t(512) << 20;
 inline constexpr std::uint64_t max_recording_steps_bytes = max_recorded_steps * 320;
 inline constexpr std::uint64_t max_recording_json_bytes = std::uint64_t(1) << 20;
+// The most haptic ticks a realtime run records (RealtimeOptions::record_capacity_s times its rate),
+// so that its haptic.csv, at most 600 bytes a tick, stays under what `replay` reads.
+inline constexpr std::uint64_t max_recorded_ticks = max_recording_haptic_bytes / 600;
 
 // ---- shared checks: "" when fine, else the problem (the caller adds the field and the fix) -----
 

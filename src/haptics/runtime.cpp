@@ -62,6 +62,11 @@ void check_realtime_options(const RealtimeOptions& o, double force_scale) {
                     o.solve_share));
   if (!(o.duration_s >= 0) || !(o.sim_rate_limit_hz >= 0) || !(o.threads >= 1))
     bad("duration and simulation rate limit must be non-negative, threads at least 1");
+  if (!(o.record_capacity_s >= 0) || o.record_capacity_s * o.haptic_rate_hz > double(limits::max_recorded_ticks))
+    bad(fmt::format("record capacity {} s: at {} Hz a recording holds at most {} ticks, so that replay reads its "
+                    "haptic.csv back; give 0 to {:.0f} s",
+                    o.record_capacity_s, o.haptic_rate_hz, limits::max_recorded_ticks,
+                    std::floor(double(limits::max_recorded_ticks) / o.haptic_rate_hz)));
   if (o.duration_s > limits::max_realtime_s)
     bad(fmt::format("duration {} s: a realtime run lasts at most {:.0f} s of wall time", o.duration_s,
                     limits::max_realtime_s));

@@ -411,5 +411,29 @@ TEST(Dispense, IncrementsStopAtWhatTheCavityCanHold) {
   }
 }
 
+// The haptic-rate recording's capacity is bounded so that every recording the runtime writes is one
+// `replay` reads back (limits::max_recorded_ticks, haptic.csv's size limit over 600 bytes a tick):
+// the default 120 s holds at the 4 kHz the runtime allows; 1e9 s, a negative or NaN capacity is
+// refused naming the option and the range.
+TEST(HapticSafety, TheRecordingsCapacityIsOneReplayReads) {
+  RealtimeOptions o;
+  o.haptic_rate_hz = 4000;
+  EXPECT_NO_THROW(check_realtime_options(o, 1));
+  EXPECT_LE(o.record_capacity_s * o.haptic_rate_hz * 600, double(limits::max_recording_haptic_bytes));
+  for (const double capacity : {1e9, -1.0, std::nan("")}) {
+    o.record_capacity_s = capacity;
+    try {
+      check_realtime_options(o, 1);
+      ADD_FAILURE() << "a record capacity of " << capacity << " s was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("record capacity"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("give 0 to 223 s"), std::string::npos) << e.what();
+    }
+  }
+  o.haptic_rate_hz = 1000;
+  o.record_capacity_s = 800;  // 800,000 ticks: under the limit at 1 kHz
+  EXPECT_NO_THROW(check_realtime_options(o, 1));
+}
+
 }  // namespace
 }  // namespace dentsph
