@@ -6,6 +6,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libstb-dev
+  # the paste's surface: OpenVDB's level sets and meshes (src/surface; its headers need Boost's)
+  libopenvdb-dev libboost-dev
   # the spectrum of the force a realtime run renders (src/haptics/force_spectrum.cpp)
   libfftw3-dev
   # the tutor's report: the plotting library bundled into report.html, the session store (SQLite,

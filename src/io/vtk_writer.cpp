@@ -96,6 +96,33 @@ void write_vtu(const std::filesystem::path& file, const State& s) {
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the snapshot", file.string()));
 }
 
+void write_vtp(const std::filesystem::path& file, const SurfaceMesh& mesh) {
+  const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+  Appended data;
+  const auto o_points = data.add(flatten(mesh.vertices));
+  std::vector<std::int64_t> conn, offs(nt);
+  conn.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (const std::uint32_t v : mesh.triangles[t]) conn.push_back(v);
+    offs[t] = std::int64_t(3 * (t + 1));
+  }
+  const auto o_conn = data.add(conn);
+  const auto o_offs = data.add(offs);
+  std::string xml;
+  xml += R"(<?xml version="1.0"?>)" "\n";
+  xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)" "\n";
+  xml += fmt::format("<PolyData>\n<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+                     "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+                     nv, nt);
+  xml += "<Points>\n" + array_tag("Float64", "position", 3, o_points) + "\n</Points>\n";
+  xml += "<Polys>\n" + array_tag("Int64", "connectivity", 1, o_conn) + "\n" + array_tag("Int64", "offsets", 1, o_offs) +
+         "\n</Polys>\n";
+  xml += "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  std::ofstream out(file, std::ios::binary);
+  out << xml << data.bytes() << "\n</AppendedData>\n</VTKFile>\n";
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the surface", file.string()));
+}
+
 void PvdIndex::add(double t, const std::string& relative_file) {
   entries_.emplace_back(t, relative_file);
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";

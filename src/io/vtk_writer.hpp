@@ -7,12 +7,17 @@
 #include <vector>
 
 #include "dentsph/state.hpp"
+#include "dentsph/surface.hpp"
 
 namespace dentsph::io {
 
 // Writes the particles of `state` with the fields position, velocity, density, pressure, role,
 // bond_count and id. Throws std::runtime_error naming the file if it cannot be written.
 void write_vtu(const std::filesystem::path& file, const State& state);
+
+// Writes a surface (dentsph/surface.hpp) as VTK XML polygon data (.vtp: its vertices and
+// triangles, raw appended binary). Throws std::runtime_error naming the file if it cannot be written.
+void write_vtp(const std::filesystem::path& file, const SurfaceMesh& mesh);
 
 // A .pvd index, rewritten after every add() so that a run cut short is still readable.
 class PvdIndex {
