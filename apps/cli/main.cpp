@@ -162,8 +162,11 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
                "{:.3g} s)\n",
                s.force_violation_steps, s.first_force_violation_t, s.limits.force);
   if (!opt.out_dir.empty())
-    fmt::print("wrote {}: summary.json, tool_force.csv, particles.pvd ({} snapshots; open it in ParaView)\n",
-               opt.out_dir.string(), s.snapshots);
+    fmt::print("wrote {}: summary.json, tool_force.csv, particles.pvd ({} snapshots; open it in ParaView){}\n",
+               opt.out_dir.string(), s.snapshots,
+               s.surfaces > 0 ? fmt::format(", paste_surface.pvd (the paste's surface beside each; {:.1f} s to build)",
+                                            s.surface_seconds)
+                              : std::string());
   if (s.status != "completed") {
     fmt::print(stderr, "error: the run diverged: {}\n", s.message);
     return 3;

@@ -64,6 +64,9 @@ struct ProcedureEvent {
 struct OutputSettings {
   real snapshot_interval = 0.01;  // s of simulated time between particle snapshots (0: none)
   bool vtk = true;                // write .vtu snapshots and the .pvd index
+  // With vtk, in a scene whose paste has a spacing (the dental scenes): the paste's surface
+  // (dentsph/surface.hpp) beside each snapshot, paste_surface/step_N.vtp indexed by paste_surface.pvd.
+  bool surface = true;
 };
 
 struct Scene {

@@ -78,6 +78,8 @@ struct RunSummary {
   real peak_tool_force_N = 0;        // simulated N: the largest force on the tool in the simulation
   real force_scale = 1;              // device N per simulated N (Scene::force_scale)
   std::uint64_t snapshots = 0;
+  std::uint64_t surfaces = 0;        // the paste's surfaces written beside them (paste_surface.pvd)
+  double surface_seconds = 0;        // wall s spent building and writing those surfaces
   std::uint64_t events_applied = 0;  // procedure events (dispense, switch_tool) that took place
   std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
   std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())

@@ -87,6 +87,7 @@ std::string summary_json(const RunSummary& s) {
                {"force_scale", s.force_scale},
                {"peak_device_force_N", s.peak_tool_force_N * s.force_scale}};
   j["snapshots"] = s.snapshots;
+  if (s.surfaces > 0) j["paste_surface"] = {{"surfaces", s.surfaces}, {"seconds", s.surface_seconds}};
   j["events_applied"] = s.events_applied;
   if (!s.cavity_json.empty()) j["cavity"] = nlohmann::json::parse(s.cavity_json);
   if (!s.assessment_json.empty()) j["assessment"] = nlohmann::json::parse(s.assessment_json);

@@ -97,14 +97,19 @@ void write_vtu(const std::filesystem::path& file, const State& s) {
 }
 
 void write_vtp(const std::filesystem::path& file, const SurfaceMesh& mesh) {
+  // Single precision and 32-bit indices: the mesh comes from a single-precision level set, and a
+  // surface is written beside every snapshot.
   const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
   Appended data;
-  const auto o_points = data.add(flatten(mesh.vertices));
-  std::vector<std::int64_t> conn, offs(nt);
+  std::vector<float> points;
+  points.reserve(3 * nv);
+  for (const Vec3& v : mesh.vertices) points.insert(points.end(), {float(v.x), float(v.y), float(v.z)});
+  const auto o_points = data.add(points);
+  std::vector<std::int32_t> conn, offs(nt);
   conn.reserve(3 * nt);
   for (std::size_t t = 0; t < nt; ++t) {
-    for (const std::uint32_t v : mesh.triangles[t]) conn.push_back(v);
-    offs[t] = std::int64_t(3 * (t + 1));
+    for (const std::uint32_t v : mesh.triangles[t]) conn.push_back(std::int32_t(v));
+    offs[t] = std::int32_t(3 * (t + 1));
   }
   const auto o_conn = data.add(conn);
   const auto o_offs = data.add(offs);
@@ -114,8 +119,8 @@ void write_vtp(const std::filesystem::path& file, const SurfaceMesh& mesh) {
   xml += fmt::format("<PolyData>\n<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
                      "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
                      nv, nt);
-  xml += "<Points>\n" + array_tag("Float64", "position", 3, o_points) + "\n</Points>\n";
-  xml += "<Polys>\n" + array_tag("Int64", "connectivity", 1, o_conn) + "\n" + array_tag("Int64", "offsets", 1, o_offs) +
+  xml += "<Points>\n" + array_tag("Float32", "position", 3, o_points) + "\n</Points>\n";
+  xml += "<Polys>\n" + array_tag("Int32", "connectivity", 1, o_conn) + "\n" + array_tag("Int32", "offsets", 1, o_offs) +
          "\n</Polys>\n";
   xml += "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
   std::ofstream out(file, std::ios::binary);

@@ -68,12 +68,11 @@ void scale_bar(Canvas& canvas) {
   canvas.rect(x0 + len - 1, y - 5, x0 + len, y + 2, ink);
 }
 
-// The section's cut face: where the plane (depth 0 of the camera) lies inside the prepared tooth,
-// in dentine colour. Inside the tooth by the even-odd rule over the mesh's section, row by row;
-// outside the cavity by its shape.
-void cut_face(Canvas& canvas, const PreparedTooth& tooth) {
+// Where the plane (depth 0 of the camera) lies inside the closed mesh, filled in `colour` where
+// `keep` holds for the world point: by the even-odd rule over the mesh's section, row by row.
+template <class Mesh, class Keep>
+void fill_section(Canvas& canvas, const Mesh& mesh, Rgb colour, Keep&& keep) {
   const Camera& cam = canvas.camera();
-  const TriMesh& mesh = tooth.tooth().mesh();
   struct Seg {
     double x0, y0, x1, y1;  // pixels
   };
@@ -98,15 +97,41 @@ void cut_face(Canvas& canvas, const PreparedTooth& tooth) {
     std::sort(xs.begin(), xs.end());
     for (std::size_t k = 0; k + 1 < xs.size(); k += 2)
       for (int x = std::max(0, int(std::ceil(xs[k] - 0.5))); x <= std::min(canvas.width() - 1, int(std::floor(xs[k + 1] - 0.5))); ++x)
-        if (tooth.cavity_distance(cam.unproject(x + 0.5, py, 0)).distance > 0) canvas.fragment(x, y, 0, kDentine);
+        if (keep(cam.unproject(x + 0.5, py, 0))) canvas.fragment(x, y, 0, colour);
   }
+}
+
+// The section's cut face: where the plane lies inside the prepared tooth (outside the cavity), in
+// dentine colour.
+void cut_face(Canvas& canvas, const PreparedTooth& tooth) {
+  fill_section(canvas, tooth.tooth().mesh(), kDentine,
+               [&](const Vec3& p) { return tooth.cavity_distance(p).distance > 0; });
+}
+
+// The paste's surface in its colour, lit by each corner's normal (the mean of its triangles'
+// normals, weighted by their area); `keep` may discard fragments by their world point.
+void draw_surface(Canvas& canvas, const SurfaceMesh& mesh, Rgb colour, const std::function<bool(const Vec3&)>& keep) {
+  std::vector<Vec3> normal(mesh.vertices.size());
+  for (const auto& t : mesh.triangles) {
+    const Vec3 n = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    for (const std::uint32_t v : t) normal[v] += n;
+  }
+  for (Vec3& n : normal) {
+    const real l = norm(n);
+    if (l > 0) n = n / l;
+  }
+  Canvas::Keep k;
+  if (keep) k = [&](const Vec3& p, const std::array<double, 3>&) { return keep(p); };
+  for (const auto& t : mesh.triangles)
+    canvas.triangle({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]},
+                    {normal[t[0]], normal[t[1]], normal[t[2]]}, colour, k);
 }
 
 }  // namespace
 
-ParticleColour colour_by_role(std::span<const Role> roles) {
-  return [roles](std::size_t i) -> std::optional<Rgb> {
-    if (i >= roles.size() || roles[i] == Role::boundary) return std::nullopt;
+ParticleColour colour_by_role(std::span<const Role> roles, bool paste) {
+  return [roles, paste](std::size_t i) -> std::optional<Rgb> {
+    if (i >= roles.size() || roles[i] == Role::boundary || (!paste && roles[i] == Role::material)) return std::nullopt;
     return rgb(io::role_colour(roles[i]));
   };
 }
@@ -133,6 +158,11 @@ ToothPictures draw_tooth_pictures(const PreparedTooth& tooth, std::span<const Ve
   const auto behind = [&](const Vec3& p) { return dot(p - cut_centre, fr.y) >= 0; };
   draw_tooth(cut, surface, kEnamel, behind);
   cut_face(cut, tooth);
+  const Rgb paste = rgb(io::role_colour(Role::material));
+  if (o.paste_surface) {
+    draw_surface(cut, *o.paste_surface, paste, behind);
+    fill_section(cut, *o.paste_surface, kPasteSection, [](const Vec3&) { return true; });
+  }
   draw_particles(cut, positions, colour, radius, [&](const Vec3& p) { return dot(p - cut_centre, fr.y) >= slab; });
   draw_markers(cut, o);
   scale_bar(cut);
@@ -143,6 +173,7 @@ ToothPictures draw_tooth_pictures(const PreparedTooth& tooth, std::span<const Ve
   const Vec3 top_centre = fr.to_world({0.5 * (tx0 + tx1), 0.5 * (ty0 + ty1), all.hi.z + 2 * mm});
   Canvas top(make_camera(top_centre, fr.x, fr.y, tx1 - tx0, ty1 - ty0, o.width), kBackground);
   draw_tooth(top, surface, kEnamel);
+  if (o.paste_surface) draw_surface(top, *o.paste_surface, paste, {});
   draw_particles(top, positions, colour, radius, {});
   draw_markers(top, o);
   scale_bar(top);
@@ -152,10 +183,10 @@ ToothPictures draw_tooth_pictures(const PreparedTooth& tooth, std::span<const Ve
 
 void write_tooth_pictures(const std::filesystem::path& dir, const PreparedTooth& tooth,
                           std::span<const Vec3> positions, const ParticleColour& colour,
-                          const PictureOptions& options) {
+                          const PictureOptions& options, bool particles) {
   const ToothPictures p = draw_tooth_pictures(tooth, positions, colour, options);
-  write_png(dir / kCutPicture, p.cut);
-  write_png(dir / kTopPicture, p.top);
+  write_png(dir / (particles ? kCutParticlesPicture : kCutPicture), p.cut);
+  write_png(dir / (particles ? kTopParticlesPicture : kTopPicture), p.top);
 }
 
 }  // namespace dentsph::report

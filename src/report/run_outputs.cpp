@@ -42,7 +42,15 @@ void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<co
       o.markers.push_back(scene.tooth->frame().to_world(Vec3{c[0].get<double>(), c[1].get<double>(), c[2].get<double>()} * 1e-3));
       o.marker_radii.push_back(std::cbrt(3 * v.value("volume_mm3", 0.0) / (4 * 3.14159265358979)) * 1e-3);
     }
-  write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles), o);
+  // The paste as its surface, and as particles (the report's second view).
+  std::vector<Vec3> paste;
+  for (std::size_t i = 0; i < positions.size() && i < roles.size(); ++i)
+    if (roles[i] == Role::material && is_finite(positions[i])) paste.push_back(positions[i]);
+  const SurfaceMesh surface = particle_surface(paste, o.spacing);
+  PictureOptions with_surface = o;
+  with_surface.paste_surface = &surface;
+  write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles, /*paste=*/false), with_surface);
+  write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles), o, /*particles=*/true);
 }
 
 }  // namespace

@@ -276,6 +276,8 @@ SessionFolder read_session(const fs::path& dir) {
   }
   s.cut_png = read_bytes(dir / kCutPicture);
   s.top_png = read_bytes(dir / kTopPicture);
+  s.cut_particles_png = read_bytes(dir / kCutParticlesPicture);
+  s.top_particles_png = read_bytes(dir / kTopParticlesPicture);
   if (s.cut_png.empty() && s.top_png.empty()) s.preview_png = read_bytes(dir / "preview.png");
   return s;
 }

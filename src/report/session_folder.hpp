@@ -44,6 +44,7 @@ struct SessionFolder {
   std::vector<Series> forces;    // device N
   std::vector<Marker> markers;
   std::vector<std::uint8_t> cut_png, top_png;  // the pictures (empty when absent)
+  std::vector<std::uint8_t> cut_particles_png, top_particles_png;  // the same with the paste's particles
   std::vector<std::uint8_t> preview_png;       // preview.png, shown when there are no pictures
 };
 

@@ -136,8 +136,8 @@ std::string session_report_html(const SessionFolder& s) {
   if (!s.cut_png.empty())
     h += "<figure><img id=\"picture-cut\" alt=\"section through the cavity\" src=\"" + png_data_uri(s.cut_png) +
          "\"><figcaption>Section through the middle of the cavity (mesio-distal), the near half removed: tooth in "
-         "ivory, its cut face in tan, paste in blue, the instrument in orange; voids ringed in red; bar: 1 mm."
-         "</figcaption></figure>\n";
+         "ivory, its cut face in tan, the paste's surface in blue and its cut face in dark blue, the instrument in "
+         "orange; voids ringed in red; bar: 1 mm.</figcaption></figure>\n";
   if (!s.top_png.empty())
     h += "<figure><img id=\"picture-top\" alt=\"the tooth from above\" src=\"" + png_data_uri(s.top_png) +
          "\"><figcaption>From above, along the tooth's long axis. Bar: 1 mm.</figcaption></figure>\n";
@@ -146,6 +146,18 @@ std::string session_report_html(const SessionFolder& s) {
          "\"><figcaption>The particles at the end (no tooth in this scene).</figcaption></figure>\n";
   if (s.cut_png.empty() && s.top_png.empty() && s.preview_png.empty()) h += "<p>No pictures in this folder.</p>\n";
   h += "</div>\n";
+  if (!s.cut_particles_png.empty() || !s.top_particles_png.empty()) {
+    h += "<details id=\"particles-view\"><summary>The same as particles</summary>\n<div class=\"pictures\">\n";
+    if (!s.cut_particles_png.empty())
+      h += "<figure><img id=\"picture-cut-particles\" alt=\"section through the cavity, the paste's particles\" src=\"" +
+           png_data_uri(s.cut_particles_png) +
+           "\"><figcaption>The section with the paste's particles (spheres half a spacing across), from which its "
+           "surface is made.</figcaption></figure>\n";
+    if (!s.top_particles_png.empty())
+      h += "<figure><img id=\"picture-top-particles\" alt=\"the tooth from above, the paste's particles\" src=\"" +
+           png_data_uri(s.top_particles_png) + "\"><figcaption>From above, the paste's particles.</figcaption></figure>\n";
+    h += "</div></details>\n";
+  }
 
   h += "<h2>Assessment</h2>\n";
   if (!j.contains("assessment"))

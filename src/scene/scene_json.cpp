@@ -191,12 +191,15 @@ AdhesionParams read_adhesion(const Reader& root) {
 OutputSettings read_output(const Reader& root) {
   OutputSettings out;
   if (const std::optional<Reader> o = root.optional_object(
-          "output", "the output settings {\"snapshot_interval\": 0.01, \"vtk\": true}")) {
-    o->only({"snapshot_interval", "vtk"});
+          "output", "the output settings {\"snapshot_interval\": 0.01, \"vtk\": true, \"surface\": true}")) {
+    o->only({"snapshot_interval", "vtk", "surface"});
     out.snapshot_interval = o->number_or(
         "snapshot_interval", out.snapshot_interval,
         "the simulated time between snapshots in s (0: none), e.g. 0.01", Range::non_negative);
     out.vtk = o->boolean_or("vtk", out.vtk, "true to write .vtu snapshots and a .pvd index");
+    out.surface = o->boolean_or("surface", out.surface,
+                                "true to write the paste's surface (.vtp) beside each snapshot, where the paste has a "
+                                "spacing");
   }
   return out;
 }

@@ -12,6 +12,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/simulation.hpp"
+#include "dentsph/surface.hpp"
 #include "io/preview.hpp"
 #include "io/summary.hpp"
 #include "io/vtk_writer.hpp"
@@ -21,12 +22,15 @@ namespace dentsph {
 
 namespace {
 
-// Particle snapshots every `interval` s of simulated time, indexed by a .pvd file.
+// Particle snapshots every `interval` s of simulated time, indexed by a .pvd file; with a paste
+// spacing, the paste's surface beside each, indexed by its own.
 class SnapshotWriter {
  public:
-  SnapshotWriter(const std::filesystem::path& dir, real interval)
-      : dir_(dir), interval_(interval), index_(dir / "particles.pvd") {
+  SnapshotWriter(const std::filesystem::path& dir, real interval, real surface_spacing)
+      : dir_(dir), interval_(interval), index_(dir / "particles.pvd"), surface_spacing_(surface_spacing),
+        surface_index_(dir / "paste_surface.pvd") {
     std::filesystem::create_directories(dir_ / "particles");
+    if (surface_spacing_ > 0) std::filesystem::create_directories(dir_ / "paste_surface");
   }
   // `resting`: the paste is curing at rest (large cure updates): a snapshot every
   // kRestingInterval at most, so that a 20 s cure writes 20, not 2000.
@@ -38,16 +42,28 @@ class SnapshotWriter {
     const std::string name = fmt::format("particles/step_{:08d}.vtu", s.steps);
     io::write_vtu(dir_ / name, s);
     index_.add(s.time, name);
+    if (surface_spacing_ > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::string surface = fmt::format("paste_surface/step_{:08d}.vtp", s.steps);
+      io::write_vtp(dir_ / surface, paste_surface(s, surface_spacing_));
+      surface_index_.add(s.time, surface);
+      surface_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
     next_ = s.time + interval_;
   }
   static constexpr real kRestingInterval = 1.0;  // s
   std::size_t count() const { return index_.size(); }
+  std::size_t surfaces() const { return surface_index_.size(); }
+  double surface_seconds() const { return surface_seconds_; }
 
  private:
   std::filesystem::path dir_;
   real interval_;
   real next_ = 0;
   io::PvdIndex index_;
+  real surface_spacing_;
+  io::PvdIndex surface_index_;
+  double surface_seconds_ = 0;
 };
 
 }  // namespace
@@ -61,7 +77,9 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   std::unique_ptr<io::ToolForceCsv> csv;
   if (!opt.out_dir.empty()) {
     std::filesystem::create_directories(opt.out_dir);
-    if (scene.output.vtk) snaps = std::make_unique<SnapshotWriter>(opt.out_dir, scene.output.snapshot_interval);
+    if (scene.output.vtk)
+      snaps = std::make_unique<SnapshotWriter>(opt.out_dir, scene.output.snapshot_interval,
+                                               scene.output.surface ? scene.material_spacing : 0);
     csv = std::make_unique<io::ToolForceCsv>(opt.out_dir / "tool_force.csv");
     if (snaps) snaps->maybe_write(sim.state(), true);
   }
@@ -118,6 +136,8 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
   if (snaps) {
     snaps->maybe_write(state, true);
     sum.snapshots = snaps->count();
+    sum.surfaces = snaps->surfaces();
+    sum.surface_seconds = snaps->surface_seconds();
   }
   if (assessor) {
     const Assessment a = assessor->assess(state, scene.model, sim.forces(), scene.force_scale);

@@ -131,6 +131,9 @@ TEST(ReportBrowser, OfflineRunsReportRendersWithItsPicturesPlotAndNumbers) {
   EXPECT_NE(dom.find("A. Student, class I"), std::string::npos);
   EXPECT_NE(dom.find("id=\"picture-cut\""), std::string::npos);
   EXPECT_NE(dom.find("id=\"picture-top\""), std::string::npos);
+  // The paste as its surface in those two, and as particles in a second view.
+  EXPECT_NE(dom.find("id=\"picture-cut-particles\""), std::string::npos);
+  EXPECT_NE(dom.find("id=\"picture-top-particles\""), std::string::npos);
 
   // As a person sees it: not blank; the pictures' enamel and paste, the plot's blue curve.
   const Png p = screenshot(out / "report.html", work() / "offline.png", 1100, 2400);

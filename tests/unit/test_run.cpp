@@ -57,7 +57,28 @@ TEST(Run, WritesSummaryCsvAndSnapshots) {
   EXPECT_GE(sum.snapshots, 6u);
   EXPECT_TRUE(fs::exists(out / "particles.pvd"));
   EXPECT_TRUE(fs::exists(out / "particles" / "step_00000000.vtu"));
+  // The paste's surface beside each snapshot (the scene's paste has a spacing).
+  EXPECT_EQ(sum.surfaces, sum.snapshots);
+  EXPECT_TRUE(fs::exists(out / "paste_surface.pvd"));
+  EXPECT_GT(fs::file_size(out / "paste_surface" / "step_00000000.vtp"), 1000u);
+  EXPECT_EQ(j["paste_surface"]["surfaces"], sum.snapshots);
   EXPECT_GT(fs::file_size(out / "preview.png"), 1000u);
+}
+
+// "output": {"surface": false} leaves the paste's surface out.
+TEST(Run, TheSurfaceIsLeftOutWhenTheSceneSaysSo) {
+  const fs::path out = fs::temp_directory_path() / ("dentsph_run_nosurface_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  RunOptions opt;
+  opt.steps = 10;
+  opt.out_dir = out;
+  Scene scene = small_scene(5e-4);
+  scene.output.surface = false;
+  const RunSummary sum = run_offline(scene, opt);
+  EXPECT_GE(sum.snapshots, 2u);
+  EXPECT_EQ(sum.surfaces, 0u);
+  EXPECT_FALSE(fs::exists(out / "paste_surface.pvd"));
+  fs::remove_all(out);
 }
 
 TEST(Run, RefusesATimeStepOverTheLimitAndNamesTheField) {

@@ -177,6 +177,7 @@ TEST(SceneParse, AppliesDefaults) {
   EXPECT_NEAR(sc.model.adhesion.Cd, 6.75, 1e-12);
   EXPECT_EQ(sc.output.snapshot_interval, 0.01);
   EXPECT_TRUE(sc.output.vtk);
+  EXPECT_TRUE(sc.output.surface) << "the default";
   EXPECT_EQ(sc.duration, 0);
   EXPECT_TRUE(sc.tool.keyframes.empty());
   // Domain: the particles' bounding box [0, 0.04]^2 x [0, 0.04] padded by 2h = 0.04.
@@ -255,7 +256,7 @@ TEST(SceneParse, ReadsGivenSettings) {
   j["simulation"]["domain"] = {{"min", {-1, -1, -1}}, {"max", {1, 2, 3}}};
   j["adhesion"]["eps"] = 4;
   j["adhesion"]["zeta"] = 1;
-  j["output"] = {{"snapshot_interval", 0}, {"vtk", false}};
+  j["output"] = {{"snapshot_interval", 0}, {"vtk", false}, {"surface", false}};
   j["run"] = {{"duration", 2.5}};
   j["blocks"][1]["velocity"] = {0.1, 0, 0};
   j["blocks"][1]["mass"] = 0.002;
@@ -267,6 +268,7 @@ TEST(SceneParse, ReadsGivenSettings) {
   EXPECT_EQ(sc.model.adhesion.eps, 4);
   EXPECT_EQ(sc.output.snapshot_interval, 0);
   EXPECT_FALSE(sc.output.vtk);
+  EXPECT_FALSE(sc.output.surface);
   EXPECT_EQ(sc.duration, 2.5);
   for (const ParticleInit& p : sc.particles)
     if (p.role == Role::material) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -148,9 +149,20 @@ TEST(Surface, ThePastesSurfaceIsItsMaterialsAndIsWrittenForParaView) {
   EXPECT_NE(xml.find("<VTKFile type=\"PolyData\""), std::string::npos);
   EXPECT_NE(xml.find("NumberOfPoints=\"" + std::to_string(m.vertices.size()) + "\""), std::string::npos);
   EXPECT_NE(xml.find("NumberOfPolys=\"" + std::to_string(m.triangles.size()) + "\""), std::string::npos);
-  // The appended block: positions (8-byte count, 3 doubles a vertex), connectivity, offsets.
-  const std::size_t bytes = 3 * (8 + 0) + m.vertices.size() * 24 + m.triangles.size() * 24 + m.triangles.size() * 8;
-  EXPECT_GE(xml.size(), bytes);
+  // The appended block: positions (3 floats a vertex), connectivity (3 ints a triangle), offsets
+  // (one a triangle), each after its 8-byte count; the first position is the first vertex's.
+  const std::size_t start = xml.find("<AppendedData encoding=\"raw\">\n_");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t data = start + std::string("<AppendedData encoding=\"raw\">\n_").size();
+  const std::size_t bytes = 3 * 8 + m.vertices.size() * 12 + m.triangles.size() * 16;
+  ASSERT_GE(xml.size(), data + bytes);
+  std::uint64_t count = 0;
+  float first[3];
+  std::memcpy(&count, xml.data() + data, 8);
+  std::memcpy(first, xml.data() + data + 8, 12);
+  EXPECT_EQ(count, m.vertices.size() * 12);
+  EXPECT_FLOAT_EQ(first[0], float(m.vertices[0].x));
+  EXPECT_FLOAT_EQ(first[2], float(m.vertices[0].z));
   std::filesystem::remove(file);
 }
 
