@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(solvers));
   app.add_option("--colour-by", vo.colour_by, "role, pressure, density, speed, bonds or conversion (the paste's degree of conversion under the curing light)")->capture_default_str();
   app.add_flag("--section", vo.cut, "Start with the section view (half of the tooth cut away)");
+  app.add_flag("--surface", vo.surface, "Start with the paste drawn as its surface (key S toggles it and its particles)");
   app.add_flag("--paused", so.start_paused, "Start paused");
   app.add_option("--timeout", vo.timeout_s, "Give up after this many seconds (exit code 4); 0: never")
       ->check(cli::finite_range(0, 1e6));

@@ -24,6 +24,7 @@ struct UiState {
   Range range;
   bool show_boundary = true;
   bool cut = false;           // section through the tooth (half of it cut away)
+  bool surface = false;       // the paste as its surface (dentsph/surface.hpp) instead of particles
   bool paused = false;
   int tool_index = 0;
   MaterialEdit material;      // being edited

@@ -45,6 +45,22 @@ class ToothRenderer {
   GLsizei vertices_ = 0;
 };
 
+// A surface of triangles with a normal per corner, in one colour (the paste's surface,
+// dentsph/surface.hpp), uploaded when it changes.
+class MeshRenderer {
+ public:
+  MeshRenderer();
+  // Uploads the triangles of `vertices` (m) and their corners' normals, area-weighted.
+  void upload(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles);
+  void draw(const ViewUniforms& u, const glm::vec3& colour);
+
+ private:
+  GlProgram program_;
+  GlArrays arrays_{3};
+  GLsizei vertices_ = 0;
+  std::vector<float> pos_, normal_, colour_;  // reused between uploads
+};
+
 // Solid arrows (a cylinder and a cone), built per frame.
 class ArrowRenderer {
  public:

@@ -17,6 +17,8 @@
 #include <imgui.h>
 
 #include "dentsph/dispense.hpp"
+#include "dentsph/surface.hpp"
+#include "io/role_colours.hpp"
 #include "camera.hpp"
 #include "colour_map.hpp"
 #include "panels.hpp"
@@ -124,10 +126,14 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   std::unique_ptr<ToothRenderer> tooth;
   if (sc.tooth) tooth = std::make_unique<ToothRenderer>(*sc.tooth);
   ArrowRenderer arrows;
+  MeshRenderer paste_mesh;
+  std::uint64_t paste_mesh_version = ~std::uint64_t(0);  // the snapshot the paste's surface was built from
+  std::vector<Vec3> paste_points;
   Camera cam = initial_camera(sc);
   UiState ui;
   ui.colour_by = colour_by_from_name(opt.colour_by);
   ui.cut = opt.cut;
+  ui.surface = opt.surface;
   const std::vector<std::string> tools = session.tools();
   const real spacing = increment_spacing(sc);
 
@@ -265,6 +271,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       }
       if (pressed_once(GLFW_KEY_B)) ui.show_boundary = !ui.show_boundary;
       if (pressed_once(GLFW_KEY_X)) ui.cut = !ui.cut;
+      if (pressed_once(GLFW_KEY_S)) ui.surface = !ui.surface;
       if (pressed_once(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win.handle, GLFW_TRUE);
     }
 
@@ -307,8 +314,22 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     particle_colours(ui.colour_by, field, snap.role, ui.range, rgb);
     vis_xyz.clear();
     vis_rgb.clear();
+    // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot.
+    if (ui.surface && snap.version != paste_mesh_version) {
+      paste_points.clear();
+      for (std::size_t i = 0; i < snap.role.size(); ++i)
+        if (snap.role[i] == Role::material) paste_points.push_back({snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
+      const SurfaceMesh mesh = particle_surface(paste_points, spacing);
+      paste_mesh.upload(mesh.vertices, mesh.triangles);
+      paste_mesh_version = snap.version;
+    }
+    if (ui.surface) {
+      const auto c = io::role_colour(Role::material);
+      paste_mesh.draw(u, glm::vec3(c[0], c[1], c[2]));
+    }
     for (std::size_t i = 0; i < snap.role.size(); ++i) {
       if (!ui.show_boundary && snap.role[i] == Role::boundary) continue;
+      if (ui.surface && snap.role[i] == Role::material) continue;
       vis_xyz.insert(vis_xyz.end(), {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
       vis_rgb.insert(vis_rgb.end(), {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]});
     }

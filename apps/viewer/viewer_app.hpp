@@ -23,6 +23,7 @@ struct ViewerOptions {
   double timeout_s = 0;              // > 0: give up (exit code 4) when the frames take longer
   std::string colour_by = "role";
   bool cut = false;
+  bool surface = false;              // the paste drawn as its surface (key S toggles)
   bool vsync = true;
   double max_fps = 60;               // frames per second at most (0: no limit): software OpenGL draws on
                                      // the same cores the simulation uses, so the render loop sleeps
