@@ -7,7 +7,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libstb-dev
   # the paste's surface: OpenVDB's level sets and meshes (src/surface; its headers need Boost's)
-  libopenvdb-dev libboost-dev
+  libopenvdb-dev libboost-dev libtbb-dev
   # the spectrum of the force a realtime run renders (src/haptics/force_spectrum.cpp)
   libfftw3-dev
   # the tutor's report: the plotting library bundled into report.html, the session store (SQLite,

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -24,6 +25,7 @@
 #include "panels.hpp"
 #include "renderers.hpp"
 #include "screenshot.hpp"
+#include "surface_worker.hpp"
 
 namespace dentsph::viewer {
 
@@ -127,8 +129,12 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   if (sc.tooth) tooth = std::make_unique<ToothRenderer>(*sc.tooth);
   ArrowRenderer arrows;
   MeshRenderer paste_mesh;
-  std::uint64_t paste_mesh_version = ~std::uint64_t(0);  // the snapshot the paste's surface was built from
+  // The paste's surface, built beside the frames from the paste of this step, this many particles
+  // (a paused simulation publishes the same paste again; a dispense adds to it).
+  std::unique_ptr<SurfaceWorker> surface_worker;
+  std::pair<std::uint64_t, std::size_t> paste_mesh_key{~std::uint64_t(0), 0};
   std::vector<Vec3> paste_points;
+  SurfaceMesh paste_surface_mesh;
   Camera cam = initial_camera(sc);
   UiState ui;
   ui.colour_by = colour_by_from_name(opt.colour_by);
@@ -315,13 +321,25 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     vis_xyz.clear();
     vis_rgb.clear();
     // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot.
-    if (ui.surface && snap.version != paste_mesh_version) {
+    if (ui.surface) {
+      if (!surface_worker) surface_worker = std::make_unique<SurfaceWorker>(spacing);
       paste_points.clear();
       for (std::size_t i = 0; i < snap.role.size(); ++i)
         if (snap.role[i] == Role::material) paste_points.push_back({snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
-      const SurfaceMesh mesh = particle_surface(paste_points, spacing);
-      paste_mesh.upload(mesh.vertices, mesh.triangles);
-      paste_mesh_version = snap.version;
+      const std::pair<std::uint64_t, std::size_t> key{snap.steps, paste_points.size()};
+      // A screenshot's frames build it in the frame, so that the picture shows the paste it was asked of.
+      const bool in_frame = !opt.screenshot.empty();
+      if (key != paste_mesh_key) {
+        if (in_frame) {
+          paste_surface_mesh = particle_surface(paste_points, spacing);
+          paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
+        } else {
+          surface_worker->submit(paste_points);
+        }
+        paste_mesh_key = key;
+      }
+      if (!in_frame && surface_worker->take(paste_surface_mesh))
+        paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
     }
     if (ui.surface) {
       const auto c = io::role_colour(Role::material);

@@ -1,0 +1,78 @@
+#include "surface_worker.hpp"
+
+#include <chrono>
+#include <exception>
+#include <utility>
+
+#include <tbb/task_arena.h>
+
+namespace dentsph::viewer {
+
+SurfaceWorker::SurfaceWorker(real spacing) : spacing_(spacing), thread_([this] { run(); }) {}
+
+SurfaceWorker::~SurfaceWorker() {
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void SurfaceWorker::submit(const std::vector<Vec3>& points) {
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    pending_.assign(points.begin(), points.end());
+    has_pending_ = true;
+  }
+  cv_.notify_one();
+}
+
+bool SurfaceWorker::take(SurfaceMesh& mesh) {
+  std::lock_guard<std::mutex> lock(m_);
+  if (!has_done_) return false;
+  std::swap(mesh, done_);
+  has_done_ = false;
+  return true;
+}
+
+std::uint64_t SurfaceWorker::built() const {
+  std::lock_guard<std::mutex> lock(m_);
+  return built_;
+}
+
+double SurfaceWorker::last_seconds() const {
+  std::lock_guard<std::mutex> lock(m_);
+  return last_seconds_;
+}
+
+void SurfaceWorker::run() {
+  std::vector<Vec3> points;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(m_);
+      cv_.wait(lock, [this] { return stop_ || has_pending_; });
+      if (stop_) return;
+      std::swap(points, pending_);
+      has_pending_ = false;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    SurfaceMesh mesh;
+    // On one thread: OpenVDB would take every core, which the simulation and the frames share.
+    arena_.execute([&] {
+      try {
+        mesh = particle_surface(points, spacing_);
+      } catch (const std::exception&) {
+        mesh = {};  // a paste position that is not finite (a diverged step): no surface this time
+      }
+    });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::lock_guard<std::mutex> lock(m_);
+    done_ = std::move(mesh);
+    has_done_ = true;
+    ++built_;
+    last_seconds_ = seconds;
+  }
+}
+
+}  // namespace dentsph::viewer

@@ -1,0 +1,48 @@
+// The paste's surface (dentsph/surface.hpp) built beside the frames: the render loop hands the
+// worker the newest paste positions and draws the newest finished mesh, so a surface that takes
+// longer than a frame to build never holds a frame back (docs/viewer.md).
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "dentsph/surface.hpp"
+
+namespace dentsph::viewer {
+
+class SurfaceWorker {
+ public:
+  explicit SurfaceWorker(real spacing);
+  ~SurfaceWorker();  // stops the worker and waits for it
+  SurfaceWorker(const SurfaceWorker&) = delete;
+  SurfaceWorker& operator=(const SurfaceWorker&) = delete;
+
+  // The paste's positions (m) to build next, replacing any not yet started.
+  void submit(const std::vector<Vec3>& points);
+  // Moves the newest finished surface into `mesh`; false when none is newer than the last taken.
+  bool take(SurfaceMesh& mesh);
+  // Surfaces built so far, and the wall seconds the last one took.
+  std::uint64_t built() const;
+  double last_seconds() const;
+
+ private:
+  void run();
+  const real spacing_;
+  mutable std::mutex m_;
+  std::condition_variable cv_;
+  std::vector<Vec3> pending_;
+  bool has_pending_ = false, stop_ = false;
+  SurfaceMesh done_;
+  bool has_done_ = false;
+  std::uint64_t built_ = 0;
+  double last_seconds_ = 0;
+  tbb::task_arena arena_{1};
+  std::thread thread_;  // last: started once the rest is ready
+};
+
+}  // namespace dentsph::viewer
