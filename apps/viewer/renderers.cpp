@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "dentsph/mesh_normals.hpp"
+
 namespace dentsph::viewer {
 
 namespace {
@@ -115,13 +117,7 @@ void ParticleRenderer::draw(const ViewUniforms& u, const std::vector<float>& xyz
 
 ToothRenderer::ToothRenderer(const PreparedTooth& tooth) : program_("tooth", kSurfaceVs, kSurfaceFs) {
   const TriMesh& mesh = tooth.tooth().mesh();
-  // Smooth normals: area-weighted face normals summed at the vertices.
-  std::vector<Vec3> vn(mesh.vertices.size());
-  for (const auto& t : mesh.triangles) {
-    const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-    const Vec3 fn = cross(b - a, c - a);
-    for (std::uint32_t k : t) vn[k] += fn;
-  }
+  const std::vector<Vec3> vn = vertex_normals(mesh.vertices, mesh.triangles);  // smooth normals
   std::vector<float> cut(mesh.vertices.size());
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) cut[v] = float(tooth.cavity_distance(mesh.vertices[v]).distance);
   std::vector<float> pos, normal, extra;
@@ -129,7 +125,7 @@ ToothRenderer::ToothRenderer(const PreparedTooth& tooth) : program_("tooth", kSu
   for (const auto& t : mesh.triangles)
     for (std::uint32_t k : t) {
       const Vec3 p = mesh.vertices[k];
-      const Vec3 n = norm(vn[k]) > 0 ? vn[k] / norm(vn[k]) : Vec3{0, 0, 1};
+      const Vec3 n = norm(vn[k]) > 0 ? vn[k] : Vec3{0, 0, 1};
       pos.insert(pos.end(), {float(p.x), float(p.y), float(p.z)});
       normal.insert(normal.end(), {float(n.x), float(n.y), float(n.z)});
       extra.insert(extra.end(), {cut[k], 0.f, 0.f});
@@ -151,17 +147,13 @@ void ToothRenderer::draw(const ViewUniforms& u) {
 MeshRenderer::MeshRenderer() : program_("mesh", kSurfaceVs, kSurfaceFs) {}
 
 void MeshRenderer::upload(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles) {
-  std::vector<Vec3> vn(vertices.size());
-  for (const auto& t : triangles) {
-    const Vec3 fn = cross(vertices[t[1]] - vertices[t[0]], vertices[t[2]] - vertices[t[0]]);
-    for (std::uint32_t k : t) vn[k] += fn;
-  }
+  const std::vector<Vec3> vn = vertex_normals(vertices, triangles);
   pos_.clear();
   normal_.clear();
   for (const auto& t : triangles)
     for (std::uint32_t k : t) {
       const Vec3 p = vertices[k];
-      const Vec3 n = norm(vn[k]) > 0 ? vn[k] / norm(vn[k]) : Vec3{0, 0, 1};
+      const Vec3 n = norm(vn[k]) > 0 ? vn[k] : Vec3{0, 0, 1};
       pos_.insert(pos_.end(), {float(p.x), float(p.y), float(p.z)});
       normal_.insert(normal_.end(), {float(n.x), float(n.y), float(n.z)});
     }

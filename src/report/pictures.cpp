@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dentsph/mesh_normals.hpp"
 #include "io/role_colours.hpp"
 #include "report/tooth_surface.hpp"
 
@@ -111,15 +112,7 @@ void cut_face(Canvas& canvas, const PreparedTooth& tooth) {
 // The paste's surface in its colour, lit by each corner's normal (the mean of its triangles'
 // normals, weighted by their area); `keep` may discard fragments by their world point.
 void draw_surface(Canvas& canvas, const SurfaceMesh& mesh, Rgb colour, const std::function<bool(const Vec3&)>& keep) {
-  std::vector<Vec3> normal(mesh.vertices.size());
-  for (const auto& t : mesh.triangles) {
-    const Vec3 n = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
-    for (const std::uint32_t v : t) normal[v] += n;
-  }
-  for (Vec3& n : normal) {
-    const real l = norm(n);
-    if (l > 0) n = n / l;
-  }
+  const std::vector<Vec3> normal = vertex_normals(mesh.vertices, mesh.triangles);
   Canvas::Keep k;
   if (keep) k = [&](const Vec3& p, const std::array<double, 3>&) { return keep(p); };
   for (const auto& t : mesh.triangles)

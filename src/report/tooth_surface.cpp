@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dentsph/mesh_normals.hpp"
+
 namespace dentsph::report {
 
 namespace {
@@ -78,15 +80,7 @@ ToothSurface tooth_surface(const PreparedTooth& tooth, double cell) {
       }
 
   const TriMesh& mesh = tooth.tooth().mesh();
-  s.vertex_normals.assign(mesh.vertices.size(), Vec3{});
-  for (const auto& t : mesh.triangles) {
-    const Vec3 fn = cross(mesh.vertices[t[1]] - mesh.vertices[t[0]], mesh.vertices[t[2]] - mesh.vertices[t[0]]);
-    for (std::uint32_t v : t) s.vertex_normals[v] += fn;  // |fn| is twice the area: area-weighted
-  }
-  for (Vec3& vn : s.vertex_normals) {
-    const real l = norm(vn);
-    if (l > 0) vn = vn / l;
-  }
+  s.vertex_normals = vertex_normals(mesh.vertices, mesh.triangles);
   return s;
 }
 
