@@ -94,6 +94,15 @@ check realtime-short "0" "^wrote" "$bin" run --realtime --device scripted --dura
 check replay "0" "^wrote" "$bin" replay "$work/rt/recording" --threads 1 --out "$work/replayed"
 truncate -s 600M "$work/rt/recording/haptic.csv"
 check replay-600MB-recording "2" "600 MB, more than the 512 MB" "$bin" replay "$work/rt/recording" --out "$work/replayed2"
+# The viewer under a virtual display, the paste drawn as its surface (OpenVDB, Mesa's software
+# OpenGL): skipped, saying so, where the viewer or xvfb-run is not there.
+viewer="$(dirname "$bin")/../viewer/dentsph-viewer"
+if [ -x "$viewer" ] && command -v xvfb-run > /dev/null; then
+  check viewer-surface "0" "^wrote" xvfb-run -a -s "-screen 0 1280x800x24" "$viewer" --frames 30 --surface \
+    --threads 2 --screenshot "$work/viewer.png"
+else
+  echo "viewer-surface           skipped: no $viewer or no xvfb-run"
+fi
 # The benchmark's short sweep.
 check bench-quick "0" "steps/s" "$bin" bench --quick --repeats 1
 
