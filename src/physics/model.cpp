@@ -125,7 +125,9 @@ Model make_model(const ModelParams& p) {
   require_finite_positive(a.B, "adhesion.B", "give the bond-breaking distance in metres, a little over h");
   if (!(a.A < p.h && p.h < a.B))
     fail("adhesion.A/adhesion.B",
-         fmt::format("need A < h < B (MODEL.md), got A = {}, h = {}, B = {}; e.g. A = 0.6 h, B = 1.5 h", a.A, p.h, a.B));
+         fmt::format("need A < h < B (docs/model.md, \"Adhesion hysteresis\"), got A = {}, h = {}, B = {}; e.g. A = 0.6 h, "
+                     "B = 1.5 h",
+                     a.A, p.h, a.B));
   require_finite_positive(a.eps, "adhesion.eps", "the paper uses eps = 3");
   require_finite_positive(a.zeta, "adhesion.zeta", "the paper uses zeta = 2");
   if (!(a.eps > a.zeta))
