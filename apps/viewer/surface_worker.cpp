@@ -19,18 +19,21 @@ SurfaceWorker::~SurfaceWorker() {
   thread_.join();
 }
 
-void SurfaceWorker::submit(const std::vector<Vec3>& points) {
+std::uint64_t SurfaceWorker::submit(const std::vector<Vec3>& points) {
+  std::uint64_t number = 0;
   {
     std::lock_guard<std::mutex> lock(m_);
     pending_.assign(points.begin(), points.end());
     has_pending_ = true;
+    number = pending_number_ = ++submitted_;
   }
   cv_.notify_one();
+  return number;
 }
 
-bool SurfaceWorker::take(SurfaceMesh& mesh) {
+bool SurfaceWorker::take(SurfaceMesh& mesh, std::uint64_t oldest) {
   std::lock_guard<std::mutex> lock(m_);
-  if (!has_done_) return false;
+  if (!has_done_ || done_number_ < oldest) return false;
   std::swap(mesh, done_);
   has_done_ = false;
   return true;
@@ -49,12 +52,14 @@ double SurfaceWorker::last_seconds() const {
 void SurfaceWorker::run() {
   std::vector<Vec3> points;
   for (;;) {
+    std::uint64_t number = 0;
     {
       std::unique_lock<std::mutex> lock(m_);
       cv_.wait(lock, [this] { return stop_ || has_pending_; });
       if (stop_) return;
       std::swap(points, pending_);
       has_pending_ = false;
+      number = pending_number_;
     }
     const auto t0 = std::chrono::steady_clock::now();
     SurfaceMesh mesh;
@@ -69,6 +74,7 @@ void SurfaceWorker::run() {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::lock_guard<std::mutex> lock(m_);
     done_ = std::move(mesh);
+    done_number_ = number;
     has_done_ = true;
     ++built_;
     last_seconds_ = seconds;

@@ -22,10 +22,12 @@ class SurfaceWorker {
   SurfaceWorker(const SurfaceWorker&) = delete;
   SurfaceWorker& operator=(const SurfaceWorker&) = delete;
 
-  // The paste's positions (m) to build next, replacing any not yet started.
-  void submit(const std::vector<Vec3>& points);
-  // Moves the newest finished surface into `mesh`; false when none is newer than the last taken.
-  bool take(SurfaceMesh& mesh);
+  // The paste's positions (m) to build next, replacing any not yet started; returns its number
+  // (1, 2, ... in the order submitted).
+  std::uint64_t submit(const std::vector<Vec3>& points);
+  // Moves the newest finished surface into `mesh` when it was submitted as number `oldest` or later
+  // (a surface of paste from before a reset is not shown); false otherwise.
+  bool take(SurfaceMesh& mesh, std::uint64_t oldest = 0);
   // Surfaces built so far, and the wall seconds the last one took.
   std::uint64_t built() const;
   double last_seconds() const;
@@ -37,6 +39,7 @@ class SurfaceWorker {
   std::condition_variable cv_;
   std::vector<Vec3> pending_;
   bool has_pending_ = false, stop_ = false;
+  std::uint64_t submitted_ = 0, pending_number_ = 0, done_number_ = 0;
   SurfaceMesh done_;
   bool has_done_ = false;
   std::uint64_t built_ = 0;

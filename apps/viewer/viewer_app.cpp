@@ -133,6 +133,8 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   // (a paused simulation publishes the same paste again; a dispense adds to it).
   std::unique_ptr<SurfaceWorker> surface_worker;
   std::pair<std::uint64_t, std::size_t> paste_mesh_key{~std::uint64_t(0), 0};
+  std::uint64_t oldest_mesh = 0;  // the worker's surfaces from before this one are of another paste
+  bool surface_was_on = false;
   std::vector<Vec3> paste_points;
   SurfaceMesh paste_surface_mesh;
   Camera cam = initial_camera(sc);
@@ -320,27 +322,37 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     particle_colours(ui.colour_by, field, snap.role, ui.range, rgb);
     vis_xyz.clear();
     vis_rgb.clear();
-    // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot.
+    // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot: in the
+    // frame for a screenshot (the picture shows the paste it was asked of), else by the worker.
     if (ui.surface) {
       if (!surface_worker) surface_worker = std::make_unique<SurfaceWorker>(spacing);
       paste_points.clear();
-      for (std::size_t i = 0; i < snap.role.size(); ++i)
-        if (snap.role[i] == Role::material) paste_points.push_back({snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
+      for (std::size_t i = 0; i < snap.role.size(); ++i) {
+        const Vec3 x{snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]};
+        // The paste within the scene's domain (a diverged step's flung or non-finite paste has none).
+        if (snap.role[i] == Role::material && is_finite(x) && inside(x, sc.model.domain_min, sc.model.domain_max))
+          paste_points.push_back(x);
+      }
       const std::pair<std::uint64_t, std::size_t> key{snap.steps, paste_points.size()};
-      // A screenshot's frames build it in the frame, so that the picture shows the paste it was asked of.
+      // With the view just turned on, or after a reset (the steps went back), a surface built before
+      // is of another paste: nothing is drawn until this paste's is.
+      const bool fresh = !surface_was_on || key.first < paste_mesh_key.first;
       const bool in_frame = !opt.screenshot.empty();
-      if (key != paste_mesh_key) {
+      if (fresh) paste_mesh.upload({}, {});
+      if (key != paste_mesh_key || fresh) {
         if (in_frame) {
           paste_surface_mesh = particle_surface(paste_points, spacing);
           paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
         } else {
-          surface_worker->submit(paste_points);
+          const std::uint64_t number = surface_worker->submit(paste_points);
+          if (fresh) oldest_mesh = number;
         }
         paste_mesh_key = key;
       }
-      if (!in_frame && surface_worker->take(paste_surface_mesh))
+      if (!in_frame && surface_worker->take(paste_surface_mesh, oldest_mesh))
         paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
     }
+    surface_was_on = ui.surface;
     if (ui.surface) {
       const auto c = io::role_colour(Role::material);
       paste_mesh.draw(u, glm::vec3(c[0], c[1], c[2]));

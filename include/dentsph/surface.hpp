@@ -39,7 +39,10 @@ struct SurfaceParams {
 // inset_per_spacing 0 to half the radius, smoothing 0 to 10) or a centre that is not finite.
 SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const SurfaceParams& params = {});
 
-// The surface of the paste: the material particles of `state`.
-SurfaceMesh paste_surface(const State& state, real spacing, const SurfaceParams& params = {});
+// The surface of the paste of `state` (State::is_paste: material and paste that has set) within the
+// box [lo, hi] (m; the model's domain: paste flung far from it, or not at a finite position, as a
+// diverged run leaves it, has no surface).
+SurfaceMesh paste_surface(const State& state, real spacing, const Vec3& lo, const Vec3& hi,
+                          const SurfaceParams& params = {});
 
 }  // namespace dentsph

@@ -31,6 +31,14 @@ void select_solver(Scene& scene, Solver solver) {
           "the material \"{}\" is non-Newtonian (flow_index {}, yield_stress {} Pa) and only the iisph solver steps a "
           "rheology: run it with --solver iisph on the CPU backend (the GPU backends have the paper's step alone)",
           scene.model.materials.name(*m), scene.model.materials[*m].flow_index, scene.model.materials[*m].yield_stress));
+  // The particles' masses are the lattice mass of the scene's density kernel (lattice_particle_mass):
+  // a switch that changes the kernel would start the paste 1% off its rest density.
+  if (scene.params.iisph.density_kernel == DensityKernel::cubic && solver != scene.params.solver)
+    throw std::invalid_argument(fmt::format(
+        "the scene sums its density with the cubic spline (iisph.density_kernel \"cubic\"), which only the iisph "
+        "solver does, and its particles' masses are that kernel's: run it on the {} solver it names (without --solver "
+        "{}, on the CPU backend), or set iisph.density_kernel to \"poly6\"",
+        solver_name(scene.params.solver), solver_name(solver)));
   scene.params.solver = solver;
   MaterialTable materials = std::move(scene.model.materials);  // the scene's, not the parameters'
   scene.model = make_model(scene.params);

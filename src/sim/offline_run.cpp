@@ -26,9 +26,10 @@ namespace {
 // spacing, the paste's surface beside each, indexed by its own.
 class SnapshotWriter {
  public:
-  SnapshotWriter(const std::filesystem::path& dir, real interval, real surface_spacing)
-      : dir_(dir), interval_(interval), index_(dir / "particles.pvd"), surface_spacing_(surface_spacing),
-        surface_index_(dir / "paste_surface.pvd") {
+  // The surface of the paste within [lo, hi] (the model's domain).
+  SnapshotWriter(const std::filesystem::path& dir, real interval, real surface_spacing, const Vec3& lo, const Vec3& hi)
+      : dir_(dir), interval_(interval), index_(dir / "particles.pvd"), surface_spacing_(surface_spacing), lo_(lo),
+        hi_(hi), surface_index_(dir / "paste_surface.pvd") {
     std::filesystem::create_directories(dir_ / "particles");
     if (surface_spacing_ > 0) std::filesystem::create_directories(dir_ / "paste_surface");
   }
@@ -45,7 +46,7 @@ class SnapshotWriter {
     if (surface_spacing_ > 0) {
       const auto t0 = std::chrono::steady_clock::now();
       const std::string surface = fmt::format("paste_surface/step_{:08d}.vtp", s.steps);
-      io::write_vtp(dir_ / surface, paste_surface(s, surface_spacing_));
+      io::write_vtp(dir_ / surface, paste_surface(s, surface_spacing_, lo_, hi_));
       surface_index_.add(s.time, surface);
       surface_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
@@ -62,6 +63,7 @@ class SnapshotWriter {
   real next_ = 0;
   io::PvdIndex index_;
   real surface_spacing_;
+  Vec3 lo_, hi_;
   io::PvdIndex surface_index_;
   double surface_seconds_ = 0;
 };
@@ -79,7 +81,8 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     std::filesystem::create_directories(opt.out_dir);
     if (scene.output.vtk)
       snaps = std::make_unique<SnapshotWriter>(opt.out_dir, scene.output.snapshot_interval,
-                                               scene.output.surface ? scene.material_spacing : 0);
+                                               scene.output.surface ? scene.material_spacing : 0,
+                                               scene.model.domain_min, scene.model.domain_max);
     csv = std::make_unique<io::ToolForceCsv>(opt.out_dir / "tool_force.csv");
     if (snaps) snaps->maybe_write(sim.state(), true);
   }

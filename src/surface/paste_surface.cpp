@@ -96,10 +96,11 @@ SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const 
   return mesh;
 }
 
-SurfaceMesh paste_surface(const State& state, real spacing, const SurfaceParams& p) {
+SurfaceMesh paste_surface(const State& state, real spacing, const Vec3& lo, const Vec3& hi, const SurfaceParams& p) {
   std::vector<Vec3> paste;
-  for (std::uint32_t i = 0; i < state.size(); ++i)
-    if (state.role[i] == Role::material) paste.push_back(state.pos[i]);
+  for (std::uint32_t i = 0; i < state.size(); ++i) {
+    if (state.is_paste(i) && is_finite(state.pos[i]) && inside(state.pos[i], lo, hi)) paste.push_back(state.pos[i]);
+  }
   return particle_surface(paste, spacing, p);
 }
 

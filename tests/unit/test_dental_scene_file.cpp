@@ -132,6 +132,22 @@ TEST(DentalSceneFile, TheIisphSolversSettings) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("scene.json: simulation.iisph.stiffness: must be in (0, 1], got 2; "), std::string::npos) << msg;
   }
+  // A scene whose density is the cubic spline's (its particles of that kernel's lattice mass) is not
+  // switched to the paper's step, which sums poly6 (--solver paper, a GPU backend): refused, naming
+  // the setting.
+  Scene cubic = parse(R"({"name": "c", "tooth": {}, "simulation": {"solver": "iisph",
+                          "iisph": {"gradient": "cubic", "density_kernel": "cubic"}}})");
+  EXPECT_TRUE(cubic.model.kernel.cubic_density);
+  try {
+    (void)choose_solver(cubic, "paper", false);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("iisph.density_kernel \"cubic\""), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--solver paper"), std::string::npos) << msg;
+  }
+  EXPECT_THROW((void)choose_solver(cubic, "", /*gpu_backend=*/true), std::invalid_argument);
+  EXPECT_NO_THROW((void)choose_solver(cubic, "iisph", false)) << "its own solver";
 }
 
 // "material" fills the scene with a paste preset at force scale 1 (docs/model.md, "Presets"), its

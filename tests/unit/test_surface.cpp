@@ -127,7 +127,8 @@ TEST(Surface, NoParticlesIsAnEmptySurfaceAndBadInputIsRefused) {
   refused(one, s, p, "smoothing -1");
 }
 
-// The paste's surface of a state: its material particles only; written as VTK polygon data.
+// The paste's surface of a state: its paste (material, and paste that has set: State::is_paste) within
+// the box given, finite; written as VTK polygon data.
 TEST(Surface, ThePastesSurfaceIsItsMaterialsAndIsWrittenForParaView) {
   State st;
   std::vector<ParticleInit> ps;
@@ -136,10 +137,23 @@ TEST(Surface, ThePastesSurfaceIsItsMaterialsAndIsWrittenForParaView) {
   for (const Vec3& x : block(6, 6, 6)) ps.push_back(make_particle(Role::boundary, x + Vec3{20 * s, 0, 0}, 1e-9, paste));
   Model model;
   st.add_particles(model, ps);
-  const SurfaceMesh m = paste_surface(st, s);
+  const Vec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  const SurfaceMesh m = paste_surface(st, s, lo, hi);
   const SurfaceMesh alone = particle_surface(block(6, 6, 6), s);
   EXPECT_EQ(m.triangles.size(), alone.triangles.size()) << "the boundary block has no surface";
   for (const Vec3& v : m.vertices) EXPECT_LT(v.x, 6 * s);
+  // Paste that has set (a rigid boundary particle) is paste: the second block has a surface too.
+  State set = st;
+  for (std::uint32_t i = 0; i < set.size(); ++i)
+    if (set.role[i] == Role::boundary) set.cure.rigid[set.id[i]] = 1;
+  EXPECT_EQ(paste_surface(set, s, lo, hi).triangles.size(), 2 * alone.triangles.size());
+  // Paste outside the box, or not at a finite position (a diverged run's), has none; nothing thrown.
+  State flung = st;
+  flung.pos[0] = Vec3{50, 0, 0};
+  flung.pos[1] = Vec3{0, std::nan(""), 0};
+  EXPECT_NO_THROW((void)paste_surface(flung, s, lo, hi));
+  EXPECT_FALSE(paste_surface(flung, s, lo, hi).empty());
+  EXPECT_TRUE(paste_surface(st, s, Vec3{1, 1, 1}, Vec3{2, 2, 2}).empty()) << "no paste in that box";
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "dentsph_surface_test.vtp";
   io::write_vtp(file, m);
   std::ifstream in(file, std::ios::binary);
