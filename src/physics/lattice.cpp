@@ -18,11 +18,15 @@ real lattice_particle_mass(real rho0, real spacing, const KernelCoeffs& kernel) 
         fmt::format("lattice_particle_mass: spacing {}; {}", problem, limits::spacing_fix(kernel.h)));
   const int n = int(std::ceil(kernel.h / spacing));
   real sum = 0;
+  if (kernel.cubic_density) {
+    for (int i = -n; i <= n; ++i)
+      for (int j = -n; j <= n; ++j)
+        for (int k = -n; k <= n; ++k) sum += kernels::cubic(spacing * std::sqrt(real(i * i + j * j + k * k)), kernel);
+    return rho0 / sum;
+  }
   for (int i = -n; i <= n; ++i)
     for (int j = -n; j <= n; ++j)
-      for (int k = -n; k <= n; ++k)
-        sum += kernel.cubic_density ? kernels::cubic(spacing * std::sqrt(real(i * i + j * j + k * k)), kernel)
-                                    : kernels::poly6(spacing * spacing * real(i * i + j * j + k * k), kernel);
+      for (int k = -n; k <= n; ++k) sum += kernels::poly6(spacing * spacing * real(i * i + j * j + k * k), kernel);
   return rho0 / sum;
 }
 
