@@ -87,6 +87,8 @@ struct RunSummary {
   int threads = 1;
   Solver solver = Solver::paper;     // the step that ran
   PressureSolve pressure_solve = PressureSolve::jacobi;  // its pressure solve (the iisph solver's)
+  PressureGradient gradient = PressureGradient::spiky;   // its pressure's kernel gradient (iisph)
+  DensityKernel density_kernel = DensityKernel::poly6;   // the kernel its density is summed with (iisph)
   double viscous_pressure = 0;  // its viscous pressure's step (iisph.viscous_pressure; 0: none)
   // Its figures over the run (solver.hpp; none recorded by the paper's step).
   SolverStatistics solver_statistics;

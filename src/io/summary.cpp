@@ -41,6 +41,8 @@ std::string summary_json(const RunSummary& s) {
   // The figures its solver recorded over the run (none for the paper's step).
   if (const SolverStatistics& st = s.solver_statistics; st.recorded)
     j["solver"].update({{"pressure_solve", pressure_solve_name(s.pressure_solve)},
+                        {"gradient", gradient_name(s.gradient)},
+                        {"density_kernel", density_kernel_name(s.density_kernel)},
                         {"pressure_iterations", {{"mean", st.iterations_mean()}, {"max", st.iterations_max}}},
                         {"density_error", {{"mean", st.density_error_mean()}, {"max", st.density_error_max}}},
                         // The compression measured at each step's start (not the solve's prediction).

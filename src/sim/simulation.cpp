@@ -155,6 +155,8 @@ RunSummary Simulation::summary() {
   s.threads = options_.threads;
   s.solver = model_.solver;
   s.pressure_solve = model_.iisph.pressure_solve;
+  s.gradient = model_.iisph.gradient;
+  s.density_kernel = model_.iisph.density_kernel;
   s.viscous_pressure = model_.iisph.viscous_pressure;
   s.solver_statistics = solver_statistics_;
   if (diverged_) {

@@ -528,6 +528,8 @@ TEST(Cli, TheSolverIsChosenValidatedAndRefusedOnTheGpu) {
   const nlohmann::json sum = read_json(out / "summary.json");
   EXPECT_EQ(sum.at("solver").at("name"), "iisph");
   EXPECT_EQ(sum.at("solver").at("pressure_solve"), "jacobi") << "the default";
+  EXPECT_EQ(sum.at("solver").at("gradient"), "spiky") << "the default";
+  EXPECT_EQ(sum.at("solver").at("density_kernel"), "poly6") << "the default";
   EXPECT_GE(sum.at("solver").at("pressure_iterations").at("max").get<int>(), 1);
   // --pressure-solve over the scene's, written to the summary with the largest error it measured;
   // an unknown one is refused naming the choices.
