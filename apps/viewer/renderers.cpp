@@ -144,36 +144,32 @@ void ToothRenderer::draw(const ViewUniforms& u) {
   glDrawArrays(GL_TRIANGLES, 0, vertices_);
 }
 
-MeshRenderer::MeshRenderer() : program_("mesh", kSurfaceVs, kSurfaceFs) {}
+MeshRenderer::MeshRenderer(const glm::vec3& colour) : program_("mesh", kSurfaceVs, kSurfaceFs), colour_(colour) {}
 
 void MeshRenderer::upload(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles) {
   const std::vector<Vec3> vn = vertex_normals(vertices, triangles);
   pos_.clear();
   normal_.clear();
+  colours_.clear();
   for (const auto& t : triangles)
     for (std::uint32_t k : t) {
       const Vec3 p = vertices[k];
       const Vec3 n = norm(vn[k]) > 0 ? vn[k] : Vec3{0, 0, 1};
       pos_.insert(pos_.end(), {float(p.x), float(p.y), float(p.z)});
       normal_.insert(normal_.end(), {float(n.x), float(n.y), float(n.z)});
+      colours_.insert(colours_.end(), {colour_.x, colour_.y, colour_.z});
     }
   vertices_ = GLsizei(pos_.size() / 3);
   if (vertices_ == 0) return;
   arrays_.upload(0, pos_.data(), pos_.size());
   arrays_.upload(1, normal_.data(), normal_.size());
+  arrays_.upload(2, colours_.data(), colours_.size());
 }
 
-void MeshRenderer::draw(const ViewUniforms& u, const glm::vec3& colour) {
+void MeshRenderer::draw(const ViewUniforms& u) {
   if (vertices_ == 0) return;
-  colour_.assign(3 * std::size_t(vertices_), 0.f);
-  for (std::size_t v = 0; v < std::size_t(vertices_); ++v) {
-    colour_[3 * v] = colour.x;
-    colour_[3 * v + 1] = colour.y;
-    colour_[3 * v + 2] = colour.z;
-  }
   set_view(program_, u);
   program_.set("use_cut", 0.f);
-  arrays_.upload(2, colour_.data(), colour_.size());
   arrays_.bind();
   glDrawArrays(GL_TRIANGLES, 0, vertices_);
 }

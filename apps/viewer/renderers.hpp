@@ -49,16 +49,17 @@ class ToothRenderer {
 // dentsph/surface.hpp), uploaded when it changes.
 class MeshRenderer {
  public:
-  MeshRenderer();
-  // Uploads the triangles of `vertices` (m) and their corners' normals, area-weighted.
+  explicit MeshRenderer(const glm::vec3& colour);
+  // Uploads the triangles of `vertices` (m), their corners' normals (area-weighted) and colour.
   void upload(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles);
-  void draw(const ViewUniforms& u, const glm::vec3& colour);
+  void draw(const ViewUniforms& u);
 
  private:
   GlProgram program_;
   GlArrays arrays_{3};
   GLsizei vertices_ = 0;
-  std::vector<float> pos_, normal_, colour_;  // reused between uploads
+  glm::vec3 colour_;
+  std::vector<float> pos_, normal_, colours_;  // reused between uploads
 };
 
 // Solid arrows (a cylinder and a cone), built per frame.

@@ -1,6 +1,5 @@
 #include "surface_worker.hpp"
 
-#include <chrono>
 #include <exception>
 #include <utility>
 
@@ -39,16 +38,6 @@ bool SurfaceWorker::take(SurfaceMesh& mesh, std::uint64_t oldest) {
   return true;
 }
 
-std::uint64_t SurfaceWorker::built() const {
-  std::lock_guard<std::mutex> lock(m_);
-  return built_;
-}
-
-double SurfaceWorker::last_seconds() const {
-  std::lock_guard<std::mutex> lock(m_);
-  return last_seconds_;
-}
-
 void SurfaceWorker::run() {
   std::vector<Vec3> points;
   for (;;) {
@@ -61,7 +50,6 @@ void SurfaceWorker::run() {
       has_pending_ = false;
       number = pending_number_;
     }
-    const auto t0 = std::chrono::steady_clock::now();
     SurfaceMesh mesh;
     // On one thread: OpenVDB would take every core, which the simulation and the frames share.
     arena_.execute([&] {
@@ -71,13 +59,10 @@ void SurfaceWorker::run() {
         mesh = {};  // a paste position that is not finite (a diverged step): no surface this time
       }
     });
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::lock_guard<std::mutex> lock(m_);
     done_ = std::move(mesh);
     done_number_ = number;
     has_done_ = true;
-    ++built_;
-    last_seconds_ = seconds;
   }
 }
 

@@ -28,22 +28,17 @@ class SurfaceWorker {
   // Moves the newest finished surface into `mesh` when it was submitted as number `oldest` or later
   // (a surface of paste from before a reset is not shown); false otherwise.
   bool take(SurfaceMesh& mesh, std::uint64_t oldest = 0);
-  // Surfaces built so far, and the wall seconds the last one took.
-  std::uint64_t built() const;
-  double last_seconds() const;
 
  private:
   void run();
   const real spacing_;
-  mutable std::mutex m_;
+  std::mutex m_;
   std::condition_variable cv_;
   std::vector<Vec3> pending_;
   bool has_pending_ = false, stop_ = false;
   std::uint64_t submitted_ = 0, pending_number_ = 0, done_number_ = 0;
   SurfaceMesh done_;
   bool has_done_ = false;
-  std::uint64_t built_ = 0;
-  double last_seconds_ = 0;
   tbb::task_arena arena_{1};
   std::thread thread_;  // last: started once the rest is ready
 };

@@ -128,14 +128,15 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   std::unique_ptr<ToothRenderer> tooth;
   if (sc.tooth) tooth = std::make_unique<ToothRenderer>(*sc.tooth);
   ArrowRenderer arrows;
-  MeshRenderer paste_mesh;
+  const std::array<float, 3> paste_colour = io::role_colour(Role::material);
+  MeshRenderer paste_mesh(glm::vec3(paste_colour[0], paste_colour[1], paste_colour[2]));
   // The paste's surface, built beside the frames from the paste of this step, this many particles
   // (a paused simulation publishes the same paste again; a dispense adds to it).
   std::unique_ptr<SurfaceWorker> surface_worker;
   std::pair<std::uint64_t, std::size_t> paste_mesh_key{~std::uint64_t(0), 0};
   std::uint64_t oldest_mesh = 0;  // the worker's surfaces from before this one are of another paste
   bool surface_was_on = false;
-  std::vector<Vec3> paste_points;
+  std::vector<Vec3> snap_points;
   SurfaceMesh paste_surface_mesh;
   Camera cam = initial_camera(sc);
   UiState ui;
@@ -325,14 +326,10 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot: in the
     // frame for a screenshot (the picture shows the paste it was asked of), else by the worker.
     if (ui.surface) {
-      if (!surface_worker) surface_worker = std::make_unique<SurfaceWorker>(spacing);
-      paste_points.clear();
-      for (std::size_t i = 0; i < snap.role.size(); ++i) {
-        const Vec3 x{snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]};
-        // The paste within the scene's domain (a diverged step's flung or non-finite paste has none).
-        if (snap.role[i] == Role::material && is_finite(x) && inside(x, sc.model.domain_min, sc.model.domain_max))
-          paste_points.push_back(x);
-      }
+      snap_points.resize(snap.role.size());
+      for (std::size_t i = 0; i < snap.role.size(); ++i) snap_points[i] = {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]};
+      // The paste within the scene's domain (a diverged step's flung or non-finite paste has none).
+      const std::vector<Vec3> paste_points = paste_within(snap_points, snap.role, sc.model.domain_min, sc.model.domain_max);
       const std::pair<std::uint64_t, std::size_t> key{snap.steps, paste_points.size()};
       // With the view just turned on, or after a reset (the steps went back), a surface built before
       // is of another paste: nothing is drawn until this paste's is.
@@ -344,19 +341,17 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
           paste_surface_mesh = particle_surface(paste_points, spacing);
           paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
         } else {
+          if (!surface_worker) surface_worker = std::make_unique<SurfaceWorker>(spacing);
           const std::uint64_t number = surface_worker->submit(paste_points);
           if (fresh) oldest_mesh = number;
         }
         paste_mesh_key = key;
       }
-      if (!in_frame && surface_worker->take(paste_surface_mesh, oldest_mesh))
+      if (surface_worker && surface_worker->take(paste_surface_mesh, oldest_mesh))
         paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
     }
     surface_was_on = ui.surface;
-    if (ui.surface) {
-      const auto c = io::role_colour(Role::material);
-      paste_mesh.draw(u, glm::vec3(c[0], c[1], c[2]));
-    }
+    if (ui.surface) paste_mesh.draw(u);
     for (std::size_t i = 0; i < snap.role.size(); ++i) {
       if (!ui.show_boundary && snap.role[i] == Role::boundary) continue;
       if (ui.surface && snap.role[i] == Role::material) continue;

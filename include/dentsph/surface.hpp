@@ -39,6 +39,11 @@ struct SurfaceParams {
 // inset_per_spacing 0 to half the radius, smoothing 0 to 10) or a centre that is not finite.
 SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const SurfaceParams& params = {});
 
+// The positions whose role is material (the paste; a caller that maps set paste to material has it
+// too), finite and within [lo, hi]: the paste a surface is made of.
+std::vector<Vec3> paste_within(std::span<const Vec3> positions, std::span<const Role> roles, const Vec3& lo,
+                               const Vec3& hi);
+
 // The surface of the paste of `state` (State::is_paste: material and paste that has set) within the
 // box [lo, hi] (m; the model's domain: paste flung far from it, or not at a finite position, as a
 // diverged run leaves it, has no surface).

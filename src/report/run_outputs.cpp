@@ -43,12 +43,9 @@ void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<co
       o.marker_radii.push_back(std::cbrt(3 * v.value("volume_mm3", 0.0) / (4 * 3.14159265358979)) * 1e-3);
     }
   // The paste as its surface, and as particles (the report's second view).
-  std::vector<Vec3> paste;  // the paste within the model's domain (a diverged run's flung paste has none)
-  const Vec3 lo = scene.model.domain_min, hi = scene.model.domain_max;
-  for (std::size_t i = 0; i < positions.size() && i < roles.size(); ++i) {
-    if (roles[i] == Role::material && is_finite(positions[i]) && inside(positions[i], lo, hi)) paste.push_back(positions[i]);
-  }
-  const SurfaceMesh surface = particle_surface(paste, o.spacing);
+  // The paste within the model's domain (a diverged run's flung paste has none).
+  const SurfaceMesh surface =
+      particle_surface(paste_within(positions, roles, scene.model.domain_min, scene.model.domain_max), o.spacing);
   PictureOptions with_surface = o;
   with_surface.paste_surface = &surface;
   write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles, /*paste=*/false), with_surface);

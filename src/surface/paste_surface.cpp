@@ -96,6 +96,14 @@ SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const 
   return mesh;
 }
 
+std::vector<Vec3> paste_within(std::span<const Vec3> positions, std::span<const Role> roles, const Vec3& lo,
+                               const Vec3& hi) {
+  std::vector<Vec3> paste;
+  for (std::size_t i = 0; i < positions.size() && i < roles.size(); ++i)
+    if (roles[i] == Role::material && is_finite(positions[i]) && inside(positions[i], lo, hi)) paste.push_back(positions[i]);
+  return paste;
+}
+
 SurfaceMesh paste_surface(const State& state, real spacing, const Vec3& lo, const Vec3& hi, const SurfaceParams& p) {
   std::vector<Vec3> paste;
   for (std::uint32_t i = 0; i < state.size(); ++i) {
