@@ -17,6 +17,7 @@
 
 #include "report/criteria.hpp"
 #include "report/pictures.hpp"
+#include "report/session_fields.hpp"
 
 namespace dentsph::report {
 
@@ -179,46 +180,6 @@ Series decimate(const Series& s, std::size_t buckets) {
   return out;
 }
 
-// The figures a report judges, each within what a run can write: a summary changed by hand (a fill
-// of 1e308 showed as "inf % good", -5 as "-500.0 %") is refused, naming the file and the field.
-static void check_figures(const fs::path& file, const nlohmann::json& summary) {
-  struct Range {
-    const char* path;
-    double lo, hi;
-  };
-  constexpr double kMax = 1e12;
-  static const Range kRanges[] = {
-      {"assessment.fill_fraction", 0, 1},           {"assessment.void_count", 0, kMax},
-      {"assessment.void_volume_mm3", 0, kMax},      {"assessment.overfill_mm3", 0, kMax},
-      {"assessment.cavity_volume_mm3", 0, kMax},    {"assessment.leaked_particles", 0, kMax},
-      {"assessment.lost_particles", 0, kMax},       {"assessment.peak_device_force_N", 0, kMax},
-      {"assessment.mean_device_force_N", 0, kMax},  {"tool.peak_device_force_N", 0, kMax},
-      {"tool.force_scale", 0, kMax},                {"assessment.pore_count", 0, kMax},
-      {"assessment.pore_volume_mm3", 0, kMax},      {"assessment.min_void_mm3", 0, kMax},
-  };
-  for (const Range& r : kRanges) {
-    // Present but not a number, or a number out of range (JSON has no NaN; an overflowed literal
-    // such as 1e999 reads as infinity).
-    const std::optional<double> v = number_at(summary, r.path);
-    bool present = true;
-    const nlohmann::json* at = &summary;
-    for (std::string_view rest = r.path; present;) {
-      const std::size_t dot = rest.find('.');
-      const std::string key(rest.substr(0, dot));
-      present = at->is_object() && at->contains(key);
-      if (!present) break;
-      at = &(*at)[key];
-      if (dot == std::string_view::npos) break;
-      rest.remove_prefix(dot + 1);
-    }
-    if (!present) continue;
-    if (!v || !std::isfinite(*v) || *v < r.lo || *v > r.hi)
-      throw SessionError(fmt::format("{}: {} is {}, not a number in [{:g}, {:g}]: the summary was changed after the run "
-                                     "(or is not dentsph's); run the session again",
-                                     file.string(), r.path, at->dump(), r.lo, r.hi));
-  }
-}
-
 SessionFolder read_session(const fs::path& dir) {
   if (!fs::is_directory(dir))
     throw SessionError(fmt::format("{}: no such folder; give the --out folder of a dentsph run", dir.string()));
@@ -232,9 +193,12 @@ SessionFolder read_session(const fs::path& dir) {
   if (!s.summary.is_object() || !s.summary.contains("steps"))
     throw SessionError(fmt::format("{}: not a dentsph run summary (no \"steps\"); give the folder that `dentsph run "
                                    "--out` wrote", (dir / "summary.json").string()));
-  check_figures(dir / "summary.json", s.summary);
+  check_summary_fields(dir / "summary.json", s.summary);
   s.realtime = s.summary.contains("haptic");
-  if (fs::exists(dir / "procedure.json")) s.procedure = read_json(dir / "procedure.json", "the procedure's log");
+  if (fs::exists(dir / "procedure.json")) {
+    s.procedure = read_json(dir / "procedure.json", "the procedure's log");
+    check_procedure_fields(dir / "procedure.json", s.procedure);
+  }
   const double scale = number_or(s.summary.value("tool", nlohmann::json::object()), "force_scale", 1.0);
 
   if (fs::exists(dir / "tool_force.csv")) {

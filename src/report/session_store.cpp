@@ -7,6 +7,8 @@
 #include <string_view>
 
 #include "report/postgres_store.hpp"
+#include "report/session_fields.hpp"
+#include "report/session_folder.hpp"
 #include "report/store_backend.hpp"
 
 namespace dentsph::report {
@@ -98,6 +100,14 @@ SessionEntry entry_from_row(std::string student, std::string exercise, std::stri
                      "'); add that session again");
   if (!procedure.empty()) e.procedure = nlohmann::json::parse(procedure, nullptr, false);
   if (e.procedure.is_discarded()) e.procedure = nullptr;
+  // A stored summary is read as a folder's is (session_fields.hpp): a row changed by hand is refused.
+  try {
+    const std::filesystem::path dir = e.folder.empty() ? std::filesystem::path("session") : std::filesystem::path(e.folder);
+    check_summary_fields(dir / "summary.json", e.summary);
+    if (!e.procedure.is_null()) check_procedure_fields(dir / "procedure.json", e.procedure);
+  } catch (const SessionError& err) {
+    throw StoreError(masked_location(location) + ": a stored session: " + err.what() + " and add it again");
+  }
   const std::string base = e.folder.empty() ? "session" : std::filesystem::path(e.folder).filename().string();
   // "A. Student, 2026-11-22 23:37" (the finished_at's date and minute).
   std::string when = e.finished_at.substr(0, std::min<std::size_t>(16, e.finished_at.size()));

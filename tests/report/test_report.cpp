@@ -214,6 +214,54 @@ TEST(Report, BrokenFoldersAreNamedWithTheFix) {
   EXPECT_NO_THROW(read_session(write_folder("untouched", summary(0.97, 0, 0, 1, 1))));
 }
 
+// Every field the report reads has the type a run writes: a void's "against" of 99999999999 threw
+// a library's type error out of the report (found by fuzz_report_folder), a step count of 1e300 was
+// cast to an int out of its range, an event that is not an object threw from the markers.
+TEST(Report, FieldsOfAnotherTypeAreNamedWithTheFix) {
+  auto refused = [](const fs::path& d, const std::vector<std::string>& phrases) {
+    try {
+      const SessionFolder s = read_session(d);
+      (void)session_report_html(s);
+      ADD_FAILURE() << d << " was read";
+    } catch (const SessionError& e) {
+      for (const std::string& p : phrases) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+  };
+  struct Case {
+    std::string path;  // in the summary, by keys, with a list's index
+    nlohmann::json value;
+    std::string named, want;
+  };
+  const std::vector<Case> cases = {
+      {"/assessment/voids", nlohmann::json::array({{{"against", 99999999999LL}}}), "assessment.voids[0].against is 99999999999", "not a text"},
+      {"/assessment/voids", nlohmann::json::array({3}), "assessment.voids[0] is 3", "not an object"},
+      {"/assessment/voids", "none", "assessment.voids is \"none\"", "not a list"},
+      {"/steps", 1e300, "steps is 1e+300", "not a whole number"},
+      {"/threads", -2, "threads is -2", "not a whole number"},
+      {"/scene", nlohmann::json::array(), "scene is []", "not a text"},
+      {"/particles", 7, "particles is 7", "not an object"},
+      {"/session", nlohmann::json{{"student", 5}}, "session.student is 5", "not a text"},
+      {"/cure", nlohmann::json{{"increments", {{"a", 1}}}}, "cure.increments is", "not a list"},
+      {"/cure", nlohmann::json{{"increments", {{{"increment", 1.5}}}}}, "cure.increments[0].increment is 1.5", "not a whole number"},
+      {"/tool/force_scale", "x", "tool.force_scale is \"x\"", "not a number"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json sm = summary(1, 0, 0, 1, 1);
+    sm[nlohmann::json::json_pointer(c.path)] = c.value;
+    refused(write_folder("typed", sm), {"summary.json", c.named, c.want, "run the session again"});
+  }
+  // procedure.json's events and increments.
+  for (const auto& [procedure, named] : std::vector<std::pair<nlohmann::json, std::string>>{
+           {nlohmann::json::array(), "the file is []"},
+           {{{"events", {1}}}, "events[0] is 1"},
+           {{{"events", {{{"kind", "dispense"}, {"step", -1}}}}}, "events[0].step is -1"},
+           {{{"increments", {{{"thickness_p90_mm", "thick"}}}}}, "increments[0].thickness_p90_mm is \"thick\""}}) {
+    const fs::path d = write_folder("typed_procedure", summary(1, 0, 0, 1, 1));
+    std::ofstream(d / "procedure.json") << procedure.dump();
+    refused(d, {"procedure.json", named, "run the session again"});
+  }
+}
+
 TEST(Report, DecimationKeepsThePeaks) {
   Series s{"f", {}, {}};
   for (int k = 0; k < 100000; ++k) {
