@@ -39,6 +39,76 @@ std::string describe_void(const nlohmann::json& v) {
                      x >= 0 ? "mesial" : "distal", v.value("wall_distance_mm", 0.0));
 }
 
+// The restoration's surface against the intact tooth (summary.json's "grading.anatomic_form",
+// surface_grade.hpp): good in the alpha band.
+Criterion anatomic_form_criterion(const nlohmann::json& s) {
+  const nlohmann::json& a = s["grading"].value("anatomic_form", nlohmann::json::object());
+  const auto p95 = a.value("measured", false) ? number_at(a, "p95_abs_mm") : std::nullopt;
+  const std::string band = a.value("band", "");
+  const double alpha = number_at(a, "alpha_max_mm").value_or(0.25), charlie = number_at(a, "charlie_under_mm").value_or(1.0);
+  Criterion c = make("anatomic_form", "Anatomic form", "grading.anatomic_form.p95_abs_mm", p95,
+                     p95 ? fmt::format("{}: 95 % within {:.2f} mm", band, *p95) : "",
+                     fmt::format("alpha: 95 % of the opening within {:.2f} mm of the intact tooth", alpha),
+                     "Build the last increment up to the cusps' slopes and carve it to the tooth's anatomy: neither flat "
+                     "below the margin nor heaped above it.");
+  if (p95)
+    c.details.push_back(fmt::format("against the intact tooth: RMS {:.2f} mm, deepest under-contour {:.2f} mm, highest "
+                                    "over-contour {:.2f} mm (bravo beyond alpha, charlie under-contoured by more than "
+                                    "{:.1f} mm)",
+                                    number_at(a, "rms_mm").value_or(0), number_at(a, "max_under_mm").value_or(0),
+                                    number_at(a, "max_over_mm").value_or(0), charlie));
+  if (p95) c.verdict = judge(band == "alpha");
+  if (!a.value("measured", false)) c.details.push_back("not measured: " + a.value("why_not", std::string("no surface")));
+  const auto under = number_at(a, "under_area_mm2"), over = number_at(a, "over_area_mm2");
+  if (p95 && under && over)
+    c.details.push_back(fmt::format("{:.2f} mm^2 of the opening under-contoured and {:.2f} mm^2 over-contoured by more "
+                                    "than {:.2f} mm",
+                                    *under, *over, alpha));
+  return c;
+}
+
+// The occlusal margin (summary.json's "grading.marginal_adaptation"): the preclinical rubric, good
+// with at most max_sites defect sites and none longer than max_site_mm.
+Criterion margin_criterion(const nlohmann::json& s) {
+  const nlohmann::json& m = s["grading"].value("marginal_adaptation", nlohmann::json::object());
+  const auto sites = m.value("measured", false) ? number_at(m, "sites") : std::nullopt;
+  const double max_sites = number_at(m, "max_sites").value_or(3), max_site = number_at(m, "max_site_mm").value_or(1.0);
+  const double largest = number_at(m, "largest_site_mm").value_or(0);
+  Criterion c = make("margin", "Marginal adaptation", "grading.marginal_adaptation.sites", sites,
+                     sites ? fmt::format("{:.0f} defect site{}, the longest {:.2f} mm", *sites, *sites == 1 ? "" : "s", largest)
+                           : "",
+                     fmt::format("at most {:.0f} sites, none over {:.1f} mm", max_sites, max_site),
+                     "Condense the paste into the margin all round, and carve away what laps over the enamel before "
+                     "curing.");
+  if (sites)
+    c.details.push_back(fmt::format("{:.1f} mm of gap and {:.1f} mm of excess along {:.1f} mm of margin (a step of "
+                                    "{:.2f} mm or more between paste and tooth)",
+                                    number_at(m, "gap_length_mm").value_or(0), number_at(m, "excess_length_mm").value_or(0),
+                                    number_at(m, "length_mm").value_or(0), number_at(m, "step_threshold_mm").value_or(0.15)));
+  if (sites) c.verdict = judge(*sites <= max_sites && largest <= max_site);
+  if (!m.value("measured", false)) c.details.push_back("not measured: " + m.value("why_not", std::string("no surface")));
+  if (m.contains("defects") && m["defects"].is_array())
+    for (const nlohmann::json& d : m["defects"]) {
+      const auto ce = d.value("centre_mm", nlohmann::json::array());
+      const double x = ce.size() == 3 && ce[0].is_number() ? ce[0].get<double>() : 0;
+      const double y = ce.size() == 3 && ce[1].is_number() ? ce[1].get<double>() : 0;
+      // Where along the outline: its mesial or distal end, or one of its bucco-lingual sides (the
+      // frame's y; which is buccal one tooth does not tell).
+      const std::string where = std::abs(x) >= std::abs(y)
+                                    ? fmt::format("{:.1f} mm {} of the cavity's middle", std::abs(x), x >= 0 ? "mesial" : "distal")
+                                    : fmt::format("on a bucco-lingual side (y {:+.1f} mm)", y);
+      c.details.push_back(fmt::format("{} of {:.2f} mm along the margin, a step of up to {:.2f} mm, {}",
+                                      d.value("kind", "") == "gap" ? "a gap (the paste short of the tooth)"
+                                                                   : "an excess (paste lapping over the tooth)",
+                                      d.value("length_mm", 0.0), d.value("largest_step_mm", 0.0), where));
+    }
+  if (const auto below = number_at(m, "below_resolution_mm"); below && *below > 0)
+    c.details.push_back(fmt::format("{:.2f} mm of shorter steps, each under a particle's spacing: below what the "
+                                    "simulation resolves, not counted",
+                                    *below));
+  return c;
+}
+
 }  // namespace
 
 const char* verdict_name(Verdict v) {
@@ -163,6 +233,11 @@ std::vector<Criterion> filling_criteria(const nlohmann::json& s, const nlohmann:
            "Dispense less in the last increment, and condense it to the margin rather than heaping it.");
   if (over && cavity) c.verdict = judge(*over <= t.overfill_max_share * *cavity);
   out.push_back(c);
+
+  if (s.contains("grading")) {
+    out.push_back(anatomic_form_criterion(s));
+    out.push_back(margin_criterion(s));
+  }
 
   const auto leaked = number_at(s, "assessment.leaked_particles");
   const auto lost = number_at(s, "assessment.lost_particles");

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "dentsph/surface_grade.hpp"
 #include "report/session_report.hpp"
 
 namespace dentsph::report {
@@ -30,11 +31,16 @@ std::string utc_now() {
   return buf;
 }
 
+void write_summary(const std::filesystem::path& file, const nlohmann::json& j) {
+  std::ofstream out(file);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary", file.string()));
+}
+
 void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
-              std::span<const Role> roles, const nlohmann::json& summary) {
-  if (!scene.tooth) return;
+              std::span<const Role> roles, const nlohmann::json& summary, const SurfaceMesh& surface, real spacing) {
   PictureOptions o;
-  o.spacing = scene.material_spacing > 0 ? scene.material_spacing : default_tooth_spacing;
+  o.spacing = spacing;
   if (summary.contains("assessment") && summary["assessment"].contains("voids"))
     for (const nlohmann::json& v : summary["assessment"]["voids"]) {
       const auto c = v.value("centre_mm", nlohmann::json::array());
@@ -43,13 +49,27 @@ void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<co
       o.marker_radii.push_back(std::cbrt(3 * v.value("volume_mm3", 0.0) / (4 * 3.14159265358979)) * 1e-3);
     }
   // The paste as its surface, and as particles (the report's second view).
-  // The paste within the model's domain (a diverged run's flung paste has none).
-  const SurfaceMesh surface =
-      particle_surface(paste_within(positions, roles, scene.model.domain_min, scene.model.domain_max), o.spacing);
   PictureOptions with_surface = o;
   with_surface.paste_surface = &surface;
   write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles, /*paste=*/false), with_surface);
   write_tooth_pictures(dir, *scene.tooth, positions, colour_by_role(roles), o, /*particles=*/true);
+}
+
+// A dental scene's end: the paste's surface (the paste within the model's domain: a diverged run's
+// flung paste has none), graded against the tooth into the summary's "grading", and the pictures.
+void surface_outputs(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+                     std::span<const Role> roles) {
+  if (!scene.tooth) return;
+  const real spacing = scene.material_spacing > 0 ? scene.material_spacing : default_tooth_spacing;
+  const SurfaceMesh surface =
+      particle_surface(paste_within(positions, roles, scene.model.domain_min, scene.model.domain_max), spacing);
+  GradeParams gp;
+  gp.spacing = spacing;
+  const std::filesystem::path file = dir / "summary.json";
+  nlohmann::json j = read_summary(file);
+  j["grading"] = nlohmann::json::parse(surface_grade_json(grade_surface(*scene.tooth, surface, gp)));
+  write_summary(file, j);
+  pictures(dir, scene, positions, roles, j, surface, spacing);
 }
 
 }  // namespace
@@ -61,15 +81,13 @@ void stamp_summary(const std::filesystem::path& dir, const Scene& scene) {
   if (!scene.student.empty()) session["student"] = scene.student;
   if (!scene.exercise.empty()) session["exercise"] = scene.exercise;
   j["session"] = session;
-  std::ofstream out(file);
-  out << j.dump(2) << "\n";
-  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the summary", file.string()));
+  write_summary(file, j);
 }
 
 void finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
                 std::span<const Role> roles, const ProcedureLog& log) {
   stamp_summary(dir, scene);
-  pictures(dir, scene, positions, roles, read_summary(dir / "summary.json"));
+  surface_outputs(dir, scene, positions, roles);
   write_procedure_json(dir / "procedure.json", scene, log, {});
   write_session_report(dir);
 }
@@ -80,7 +98,7 @@ void finish_run(const std::filesystem::path& dir, const Scene& scene, const Stat
   std::vector<Role> roles(state.role.begin(), state.role.end());
   for (std::uint32_t i = 0; i < state.size(); ++i)
     if (state.is_paste(i)) roles[i] = Role::material;
-  pictures(dir, scene, state.pos, roles, read_summary(dir / "summary.json"));
+  surface_outputs(dir, scene, state.pos, roles);
   write_procedure_json(dir / "procedure.json", scene, log, log.thickness(scene, state));
   write_session_report(dir);
 }

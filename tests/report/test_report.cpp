@@ -214,6 +214,57 @@ TEST(Report, BrokenFoldersAreNamedWithTheFix) {
   EXPECT_NO_THROW(read_session(write_folder("untouched", summary(0.97, 0, 0, 1, 1))));
 }
 
+// The surface's grading (summary.json's "grading", surface_grade.hpp): anatomic form good in the
+// alpha band, the margin by the preclinical rubric (at most 3 defect sites, none over 1 mm); both
+// absent without a grading, named as not measured with the reason when the run could not grade.
+TEST(Report, TheSurfacesGradingIsJudgedByTheTutorsCriteria) {
+  auto grading = [](const std::string& band, int sites, double largest) {
+    nlohmann::json defects = nlohmann::json::array();
+    for (int k = 0; k < sites; ++k)
+      defects.push_back({{"kind", k % 2 ? "excess" : "gap"}, {"length_mm", largest}, {"largest_step_mm", 0.3},
+                         {"centre_mm", {k % 2 ? -2.0 : 2.0, 0.0, 0.0}}});
+    return nlohmann::json{
+        {"anatomic_form", {{"measured", true}, {"band", band}, {"p95_abs_mm", band == "alpha" ? 0.2 : 0.4},
+                           {"rms_mm", 0.1}, {"max_under_mm", 0.3}, {"max_over_mm", 0.1}, {"under_area_mm2", 1.0},
+                           {"over_area_mm2", 0.0}, {"alpha_max_mm", 0.25}, {"charlie_under_mm", 1.0}}},
+        {"marginal_adaptation", {{"measured", true}, {"length_mm", 15.1}, {"gap_length_mm", sites * largest},
+                                 {"excess_length_mm", 0.0}, {"sites", sites}, {"largest_site_mm", largest},
+                                 {"max_sites", 3}, {"max_site_mm", 1.0}, {"step_threshold_mm", 0.15},
+                                 {"below_resolution_mm", 0.1}, {"defects", defects}}}};
+  };
+  nlohmann::json s = summary(0.97, 0, 0, 1, 1);
+  EXPECT_THROW(by_id(filling_criteria(s, nullptr), "margin"), std::runtime_error);  // no grading: no row
+  s["grading"] = grading("alpha", 3, 1.0);
+  auto cs = filling_criteria(s, nullptr);
+  EXPECT_EQ(by_id(cs, "anatomic_form").verdict, Verdict::good);
+  EXPECT_EQ(by_id(cs, "margin").verdict, Verdict::good);
+  EXPECT_EQ(by_id(cs, "margin").shown, "3 defect sites, the longest 1.00 mm");
+  // The lengths, three sites and the steps below resolution.
+  ASSERT_EQ(by_id(cs, "margin").details.size(), 5u);
+  EXPECT_NE(by_id(cs, "margin").details[1].find("a gap (the paste short of the tooth) of 1.00 mm"), std::string::npos)
+      << by_id(cs, "margin").details[1];
+  EXPECT_NE(by_id(cs, "margin").details[2].find("2.0 mm distal"), std::string::npos) << by_id(cs, "margin").details[2];
+  EXPECT_EQ(by_id(cs, "anatomic_form").shown, "alpha: 95 % within 0.20 mm");
+  s["grading"] = grading("bravo", 4, 0.5);
+  cs = filling_criteria(s, nullptr);
+  EXPECT_EQ(by_id(cs, "anatomic_form").verdict, Verdict::needs_work);
+  EXPECT_EQ(by_id(cs, "margin").verdict, Verdict::needs_work);  // four sites
+  s["grading"] = grading("alpha", 1, 1.2);
+  EXPECT_EQ(by_id(filling_criteria(s, nullptr), "margin").verdict, Verdict::needs_work);  // a site over 1 mm
+  s["grading"] = {{"anatomic_form", {{"measured", false}, {"why_not", "no opening"}}},
+                  {"marginal_adaptation", {{"measured", false}, {"why_not", "no margin"}}}};
+  cs = filling_criteria(s, nullptr);
+  EXPECT_EQ(by_id(cs, "anatomic_form").verdict, Verdict::not_measured);
+  EXPECT_EQ(by_id(cs, "margin").details.at(0), "not measured: no margin");
+  // The page shows them, and a tampered grading is refused naming the field.
+  s["grading"] = grading("bravo", 1, 0.5);
+  const std::string html = session_report_html(read_session(write_folder("graded", s)));
+  EXPECT_NE(html.find("data-criterion=\"anatomic_form\""), std::string::npos);
+  EXPECT_NE(html.find("Marginal adaptation"), std::string::npos);
+  s["grading"]["marginal_adaptation"]["measured"] = "yes";
+  EXPECT_THROW(read_session(write_folder("graded_tampered", s)), SessionError);
+}
+
 // Every field the report reads has the type a run writes: a void's "against" of 99999999999 threw
 // a library's type error out of the report (found by fuzz_report_folder), a step count of 1e300 was
 // cast to an int out of its range, an event that is not an object threw from the markers.

@@ -1,0 +1,334 @@
+// The restoration's surface graded (surface_grade.hpp; docs/assessment.md, "The surface graded").
+#include "dentsph/surface_grade.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace dentsph {
+
+namespace {
+
+// Just below the intact surface: where a column's opening is read (m).
+constexpr real kBelowTop = 5e-6;
+
+// Heights along the tooth's long axis, in its frame (m; z = 0 at the occlusal reference).
+class Columns {
+ public:
+  Columns(const PreparedTooth& tooth, const SurfaceMesh& paste, real step)
+      : tooth_(tooth), f_(tooth.frame()), step_(step) {
+    const Bounds b = tooth.tooth().bounds();
+    real top = -1;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner{(c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z};
+      top = std::max(top, f_.to_local(corner).z);
+    }
+    above_ = top + 1e-3;
+    if (!paste.empty()) paste_.emplace(TriMesh{paste.vertices, paste.triangles});
+  }
+
+  // The intact tooth's top at (x, y); none off the tooth.
+  std::optional<real> intact_top(real x, real y) const {
+    const auto t = tooth_.tooth().ray(f_.to_world({x, y, above_}), -f_.z);
+    if (!t) return std::nullopt;
+    return above_ - *t;
+  }
+  // The cavity opens at the intact surface here.
+  bool opening(real x, real y, real top) const { return tooth_.in_cavity(f_.to_world({x, y, top - kBelowTop})); }
+  // The cavity's floor below an opening: the first height under `top` out of the cavity, marched in
+  // steps of a quarter of the column spacing and then bisected.
+  real floor(real x, real y, real top) const {
+    const real dz = step_ * 0.75;
+    real hi = top - kBelowTop, lo = hi;
+    for (int k = 0; k < 100000; ++k) {
+      lo = hi - dz;
+      if (!tooth_.in_cavity(f_.to_world({x, y, lo}))) break;
+      hi = lo;
+    }
+    for (int k = 0; k < 20; ++k) {
+      const real mid = 0.5 * (lo + hi);
+      (tooth_.in_cavity(f_.to_world({x, y, mid})) ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+  // The paste's top at (x, y), looked for from `from` down; none if no paste lies under it.
+  std::optional<real> paste_top(real x, real y, real from) const {
+    if (!paste_) return std::nullopt;
+    const Vec3 o = f_.to_world({x, y, from});
+    if (paste_->inside(o)) return from;
+    const auto t = paste_->ray(o, -f_.z);
+    if (!t) return std::nullopt;
+    return from - *t;
+  }
+  // The restoration's top in an opening: the highest paste within `bridge` of the column (its
+  // centre and 16 points on two rings) where it lies above the floor, the floor otherwise. The
+  // paste keeps a crevice narrower than a particle from the walls (the SPH gap at a wall,
+  // docs/assessment.md "The wall standoff"): a column down it would read the floor.
+  real restoration_top(real x, real y, real top, real band_up, real bridge) const {
+    real z = floor(x, y, top);
+    for (int k = 0; k < 17; ++k) {
+      const real r = k == 0 ? 0 : (k <= 8 ? bridge / 2 : bridge);
+      const real a = 2 * std::numbers::pi * (k % 8) / 8 + (k > 8 ? std::numbers::pi / 8 : 0);
+      if (const auto p = paste_top(x + r * std::cos(a), y + r * std::sin(a), top + band_up)) z = std::max(z, *p);
+    }
+    return z;
+  }
+  // The paste lying on the intact surface at (x, y): its height above it (0: none).
+  real paste_over(real x, real y, real top, real band_up) const {
+    const auto p = paste_top(x, y, top + band_up);
+    return p && *p > top ? *p - top : 0;
+  }
+
+ private:
+  const PreparedTooth& tooth_;
+  ToothFrame f_;
+  real step_;
+  real above_ = 0;
+  std::optional<MeshDistance> paste_;
+};
+
+void check(const char* field, real v, bool ok) {
+  if (!(std::isfinite(v) && ok))
+    throw std::invalid_argument(fmt::format("GradeParams::{} is {}: give a positive, finite length in metres", field, v));
+}
+
+real percentile(std::vector<real> v, real q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t k = std::size_t(std::ceil(q * real(v.size()))) - 1;
+  return v[std::min(k, v.size() - 1)];
+}
+
+AnatomicForm anatomic_form(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p, real step) {
+  AnatomicForm a;
+  a.column_mm = step * 1e3;
+  a.alpha_max_mm = p.alpha_max * 1e3;
+  a.charlie_under_mm = p.charlie_under * 1e3;
+  const ToothFrame& f = tooth.frame();
+  const Bounds cb = tooth.cavity_bounds();
+  Vec3 lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 l = f.to_local({(c & 1) ? cb.max.x : cb.min.x, (c & 2) ? cb.max.y : cb.min.y, (c & 4) ? cb.max.z : cb.min.z});
+    lo = {std::min(lo.x, l.x), std::min(lo.y, l.y), std::min(lo.z, l.z)};
+    hi = {std::max(hi.x, l.x), std::max(hi.y, l.y), std::max(hi.z, l.z)};
+  }
+  const int nx = int(std::ceil((hi.x - lo.x) / step)), ny = int(std::ceil((hi.y - lo.y) / step));
+  std::vector<real> abs_dev, under;
+  real sum = 0, sum2 = 0;
+  const real cell_mm2 = a.column_mm * a.column_mm;
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j) {
+      const real x = lo.x + (i + 0.5) * step, y = lo.y + (j + 0.5) * step;
+      const auto top = cols.intact_top(x, y);
+      if (!top || !cols.opening(x, y, *top)) continue;
+      const real d = (cols.restoration_top(x, y, *top, p.band_up, p.bridge > 0 ? p.bridge : p.spacing) - *top) * 1e3;
+      a.column_centre_mm.push_back(Vec3{x, y, *top} * 1e3);
+      a.deviation_mm.push_back(d);
+      sum += d;
+      sum2 += d * d;
+      abs_dev.push_back(std::abs(d));
+      under.push_back(std::max<real>(0, -d));
+      a.max_under_mm = std::max(a.max_under_mm, -d);
+      a.max_over_mm = std::max(a.max_over_mm, d);
+      if (d < -p.alpha_max * 1e3) a.under_area_mm2 += cell_mm2;
+      if (d > p.alpha_max * 1e3) a.over_area_mm2 += cell_mm2;
+    }
+  a.columns = int(a.deviation_mm.size());
+  if (a.columns == 0) {
+    a.why_not = "the cavity does not open at the tooth's occlusal surface (no column of the cavity reaches it)";
+    return a;
+  }
+  a.measured = true;
+  a.mean_mm = sum / a.columns;
+  a.rms_mm = std::sqrt(sum2 / a.columns);
+  a.p95_abs_mm = percentile(abs_dev, 0.95);
+  a.p95_under_mm = percentile(under, 0.95);
+  a.band = a.p95_abs_mm <= p.alpha_max * 1e3 ? 'A' : (a.p95_under_mm > p.charlie_under * 1e3 ? 'C' : 'B');
+  return a;
+}
+
+MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p,
+                                       real step) {
+  MarginalAdaptation m;
+  const real thr = p.step_threshold > 0 ? p.step_threshold : std::max<real>(0.15e-3, p.spacing / 2);
+  const real probe = p.probe > 0 ? p.probe : p.spacing;
+  const real min_site = p.min_site > 0 ? p.min_site : p.spacing;
+  m.step_threshold_mm = thr * 1e3;
+  m.max_sites = p.max_sites;
+  m.max_site_mm = p.max_site * 1e3;
+  // The region's reach: the cavity's bounds about the axis, and a millimetre.
+  const ToothFrame& f = tooth.frame();
+  const Bounds cb = tooth.cavity_bounds();
+  real reach = 0;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 l = f.to_local({(c & 1) ? cb.max.x : cb.min.x, (c & 2) ? cb.max.y : cb.min.y, (c & 4) ? cb.max.z : cb.min.z});
+    reach = std::max(reach, std::hypot(l.x, l.y));
+  }
+  reach += 1e-3;
+  const auto top0 = cols.intact_top(0, 0);
+  if (!top0 || !cols.opening(0, 0, *top0)) {
+    m.why_not = "the cavity does not open at the occlusal surface around the tooth's long axis";
+    return m;
+  }
+  // 0 in the opening, 1 on the tooth outside it, 2 off the tooth.
+  auto where = [&](real x, real y) {
+    const auto t = cols.intact_top(x, y);
+    if (!t) return 2;
+    return cols.opening(x, y, *t) ? 0 : 1;
+  };
+  const int n = p.margin_samples;
+  const real dr = step / 2;
+  std::vector<real> gap(std::size_t(n), 0), excess(std::size_t(n), 0);
+  for (int k = 0; k < n; ++k) {
+    const real th = 2 * std::numbers::pi * k / n;
+    const real ux = std::cos(th), uy = std::sin(th);
+    real in = 0, out = dr;
+    int beyond = 0;
+    for (; out <= reach; in = out, out += dr)
+      if ((beyond = where(out * ux, out * uy)) != 0) break;
+    if (beyond == 2 || out > reach) {  // the opening runs off the tooth's top: a proximal box
+      const real r = std::min(in, reach);
+      const auto t = cols.intact_top(r * ux, r * uy);
+      m.point_mm.push_back(Vec3{r * ux, r * uy, t.value_or(0)} * 1e3);
+      m.reading.push_back(3);
+      continue;
+    }
+    for (int b = 0; b < 30; ++b) {
+      const real mid = 0.5 * (in + out);
+      (where(mid * ux, mid * uy) == 0 ? in : out) = mid;
+    }
+    const real r = 0.5 * (in + out);
+    m.point_mm.push_back(Vec3{r * ux, r * uy, cols.intact_top(r * ux, r * uy).value_or(0)} * 1e3);
+    // Inside: how far the restoration's top falls short of the intact surface.
+    const real ri = std::max<real>(0, r - probe);
+    if (const auto t = cols.intact_top(ri * ux, ri * uy); t && cols.opening(ri * ux, ri * uy, *t))
+      gap[std::size_t(k)] = *t - cols.restoration_top(ri * ux, ri * uy, *t, p.band_up, p.bridge > 0 ? p.bridge : p.spacing);
+    // Outside: paste lying on the tooth.
+    const real ro = r + probe;
+    if (const auto t = cols.intact_top(ro * ux, ro * uy)) excess[std::size_t(k)] = cols.paste_over(ro * ux, ro * uy, *t, p.band_up);
+    const real g = gap[std::size_t(k)], e = excess[std::size_t(k)];
+    m.reading.push_back(g > thr ? (e > thr && e > g ? 2 : 1) : (e > thr ? 2 : 0));
+  }
+  // Each point's share of the margin: half of each segment to a graded neighbour.
+  std::vector<real> share(std::size_t(n), 0);
+  for (int k = 0; k < n; ++k) {
+    const int j = (k + 1) % n;
+    if (m.reading[std::size_t(k)] == 3) ++m.open_samples;
+    if (m.reading[std::size_t(k)] == 3 || m.reading[std::size_t(j)] == 3) continue;
+    const real l = norm(m.point_mm[std::size_t(j)] - m.point_mm[std::size_t(k)]);
+    share[std::size_t(k)] += l / 2;
+    share[std::size_t(j)] += l / 2;
+    m.length_mm += l;
+  }
+  if (m.open_samples == n) {
+    m.why_not = "the cavity's outline runs off the tooth's top all round: no occlusal margin";
+    return m;
+  }
+  m.measured = true;
+  // Runs of one reading along the closed margin, from a point where the reading changes.
+  int start = 0;
+  for (int k = 0; k < n; ++k)
+    if (m.reading[std::size_t(k)] != m.reading[std::size_t((k + n - 1) % n)]) {
+      start = k;
+      break;
+    }
+  for (int done = 0; done < n;) {
+    const int kind = m.reading[std::size_t((start + done) % n)];
+    MarginDefect d;
+    d.kind = kind == 1 ? "gap" : "excess";
+    int count = 0;
+    Vec3 centre;
+    for (; done < n && m.reading[std::size_t((start + done) % n)] == kind; ++done, ++count) {
+      const std::size_t k = std::size_t((start + done) % n);
+      d.length_mm += share[k];
+      d.largest_step_mm = std::max(d.largest_step_mm, (kind == 1 ? gap[k] : excess[k]) * 1e3);
+      centre += m.point_mm[k];
+    }
+    if (kind != 1 && kind != 2) continue;
+    d.centre_mm = centre / real(count);
+    (kind == 1 ? m.gap_length_mm : m.excess_length_mm) += d.length_mm;
+    if (d.length_mm < min_site * 1e3) {
+      m.below_resolution_mm += d.length_mm;
+      continue;
+    }
+    m.largest_site_mm = std::max(m.largest_site_mm, d.length_mm);
+    m.defects.push_back(d);
+  }
+  m.passes = int(m.defects.size()) <= p.max_sites && m.largest_site_mm <= p.max_site * 1e3;
+  return m;
+}
+
+const char* band_name(char b) { return b == 'A' ? "alpha" : b == 'B' ? "bravo" : b == 'C' ? "charlie" : "none"; }
+
+}  // namespace
+
+SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste, const GradeParams& p) {
+  check("spacing", p.spacing, p.spacing > 0);
+  check("column", p.column, p.column >= 0);
+  check("step_threshold", p.step_threshold, p.step_threshold >= 0);
+  check("probe", p.probe, p.probe >= 0);
+  check("bridge", p.bridge, p.bridge >= 0);
+  check("min_site", p.min_site, p.min_site >= 0);
+  check("band_up", p.band_up, p.band_up > 0);
+  check("alpha_max", p.alpha_max, p.alpha_max > 0);
+  check("charlie_under", p.charlie_under, p.charlie_under > 0);
+  check("max_site", p.max_site, p.max_site > 0);
+  if (p.margin_samples < 16 || p.margin_samples > 100000)
+    throw std::invalid_argument(fmt::format("GradeParams::margin_samples is {}: give 16 to 100000", p.margin_samples));
+  if (p.max_sites < 0) throw std::invalid_argument("GradeParams::max_sites is negative: give 0 or more");
+  const real step = p.column > 0 ? p.column : p.spacing / 3;
+  const Columns cols(tooth, paste, step);
+  SurfaceGrade g;
+  g.anatomic = anatomic_form(tooth, cols, p, step);
+  g.margin = marginal_adaptation(tooth, cols, p, step);
+  return g;
+}
+
+std::string surface_grade_json(const SurfaceGrade& g) {
+  using nlohmann::json;
+  json a;
+  if (!g.anatomic.measured) {
+    a = {{"measured", false}, {"why_not", g.anatomic.why_not}};
+  } else {
+    const AnatomicForm& f = g.anatomic;
+    a = {{"measured", true},          {"band", band_name(f.band)},         {"rms_mm", f.rms_mm},
+         {"mean_mm", f.mean_mm},      {"max_under_mm", f.max_under_mm},    {"max_over_mm", f.max_over_mm},
+         {"p95_abs_mm", f.p95_abs_mm}, {"p95_under_mm", f.p95_under_mm},   {"under_area_mm2", f.under_area_mm2},
+         {"over_area_mm2", f.over_area_mm2}, {"columns", f.columns},       {"column_mm", f.column_mm},
+         {"alpha_max_mm", f.alpha_max_mm}, {"charlie_under_mm", f.charlie_under_mm}};
+  }
+  json m;
+  if (!g.margin.measured) {
+    m = {{"measured", false}, {"why_not", g.margin.why_not}};
+  } else {
+    const MarginalAdaptation& x = g.margin;
+    json sites = json::array();
+    for (const MarginDefect& d : x.defects)
+      sites.push_back({{"kind", d.kind},
+                       {"length_mm", d.length_mm},
+                       {"largest_step_mm", d.largest_step_mm},
+                       {"centre_mm", {d.centre_mm.x, d.centre_mm.y, d.centre_mm.z}}});
+    m = {{"measured", true},
+         {"length_mm", x.length_mm},
+         {"open_samples", x.open_samples},
+         {"samples", x.reading.size()},
+         {"gap_length_mm", x.gap_length_mm},
+         {"excess_length_mm", x.excess_length_mm},
+         {"below_resolution_mm", x.below_resolution_mm},
+         {"step_threshold_mm", x.step_threshold_mm},
+         {"sites", x.defects.size()},
+         {"largest_site_mm", x.largest_site_mm},
+         {"passes", x.passes},
+         {"max_sites", x.max_sites},
+         {"max_site_mm", x.max_site_mm},
+         {"defects", sites}};
+  }
+  return json{{"anatomic_form", a}, {"marginal_adaptation", m}}.dump();
+}
+
+}  // namespace dentsph
