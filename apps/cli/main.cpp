@@ -153,6 +153,7 @@ int cmd_run(const std::string& file, const cli::DentalOptions& dental, const std
     fmt::print("rheology: {:.2f} Picard iterations a step (at most {}), effective viscosity {:.3g} to {:.3g} Pa s\n",
                st.rheology_iterations_mean(), st.rheology_iterations_max, st.viscosity_min, st.viscosity_max);
   if (!s.assessment_report.empty()) fmt::print("\nassessment of the filling:\n{}", s.assessment_report);
+  if (!s.grading_report.empty()) fmt::print("\nthe surface graded as a tutor grades a restoration:\n{}", s.grading_report);
   if (s.curing)
     fmt::print("\nlight curing: {:.4g} s of light, {:.4g} s of it in {} updates at rest\n{}", s.light_on_s,
                s.cure_at_rest_s, s.cure_updates_at_rest, s.cure_report);

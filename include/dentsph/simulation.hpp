@@ -84,6 +84,7 @@ struct RunSummary {
   std::string assessment_json;       // dental scenes: the filling's assessment (JSON object)
   std::string cavity_json;           // dental scenes: the cavity (JSON object, dental.hpp cavity_json())
   std::string assessment_report;     // dental scenes: the same, for a person
+  std::string grading_report;        // dental scenes with an output folder: the surface graded, for a person
   int threads = 1;
   Solver solver = Solver::paper;     // the step that ran
   PressureSolve pressure_solve = PressureSolve::jacobi;  // its pressure solve (the iisph solver's)

@@ -34,6 +34,15 @@ struct GradeParams {
   // max_site, fails.
   int max_sites = 3;
   real max_site = 1e-3;
+  // A Class II's proximal contact, with the neighbour taken where the intact tooth's proximal
+  // contour stood (no neighbouring tooth in the scene): tight where the restoration's proximal
+  // surface reaches within contact_tight of it, light within contact_open, open beyond; 0: half a
+  // spacing (the paste's standoff from the matrix band) and that plus 0.1 mm.
+  real contact_tight = 0;
+  real contact_open = 0;
+  // Paste standing more than this beyond the intact contour below the contact is an overhang; 0:
+  // step_threshold's value.
+  real overhang_threshold = 0;
 };
 
 // The restoration's occlusal surface against the intact tooth's, column by column along the long
@@ -92,9 +101,26 @@ struct MarginalAdaptation {
   std::vector<int> reading;
 };
 
+// A Class II's proximal surface (frame x towards the box's side): its contact at the intact tooth's
+// height of contour, and paste standing out beyond the intact contour below it (an overhang over
+// the gingival margin).
+struct ProximalGrade {
+  bool measured = false;
+  std::string why_not;        // a Class I: no proximal surface
+  std::string side;           // "mesial" or "distal"
+  Vec3 contact_mm;            // the intact tooth's height of contour in the box's window, tooth frame
+  real gap_mm = 0;            // the intact contour's reach minus the restoration's there (> 0: short)
+  std::string contact;        // "tight", "light" or "open"
+  real tight_mm = 0, open_mm = 0;  // the thresholds (GradeParams)
+  real overhang_mm = 0;       // the most paste stands beyond the intact contour below the contact
+  real overhang_area_mm2 = 0; // the proximal window's area where it stands beyond it by the threshold
+  real overhang_threshold_mm = 0;
+};
+
 struct SurfaceGrade {
   AnatomicForm anatomic;
   MarginalAdaptation margin;
+  ProximalGrade proximal;
 };
 
 // Grades `paste` (the paste's surface, world m) against `tooth`. An empty surface grades the empty
@@ -106,5 +132,8 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
 // The summary's "grading" section (docs/outputs.md): the figures and verdicts, without the
 // per-column and per-point lists.
 std::string surface_grade_json(const SurfaceGrade& g);
+
+// Its lines for a person (the run's report on the console), each ending in a newline.
+std::string surface_grade_report(const SurfaceGrade& g);
 
 }  // namespace dentsph

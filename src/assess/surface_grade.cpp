@@ -17,19 +17,34 @@ namespace {
 // Just below the intact surface: where a column's opening is read (m).
 constexpr real kBelowTop = 5e-6;
 
+// A world box's extent in the tooth frame (its eight corners').
+Bounds local_box(const ToothFrame& f, const Bounds& b) {
+  Bounds out{{1e9, 1e9, 1e9}, {-1e9, -1e9, -1e9}};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 l = f.to_local({(c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z});
+    out.min = {std::min(out.min.x, l.x), std::min(out.min.y, l.y), std::min(out.min.z, l.z)};
+    out.max = {std::max(out.max.x, l.x), std::max(out.max.y, l.y), std::max(out.max.z, l.z)};
+  }
+  return out;
+}
+
 // Heights along the tooth's long axis, in its frame (m; z = 0 at the occlusal reference).
 class Columns {
  public:
   Columns(const PreparedTooth& tooth, const SurfaceMesh& paste, real step)
       : tooth_(tooth), f_(tooth.frame()), step_(step) {
-    const Bounds b = tooth.tooth().bounds();
-    real top = -1;
-    for (int c = 0; c < 8; ++c) {
-      const Vec3 corner{(c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z};
-      top = std::max(top, f_.to_local(corner).z);
-    }
-    above_ = top + 1e-3;
+    const Bounds b = local_box(f_, tooth.tooth().bounds());
+    above_ = b.max.z + 1e-3;
+    beside_ = std::max(std::abs(b.min.x), std::abs(b.max.x)) + 1e-3;
     if (!paste.empty()) paste_.emplace(TriMesh{paste.vertices, paste.triangles});
+  }
+
+  // How far along sigma x (sigma = +1 or -1) the intact tooth, or the paste, reaches at (y, z): the
+  // first surface met coming in from that side; none where nothing lies there.
+  std::optional<real> intact_reach(real sigma, real y, real z) const { return reach(tooth_.tooth(), sigma, y, z); }
+  std::optional<real> paste_reach(real sigma, real y, real z) const {
+    if (!paste_) return std::nullopt;
+    return reach(*paste_, sigma, y, z);
   }
 
   // The intact tooth's top at (x, y); none off the tooth.
@@ -85,10 +100,17 @@ class Columns {
   }
 
  private:
+  std::optional<real> reach(const MeshDistance& m, real sigma, real y, real z) const {
+    const auto t = m.ray(f_.to_world({sigma * beside_, y, z}), f_.x * -sigma);
+    if (!t) return std::nullopt;
+    return beside_ - *t;
+  }
+
   const PreparedTooth& tooth_;
   ToothFrame f_;
   real step_;
   real above_ = 0;
+  real beside_ = 0;
   std::optional<MeshDistance> paste_;
 };
 
@@ -110,13 +132,8 @@ AnatomicForm anatomic_form(const PreparedTooth& tooth, const Columns& cols, cons
   a.alpha_max_mm = p.alpha_max * 1e3;
   a.charlie_under_mm = p.charlie_under * 1e3;
   const ToothFrame& f = tooth.frame();
-  const Bounds cb = tooth.cavity_bounds();
-  Vec3 lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 l = f.to_local({(c & 1) ? cb.max.x : cb.min.x, (c & 2) ? cb.max.y : cb.min.y, (c & 4) ? cb.max.z : cb.min.z});
-    lo = {std::min(lo.x, l.x), std::min(lo.y, l.y), std::min(lo.z, l.z)};
-    hi = {std::max(hi.x, l.x), std::max(hi.y, l.y), std::max(hi.z, l.z)};
-  }
+  const Bounds box = local_box(f, tooth.cavity_bounds());
+  const Vec3 lo = box.min, hi = box.max;
   const int nx = int(std::ceil((hi.x - lo.x) / step)), ny = int(std::ceil((hi.y - lo.y) / step));
   std::vector<real> abs_dev, under;
   real sum = 0, sum2 = 0;
@@ -162,14 +179,10 @@ MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns
   m.max_sites = p.max_sites;
   m.max_site_mm = p.max_site * 1e3;
   // The region's reach: the cavity's bounds about the axis, and a millimetre.
-  const ToothFrame& f = tooth.frame();
-  const Bounds cb = tooth.cavity_bounds();
-  real reach = 0;
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 l = f.to_local({(c & 1) ? cb.max.x : cb.min.x, (c & 2) ? cb.max.y : cb.min.y, (c & 4) ? cb.max.z : cb.min.z});
-    reach = std::max(reach, std::hypot(l.x, l.y));
-  }
-  reach += 1e-3;
+  const Bounds box = local_box(tooth.frame(), tooth.cavity_bounds());
+  const real reach = std::hypot(std::max(std::abs(box.min.x), std::abs(box.max.x)),
+                                std::max(std::abs(box.min.y), std::abs(box.max.y))) +
+                     1e-3;
   const auto top0 = cols.intact_top(0, 0);
   if (!top0 || !cols.opening(0, 0, *top0)) {
     m.why_not = "the cavity does not open at the occlusal surface around the tooth's long axis";
@@ -263,6 +276,61 @@ MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns
   return m;
 }
 
+ProximalGrade proximal_grade(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p, real step) {
+  ProximalGrade g;
+  const CavityParams& c = tooth.params();
+  if (c.kind != CavityClass::class_2) {
+    g.why_not = "a Class I cavity has no proximal surface";
+    return g;
+  }
+  const real sigma = c.side == ProximalSide::mesial ? 1 : -1;
+  g.side = c.side == ProximalSide::mesial ? "mesial" : "distal";
+  const real thr = p.step_threshold > 0 ? p.step_threshold : std::max<real>(0.15e-3, p.spacing / 2);
+  g.tight_mm = (p.contact_tight > 0 ? p.contact_tight : p.spacing / 2) * 1e3;
+  g.open_mm = (p.contact_open > 0 ? p.contact_open : p.spacing / 2 + 0.1e-3) * 1e3;
+  g.overhang_threshold_mm = (p.overhang_threshold > 0 ? p.overhang_threshold : thr) * 1e3;
+  // The box's window on the proximal surface: its width, from its gingival floor to a millimetre
+  // above the occlusal reference; the neighbour a plane across x at the intact tooth's height of
+  // contour in it.
+  const real half = c.box_width / 2;
+  real contour = -1e9, paste = -1e9;
+  std::vector<Vec3> reached;  // (reach, y, z) of the intact tooth
+  for (real z = -c.box_depth + step / 2; z < 1e-3; z += step)
+    for (real y = -half + step / 2; y < half; y += step) {
+      if (const auto r = cols.intact_reach(sigma, y, z)) {
+        contour = std::max(contour, *r);
+        reached.push_back({*r, y, z});
+      }
+      if (const auto r = cols.paste_reach(sigma, y, z)) paste = std::max(paste, *r);
+    }
+  // The height of contour: the farthest reach, the most occlusal of its points within 10 um of it
+  // (a flat proximal face touches all along; the contact is where its occlusal end meets the
+  // neighbour).
+  Vec3 at{0, 0, -1e9};
+  for (const Vec3& r : reached)
+    if (r.x >= contour - 1e-5 && r.z > at.z) at = {sigma * r.x, r.y, r.z};
+  if (contour < -1e8) {
+    g.why_not = "no intact proximal surface in the box's window";
+    return g;
+  }
+  g.measured = true;
+  g.contact_mm = at * 1e3;
+  g.gap_mm = (contour - paste) * 1e3;
+  g.contact = g.gap_mm <= g.tight_mm ? "tight" : g.gap_mm <= g.open_mm ? "light" : "open";
+  // Below the contact, down to a millimetre under the gingival floor and half a millimetre either
+  // side of the box: paste standing beyond the intact contour.
+  const real area = step * step * 1e6;
+  for (real z = -c.box_depth - 1e-3 + step / 2; z < at.z; z += step)
+    for (real y = -half - 0.5e-3 + step / 2; y < half + 0.5e-3; y += step) {
+      const auto ri = cols.intact_reach(sigma, y, z), rp = cols.paste_reach(sigma, y, z);
+      if (!ri || !rp) continue;
+      const real out = (*rp - *ri) * 1e3;
+      g.overhang_mm = std::max(g.overhang_mm, out);
+      if (out > g.overhang_threshold_mm) g.overhang_area_mm2 += area;
+    }
+  return g;
+}
+
 const char* band_name(char b) { return b == 'A' ? "alpha" : b == 'B' ? "bravo" : b == 'C' ? "charlie" : "none"; }
 
 }  // namespace
@@ -278,6 +346,9 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
   check("alpha_max", p.alpha_max, p.alpha_max > 0);
   check("charlie_under", p.charlie_under, p.charlie_under > 0);
   check("max_site", p.max_site, p.max_site > 0);
+  check("contact_tight", p.contact_tight, p.contact_tight >= 0);
+  check("contact_open", p.contact_open, p.contact_open >= 0);
+  check("overhang_threshold", p.overhang_threshold, p.overhang_threshold >= 0);
   if (p.margin_samples < 16 || p.margin_samples > 100000)
     throw std::invalid_argument(fmt::format("GradeParams::margin_samples is {}: give 16 to 100000", p.margin_samples));
   if (p.max_sites < 0) throw std::invalid_argument("GradeParams::max_sites is negative: give 0 or more");
@@ -286,6 +357,7 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
   SurfaceGrade g;
   g.anatomic = anatomic_form(tooth, cols, p, step);
   g.margin = marginal_adaptation(tooth, cols, p, step);
+  g.proximal = proximal_grade(tooth, cols, p, step);
   return g;
 }
 
@@ -328,7 +400,44 @@ std::string surface_grade_json(const SurfaceGrade& g) {
          {"max_site_mm", x.max_site_mm},
          {"defects", sites}};
   }
-  return json{{"anatomic_form", a}, {"marginal_adaptation", m}}.dump();
+  json x;
+  if (!g.proximal.measured) {
+    x = {{"measured", false}, {"why_not", g.proximal.why_not}};
+  } else {
+    const ProximalGrade& q = g.proximal;
+    x = {{"measured", true},
+         {"side", q.side},
+         {"contact", q.contact},
+         {"gap_mm", q.gap_mm},
+         {"contact_point_mm", {q.contact_mm.x, q.contact_mm.y, q.contact_mm.z}},
+         {"tight_mm", q.tight_mm},
+         {"open_mm", q.open_mm},
+         {"overhang_mm", q.overhang_mm},
+         {"overhang_area_mm2", q.overhang_area_mm2},
+         {"overhang_threshold_mm", q.overhang_threshold_mm}};
+  }
+  return json{{"anatomic_form", a}, {"marginal_adaptation", m}, {"proximal", x}}.dump();
+}
+
+std::string surface_grade_report(const SurfaceGrade& g) {
+  std::string out;
+  const AnatomicForm& a = g.anatomic;
+  out += a.measured ? fmt::format("anatomic form against the intact tooth: {} (95% of the opening within {:.2f} mm; "
+                                  "RMS {:.2f} mm, mean {:+.2f} mm)\n",
+                                  band_name(a.band), a.p95_abs_mm, a.rms_mm, a.mean_mm)
+                    : fmt::format("anatomic form: not measured ({})\n", a.why_not);
+  const MarginalAdaptation& m = g.margin;
+  out += m.measured ? fmt::format("margin: {} defect site{} along {:.1f} mm ({:.1f} mm gap, {:.1f} mm excess): {} the "
+                                  "rubric (at most {}, none over {:.1f} mm)\n",
+                                  m.defects.size(), m.defects.size() == 1 ? "" : "s", m.length_mm, m.gap_length_mm,
+                                  m.excess_length_mm, m.passes ? "passes" : "fails", m.max_sites, m.max_site_mm)
+                    : fmt::format("margin: not measured ({})\n", m.why_not);
+  const ProximalGrade& q = g.proximal;
+  if (q.measured)
+    out += fmt::format("proximal ({}): contact {}, {:.2f} mm {} the intact contour; overhang {:.2f} mm\n", q.side,
+                       q.contact, std::abs(q.gap_mm), q.gap_mm >= 0 ? "short of" : "beyond",
+                       std::max<real>(0, q.overhang_mm));
+  return out;
 }
 
 }  // namespace dentsph

@@ -109,6 +109,42 @@ Criterion margin_criterion(const nlohmann::json& s) {
   return c;
 }
 
+// A Class II's proximal contact and overhang (summary.json's "grading.proximal"): the contact good
+// when tight, the overhang good within its threshold.
+std::vector<Criterion> proximal_criteria(const nlohmann::json& s) {
+  std::vector<Criterion> out;
+  const nlohmann::json& q = s["grading"].value("proximal", nlohmann::json::object());
+  if (!q.value("measured", false)) return out;
+  const std::string contact = q.value("contact", "");
+  const auto gap = number_at(q, "gap_mm");
+  const double tight = number_at(q, "tight_mm").value_or(0.15), open = number_at(q, "open_mm").value_or(0.25);
+  Criterion c = make("contact", "Proximal contact", "grading.proximal.gap_mm", gap,
+                     gap ? fmt::format("{}: {:.2f} mm {} the intact contour", contact, std::abs(*gap),
+                                       *gap >= 0 ? "short of" : "beyond")
+                         : "",
+                     fmt::format("tight: within {:.2f} mm of the intact contour (light within {:.2f} mm, open beyond)",
+                                 tight, open),
+                     "Wedge the matrix band against the neighbour and condense the paste against it, so that the "
+                     "restoration reaches the contour where the neighbour touches.");
+  if (gap) c.verdict = judge(contact == "tight");
+  c.details.push_back(fmt::format("the {} surface; the neighbouring tooth taken where the intact tooth's contour "
+                                  "stood, at its height of contour",
+                                  q.value("side", std::string("proximal"))));
+  out.push_back(c);
+  const auto hang = number_at(q, "overhang_mm");
+  const double thr = number_at(q, "overhang_threshold_mm").value_or(0.15);
+  c = make("overhang", "Proximal overhang", "grading.proximal.overhang_mm", hang,
+           hang ? fmt::format("{:.2f} mm beyond the contour ({:.2f} mm^2)", std::max(0.0, *hang),
+                              number_at(q, "overhang_area_mm2").value_or(0))
+                : "",
+           fmt::format("none of {:.2f} mm or more below the contact", thr),
+           "Seat the matrix band and its wedge at the gingival margin before placing the first increment, so that "
+           "no paste is pressed out over the margin.");
+  if (hang) c.verdict = judge(*hang < thr);
+  out.push_back(c);
+  return out;
+}
+
 }  // namespace
 
 const char* verdict_name(Verdict v) {
@@ -237,6 +273,7 @@ std::vector<Criterion> filling_criteria(const nlohmann::json& s, const nlohmann:
   if (s.contains("grading")) {
     out.push_back(anatomic_form_criterion(s));
     out.push_back(margin_criterion(s));
+    for (Criterion& p : proximal_criteria(s)) out.push_back(std::move(p));
   }
 
   const auto leaked = number_at(s, "assessment.leaked_particles");

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/surface_grade.hpp"
+#include "report/grading_picture.hpp"
 #include "report/session_report.hpp"
 
 namespace dentsph::report {
@@ -57,9 +58,9 @@ void pictures(const std::filesystem::path& dir, const Scene& scene, std::span<co
 
 // A dental scene's end: the paste's surface (the paste within the model's domain: a diverged run's
 // flung paste has none), graded against the tooth into the summary's "grading", and the pictures.
-void surface_outputs(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
-                     std::span<const Role> roles) {
-  if (!scene.tooth) return;
+std::string surface_outputs(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+                            std::span<const Role> roles) {
+  if (!scene.tooth) return "";
   const real spacing = scene.material_spacing > 0 ? scene.material_spacing : default_tooth_spacing;
   const SurfaceMesh surface =
       particle_surface(paste_within(positions, roles, scene.model.domain_min, scene.model.domain_max), spacing);
@@ -67,9 +68,14 @@ void surface_outputs(const std::filesystem::path& dir, const Scene& scene, std::
   gp.spacing = spacing;
   const std::filesystem::path file = dir / "summary.json";
   nlohmann::json j = read_summary(file);
-  j["grading"] = nlohmann::json::parse(surface_grade_json(grade_surface(*scene.tooth, surface, gp)));
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurfaceGrade grade = grade_surface(*scene.tooth, surface, gp);
+  j["grading"] = nlohmann::json::parse(surface_grade_json(grade));
+  j["grading"]["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_summary(file, j);
+  write_grading_picture(dir, grade);
   pictures(dir, scene, positions, roles, j, surface, spacing);
+  return surface_grade_report(grade);
 }
 
 }  // namespace
@@ -84,23 +90,25 @@ void stamp_summary(const std::filesystem::path& dir, const Scene& scene) {
   write_summary(file, j);
 }
 
-void finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
-                std::span<const Role> roles, const ProcedureLog& log) {
+std::string finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+                       std::span<const Role> roles, const ProcedureLog& log) {
   stamp_summary(dir, scene);
-  surface_outputs(dir, scene, positions, roles);
+  std::string graded = surface_outputs(dir, scene, positions, roles);
   write_procedure_json(dir / "procedure.json", scene, log, {});
   write_session_report(dir);
+  return graded;
 }
 
-void finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log) {
+std::string finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log) {
   stamp_summary(dir, scene);
   // Paste that has set (now wall) is drawn as paste.
   std::vector<Role> roles(state.role.begin(), state.role.end());
   for (std::uint32_t i = 0; i < state.size(); ++i)
     if (state.is_paste(i)) roles[i] = Role::material;
-  surface_outputs(dir, scene, state.pos, roles);
+  std::string graded = surface_outputs(dir, scene, state.pos, roles);
   write_procedure_json(dir / "procedure.json", scene, log, log.thickness(scene, state));
   write_session_report(dir);
+  return graded;
 }
 
 }  // namespace dentsph::report

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 
 #include "dentsph/scene.hpp"
 #include "report/pictures.hpp"
@@ -14,13 +15,14 @@
 
 namespace dentsph::report {
 
-// `dir` holds the run's summary.json (and its force files) already. Throws std::runtime_error
-// naming a file that cannot be written.
-void finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log);
+// `dir` holds the run's summary.json (and its force files) already. Returns the surface's grading
+// for a person (surface_grade_report; empty without a tooth). Throws std::runtime_error naming a
+// file that cannot be written.
+std::string finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log);
 
 // The same from particle positions and roles alone (the viewer's last snapshot), with no
 // increments measured.
-void finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
+std::string finish_run(const std::filesystem::path& dir, const Scene& scene, std::span<const Vec3> positions,
                 std::span<const Role> roles, const ProcedureLog& log);
 
 // Adds "session" {student, exercise (when the scene names them), finished_at (now, UTC)} to

@@ -96,6 +96,11 @@ constexpr Field kSummaryFields[] = {
     {"grading.marginal_adaptation.defects[].centre_mm", Kind::list},
     {"grading.marginal_adaptation.defects[].length_mm", Kind::number},
     {"grading.marginal_adaptation.defects[].largest_step_mm", Kind::number},
+    {"grading.proximal", Kind::object},
+    {"grading.proximal.measured", Kind::flag},
+    {"grading.proximal.why_not", Kind::text},
+    {"grading.proximal.side", Kind::text},
+    {"grading.proximal.contact", Kind::text},
 };
 
 // Everything session_folder.cpp and criteria.cpp read of procedure.json.
@@ -212,7 +217,8 @@ void check_figures(const fs::path& file, const nlohmann::json& summary) {
       {"grading.anatomic_form.p95_abs_mm", 0, kMax}, {"grading.anatomic_form.rms_mm", 0, kMax},
       {"grading.marginal_adaptation.sites", 0, kMax}, {"grading.marginal_adaptation.largest_site_mm", 0, kMax},
       {"grading.marginal_adaptation.length_mm", 0, kMax}, {"grading.marginal_adaptation.max_sites", 0, kMax},
-      {"grading.marginal_adaptation.max_site_mm", 0, kMax},
+      {"grading.marginal_adaptation.max_site_mm", 0, kMax}, {"grading.proximal.gap_mm", -kMax, kMax},
+      {"grading.proximal.overhang_mm", -kMax, kMax}, {"grading.proximal.overhang_area_mm2", 0, kMax},
   };
   for (const Range& r : kRanges) {
     // Present but not a number, or a number out of range (JSON has no NaN; an overflowed literal

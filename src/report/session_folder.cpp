@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "report/criteria.hpp"
+#include "report/grading_picture.hpp"
 #include "report/pictures.hpp"
 #include "report/session_fields.hpp"
 
@@ -243,6 +244,7 @@ SessionFolder read_session(const fs::path& dir) {
   s.cut_particles_png = read_bytes(dir / kCutParticlesPicture);
   s.top_particles_png = read_bytes(dir / kTopParticlesPicture);
   if (s.cut_png.empty() && s.top_png.empty()) s.preview_png = read_bytes(dir / "preview.png");
+  s.grading_svg = read_bytes(dir / kGradingPicture);
   return s;
 }
 

@@ -46,6 +46,7 @@ struct SessionFolder {
   std::vector<std::uint8_t> cut_png, top_png;  // the pictures (empty when absent)
   std::vector<std::uint8_t> cut_particles_png, top_particles_png;  // the same with the paste's particles
   std::vector<std::uint8_t> preview_png;       // preview.png, shown when there are no pictures
+  std::vector<std::uint8_t> grading_svg;       // grading.svg, the surface against the intact tooth
 };
 
 // Reads `dir`. Throws SessionError for a missing folder, a missing or broken summary.json, or a

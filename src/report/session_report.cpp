@@ -145,6 +145,14 @@ std::string session_report_html(const SessionFolder& s) {
     h += "<figure><img id=\"picture-preview\" alt=\"the particles\" src=\"" + png_data_uri(s.preview_png) +
          "\"><figcaption>The particles at the end (no tooth in this scene).</figcaption></figure>\n";
   if (s.cut_png.empty() && s.top_png.empty() && s.preview_png.empty()) h += "<p>No pictures in this folder.</p>\n";
+  if (!s.grading_svg.empty())
+    h += "<figure><img id=\"picture-grading\" alt=\"the restoration against the intact tooth, from above\" "
+         "src=\"data:image/svg+xml;base64," +
+         base64(s.grading_svg) +
+         "\"><figcaption>The restoration's surface against the intact tooth's, from above: each 0.1 mm column of "
+         "the cavity's opening coloured by how far it lies under (blue) or over (orange) the intact surface, the "
+         "margin's points by their reading (green sound, red a gap, purple an excess); the criteria Anatomic form "
+         "and Marginal adaptation below.</figcaption></figure>\n";
   h += "</div>\n";
   if (!s.cut_particles_png.empty() || !s.top_particles_png.empty()) {
     h += "<details id=\"particles-view\"><summary>The same as particles</summary>\n<div class=\"pictures\">\n";

@@ -151,7 +151,7 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     io::write_summary(opt.out_dir / "summary.json", sum);
     io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
     csv.reset();  // flushed and closed: the report reads it
-    report::finish_run(opt.out_dir, scene, state, procedure);
+    sum.grading_report = report::finish_run(opt.out_dir, scene, state, procedure);
   }
   return sum;
 }

@@ -17,6 +17,7 @@
 #include "report/chartjs.hpp"
 #include "report/class_report.hpp"
 #include "report/criteria.hpp"
+#include "report/grading_picture.hpp"
 #include "report/html.hpp"
 #include "report/procedure_log.hpp"
 #include "report/session_folder.hpp"
@@ -256,6 +257,26 @@ TEST(Report, TheSurfacesGradingIsJudgedByTheTutorsCriteria) {
   cs = filling_criteria(s, nullptr);
   EXPECT_EQ(by_id(cs, "anatomic_form").verdict, Verdict::not_measured);
   EXPECT_EQ(by_id(cs, "margin").details.at(0), "not measured: no margin");
+  // A Class II's proximal contact (tight good, light or open not) and overhang (under its threshold).
+  s["grading"] = grading("alpha", 0, 0);
+  EXPECT_THROW(by_id(filling_criteria(s, nullptr), "contact"), std::runtime_error);  // a Class I: no row
+  auto proximal = [&](const std::string& contact, double gap, double overhang) {
+    s["grading"]["proximal"] = {{"measured", true},    {"side", "mesial"},  {"contact", contact},
+                                {"gap_mm", gap},        {"tight_mm", 0.15},  {"open_mm", 0.25},
+                                {"overhang_mm", overhang}, {"overhang_area_mm2", overhang > 0.15 ? 1.0 : 0.0},
+                                {"overhang_threshold_mm", 0.15}};
+    return filling_criteria(s, nullptr);
+  };
+  cs = proximal("tight", 0.02, 0.05);
+  EXPECT_EQ(by_id(cs, "contact").verdict, Verdict::good);
+  EXPECT_EQ(by_id(cs, "contact").shown, "tight: 0.02 mm short of the intact contour");
+  EXPECT_EQ(by_id(cs, "overhang").verdict, Verdict::good);
+  cs = proximal("open", 0.4, 0.3);
+  EXPECT_EQ(by_id(cs, "contact").verdict, Verdict::needs_work);
+  EXPECT_EQ(by_id(cs, "overhang").verdict, Verdict::needs_work);
+  EXPECT_EQ(by_id(proximal("light", 0.2, 0.0), "contact").verdict, Verdict::needs_work);
+  s["grading"].erase("proximal");
+
   // The page shows them, and a tampered grading is refused naming the field.
   s["grading"] = grading("bravo", 1, 0.5);
   const std::string html = session_report_html(read_session(write_folder("graded", s)));
@@ -263,6 +284,42 @@ TEST(Report, TheSurfacesGradingIsJudgedByTheTutorsCriteria) {
   EXPECT_NE(html.find("Marginal adaptation"), std::string::npos);
   s["grading"]["marginal_adaptation"]["measured"] = "yes";
   EXPECT_THROW(read_session(write_folder("graded_tampered", s)), SessionError);
+}
+
+// The grading's picture (grading.svg): a square per column of the opening in its band's colour, a
+// dot per margin point in its reading's, nothing when neither criterion was measured; the page
+// shows it from the run's folder.
+TEST(Report, TheGradingsPictureColoursEachColumnByItsBand) {
+  EXPECT_STREQ(deviation_colour(0.1, 0.25, 1.0), deviation_colour(-0.25, 0.25, 1.0));  // alpha either way
+  EXPECT_STRNE(deviation_colour(-0.3, 0.25, 1.0), deviation_colour(0.3, 0.25, 1.0));
+  EXPECT_STRNE(deviation_colour(-0.3, 0.25, 1.0), deviation_colour(-0.6, 0.25, 1.0));
+  EXPECT_STRNE(deviation_colour(-0.6, 0.25, 1.0), deviation_colour(-1.1, 0.25, 1.0));
+  EXPECT_EQ(grading_svg(SurfaceGrade{}), "");
+  SurfaceGrade g;
+  g.anatomic.measured = true;
+  g.anatomic.band = 'B';
+  g.anatomic.column_mm = 0.1;
+  g.anatomic.alpha_max_mm = 0.25;
+  g.anatomic.charlie_under_mm = 1.0;
+  g.anatomic.column_centre_mm = {{0, 0, 0}, {0.1, 0, 0}, {0.2, 0, 0}};
+  g.anatomic.deviation_mm = {0.0, -0.4, 0.7};
+  g.margin.measured = true;
+  g.margin.point_mm = {{-0.5, 0, 0}, {0.5, 0, 0}};
+  g.margin.reading = {0, 1};
+  const std::string svg = grading_svg(g);
+  auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("<rect class=\"column\""), 3u);
+  EXPECT_EQ(count("<circle class=\"margin"), 2u);
+  for (const double d : g.anatomic.deviation_mm)
+    EXPECT_NE(svg.find(std::string("fill=\"") + deviation_colour(d, 0.25, 1.0) + "\"/>"), std::string::npos) << d;
+  EXPECT_NE(svg.find("anatomic form bravo; margin 0 sites"), std::string::npos);
+  const fs::path d = write_folder("grading_picture", summary(0.97, 0, 0, 1, 1));
+  write_grading_picture(d, g);
+  EXPECT_NE(session_report_html(read_session(d)).find("id=\"picture-grading\""), std::string::npos);
 }
 
 // Every field the report reads has the type a run writes: a void's "against" of 99999999999 threw

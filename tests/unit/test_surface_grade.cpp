@@ -44,7 +44,7 @@ std::vector<Vec3> lattice(const PreparedTooth& t, real z_top, const std::functio
   std::vector<Vec3> p;
   for (real x = -5.5e-3 + s / 2; x < 5.5e-3; x += s)
     for (real y = -2.5e-3 + s / 2; y < 2.5e-3; y += s)
-      for (real z = z_top - s / 2; z > -3e-3; z -= s) {
+      for (real z = z_top - s / 2; z > -4e-3; z -= s) {
         const Vec3 local{x, y, z};
         if (keep(local)) p.push_back(t.frame().to_world(local));
       }
@@ -159,6 +159,51 @@ TEST(SurfaceGrade, AClassIIsProximalOpeningIsNotGradedAsAMargin) {
   EXPECT_GT(g.margin.open_samples, 0);
   EXPECT_LT(g.margin.open_samples, 360);  // the box's side only
   EXPECT_EQ(g.anatomic.band, 'A');
+}
+
+// A Class II's proximal surface against the intact tooth's (the box tooth's mesial face, x = 5 mm,
+// where the neighbour is taken to stand): its box filled to the face, a tight contact and no
+// overhang; 0.1 mm short, light; 0.4 mm short, open; 0.4 mm of paste beyond the face over the
+// box's lowest 0.5 mm, an overhang of 0.4 mm (and a tight contact: it reaches the neighbour). A
+// Class I has none.
+TEST(SurfaceGrade, AClassIIsContactAndOverhangAreReadAgainstTheIntactContour) {
+  const PreparedTooth t = box_tooth(CavityClass::class_2);
+  auto filled_to = [&](real x_max) {
+    return grade_surface(t, particle_surface(lattice(t, 0, [&](const Vec3& l) {
+                                               return t.in_cavity(t.frame().to_world(l)) && l.x < x_max;
+                                             }),
+                                             s),
+                         fine())
+        .proximal;
+  };
+  const ProximalGrade full = filled_to(1);
+  ASSERT_TRUE(full.measured) << full.why_not;
+  EXPECT_EQ(full.side, "mesial");
+  EXPECT_NEAR(full.contact_mm.x, 5.0, 1e-6);
+  EXPECT_NEAR(full.gap_mm, 0, 0.03);
+  EXPECT_EQ(full.contact, "tight");
+  EXPECT_LT(full.overhang_mm, 0.05);
+  EXPECT_EQ(full.overhang_area_mm2, 0);
+  const ProximalGrade light = filled_to(4.9e-3);
+  EXPECT_NEAR(light.gap_mm, 0.1, 0.03);
+  EXPECT_EQ(light.contact, "light");
+  const ProximalGrade open = filled_to(4.6e-3);
+  EXPECT_NEAR(open.gap_mm, 0.4, 0.03);
+  EXPECT_EQ(open.contact, "open");
+
+  auto over = lattice(t, 0, [&](const Vec3& l) { return t.in_cavity(t.frame().to_world(l)); });
+  for (const Vec3& q : lattice(t, 0, [](const Vec3& l) {
+         return l.x > 5e-3 && l.x < 5.4e-3 && l.z > -3.5e-3 && l.z < -3.0e-3 && std::abs(l.y) < 1.5e-3;
+       }))
+    over.push_back(q);
+  const ProximalGrade hang = grade_surface(t, particle_surface(over, s), fine()).proximal;
+  EXPECT_NEAR(hang.overhang_mm, 0.4, 0.03);
+  EXPECT_NEAR(hang.overhang_area_mm2, 3.0 * 0.5, 0.5);
+  EXPECT_EQ(hang.contact, "tight");
+
+  const ProximalGrade none = grade_surface(box_tooth(), SurfaceMesh{}, fine()).proximal;
+  EXPECT_FALSE(none.measured);
+  EXPECT_NE(none.why_not.find("Class I"), std::string::npos);
 }
 
 TEST(SurfaceGrade, ParametersOutOfRangeAreRefusedNamingTheField) {
