@@ -41,8 +41,10 @@ struct GradeParams {
   real contact_tight = 0;
   real contact_open = 0;
   // Paste standing more than this beyond the intact contour below the contact is an overhang; 0:
-  // step_threshold's value.
+  // step_threshold's value. One over less than overhang_min_area is below what the model resolves;
+  // 0: a particle's cross-section, spacing^2 (m^2).
   real overhang_threshold = 0;
+  real overhang_min_area = 0;
 };
 
 // The restoration's occlusal surface against the intact tooth's, column by column along the long
@@ -115,6 +117,7 @@ struct ProximalGrade {
   real overhang_mm = 0;       // the most paste stands beyond the intact contour below the contact
   real overhang_area_mm2 = 0; // the proximal window's area where it stands beyond it by the threshold
   real overhang_threshold_mm = 0;
+  real overhang_min_area_mm2 = 0;  // an overhang is judged from this area on
 };
 
 struct SurfaceGrade {

@@ -289,6 +289,7 @@ ProximalGrade proximal_grade(const PreparedTooth& tooth, const Columns& cols, co
   g.tight_mm = (p.contact_tight > 0 ? p.contact_tight : p.spacing / 2) * 1e3;
   g.open_mm = (p.contact_open > 0 ? p.contact_open : p.spacing / 2 + 0.1e-3) * 1e3;
   g.overhang_threshold_mm = (p.overhang_threshold > 0 ? p.overhang_threshold : thr) * 1e3;
+  g.overhang_min_area_mm2 = (p.overhang_min_area > 0 ? p.overhang_min_area : p.spacing * p.spacing) * 1e6;
   // The box's window on the proximal surface: its width, from its gingival floor to a millimetre
   // above the occlusal reference; the neighbour a plane across x at the intact tooth's height of
   // contour in it.
@@ -349,6 +350,7 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
   check("contact_tight", p.contact_tight, p.contact_tight >= 0);
   check("contact_open", p.contact_open, p.contact_open >= 0);
   check("overhang_threshold", p.overhang_threshold, p.overhang_threshold >= 0);
+  check("overhang_min_area", p.overhang_min_area, p.overhang_min_area >= 0);
   if (p.margin_samples < 16 || p.margin_samples > 100000)
     throw std::invalid_argument(fmt::format("GradeParams::margin_samples is {}: give 16 to 100000", p.margin_samples));
   if (p.max_sites < 0) throw std::invalid_argument("GradeParams::max_sites is negative: give 0 or more");
@@ -414,7 +416,8 @@ std::string surface_grade_json(const SurfaceGrade& g) {
          {"open_mm", q.open_mm},
          {"overhang_mm", q.overhang_mm},
          {"overhang_area_mm2", q.overhang_area_mm2},
-         {"overhang_threshold_mm", q.overhang_threshold_mm}};
+         {"overhang_threshold_mm", q.overhang_threshold_mm},
+         {"overhang_min_area_mm2", q.overhang_min_area_mm2}};
   }
   return json{{"anatomic_form", a}, {"marginal_adaptation", m}, {"proximal", x}}.dump();
 }
@@ -434,9 +437,11 @@ std::string surface_grade_report(const SurfaceGrade& g) {
                     : fmt::format("margin: not measured ({})\n", m.why_not);
   const ProximalGrade& q = g.proximal;
   if (q.measured)
-    out += fmt::format("proximal ({}): contact {}, {:.2f} mm {} the intact contour; overhang {:.2f} mm\n", q.side,
-                       q.contact, std::abs(q.gap_mm), q.gap_mm >= 0 ? "short of" : "beyond",
-                       std::max<real>(0, q.overhang_mm));
+    out += fmt::format("proximal ({}): contact {}, {:.2f} mm {} the intact contour; overhang {:.2f} mm over "
+                       "{:.2f} mm^2 ({})\n",
+                       q.side, q.contact, std::abs(q.gap_mm), q.gap_mm >= 0 ? "short of" : "beyond",
+                       std::max<real>(0, q.overhang_mm), q.overhang_area_mm2,
+                       q.overhang_area_mm2 >= q.overhang_min_area_mm2 ? "an overhang" : "none of a particle's cross-section");
   return out;
 }
 

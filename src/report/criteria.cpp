@@ -131,16 +131,19 @@ std::vector<Criterion> proximal_criteria(const nlohmann::json& s) {
                                   "stood, at its height of contour",
                                   q.value("side", std::string("proximal"))));
   out.push_back(c);
-  const auto hang = number_at(q, "overhang_mm");
+  const auto area = number_at(q, "overhang_area_mm2");
   const double thr = number_at(q, "overhang_threshold_mm").value_or(0.15);
-  c = make("overhang", "Proximal overhang", "grading.proximal.overhang_mm", hang,
-           hang ? fmt::format("{:.2f} mm beyond the contour ({:.2f} mm^2)", std::max(0.0, *hang),
-                              number_at(q, "overhang_area_mm2").value_or(0))
+  const double least = number_at(q, "overhang_min_area_mm2").value_or(0.09);
+  c = make("overhang", "Proximal overhang", "grading.proximal.overhang_area_mm2", area,
+           area ? fmt::format("{:.2f} mm^2, up to {:.2f} mm beyond the contour", *area,
+                              std::max(0.0, number_at(q, "overhang_mm").value_or(0)))
                 : "",
-           fmt::format("none of {:.2f} mm or more below the contact", thr),
+           fmt::format("under {:.2f} mm^2 (a particle's cross-section) standing {:.2f} mm or more beyond the contour "
+                       "below the contact",
+                       least, thr),
            "Seat the matrix band and its wedge at the gingival margin before placing the first increment, so that "
            "no paste is pressed out over the margin.");
-  if (hang) c.verdict = judge(*hang < thr);
+  if (area) c.verdict = judge(*area < least);
   out.push_back(c);
   return out;
 }

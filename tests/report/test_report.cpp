@@ -264,7 +264,7 @@ TEST(Report, TheSurfacesGradingIsJudgedByTheTutorsCriteria) {
     s["grading"]["proximal"] = {{"measured", true},    {"side", "mesial"},  {"contact", contact},
                                 {"gap_mm", gap},        {"tight_mm", 0.15},  {"open_mm", 0.25},
                                 {"overhang_mm", overhang}, {"overhang_area_mm2", overhang > 0.15 ? 1.0 : 0.0},
-                                {"overhang_threshold_mm", 0.15}};
+                                {"overhang_threshold_mm", 0.15}, {"overhang_min_area_mm2", 0.09}};
     return filling_criteria(s, nullptr);
   };
   cs = proximal("tight", 0.02, 0.05);
