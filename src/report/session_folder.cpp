@@ -140,6 +140,7 @@ double number_or(const nlohmann::json& j, const char* key, double fallback) {
 
 // Markers from procedure.json's events, on the simulated time axis.
 void markers_from_procedure(SessionFolder& s, const std::vector<double>* step_time) {
+  if (!s.procedure.is_object()) return;  // no procedure.json: no markers (found by fuzz_report_folder)
   int increments = 0;
   for (const nlohmann::json& e : s.procedure.value("events", nlohmann::json::array())) {
     Marker m;

@@ -358,6 +358,14 @@ TEST(Report, FieldsOfAnotherTypeAreNamedWithTheFix) {
     sm[nlohmann::json::json_pointer(c.path)] = c.value;
     refused(write_folder("typed", sm), {"summary.json", c.named, c.want, "run the session again"});
   }
+  // A folder with its force log but no procedure.json has no markers (its markers were read from a
+  // null procedure: found by fuzz_report_folder).
+  const fs::path no_log = write_folder("no_procedure", summary(1, 0, 0, 1, 1));
+  fs::remove(no_log / "procedure.json");
+  const SessionFolder bare = read_session(no_log);
+  EXPECT_TRUE(bare.markers.empty());
+  EXPECT_EQ(bare.forces.size(), 1u);
+  EXPECT_NE(session_report_html(bare).find("force-plot"), std::string::npos);
   // procedure.json's events and increments.
   for (const auto& [procedure, named] : std::vector<std::pair<nlohmann::json, std::string>>{
            {nlohmann::json::array(), "the file is []"},
