@@ -31,11 +31,11 @@ Bounds local_box(const ToothFrame& f, const Bounds& b) {
 // Heights along the tooth's long axis, in its frame (m; z = 0 at the occlusal reference).
 class Columns {
  public:
-  Columns(const PreparedTooth& tooth, const SurfaceMesh& paste, real step)
-      : tooth_(tooth), f_(tooth.frame()), step_(step) {
+  Columns(const PreparedTooth& tooth, const SurfaceMesh& paste) : tooth_(tooth), f_(tooth.frame()) {
     const Bounds b = local_box(f_, tooth.tooth().bounds());
     above_ = b.max.z + 1e-3;
     beside_ = std::max(std::abs(b.min.x), std::abs(b.max.x)) + 1e-3;
+    below_ = local_box(f_, tooth.cavity_bounds()).min.z - 1e-4;
     if (!paste.empty()) paste_.emplace(TriMesh{paste.vertices, paste.triangles});
   }
 
@@ -55,17 +55,12 @@ class Columns {
   }
   // The cavity opens at the intact surface here.
   bool opening(real x, real y, real top) const { return tooth_.in_cavity(f_.to_world({x, y, top - kBelowTop})); }
-  // The cavity's floor below an opening: the first height under `top` out of the cavity, marched in
-  // steps of a quarter of the column spacing and then bisected.
+  // The cavity's floor below an opening: where the column leaves the cavity going down, bisected
+  // between just under `top` (in it) and the cavity's lowest point (out of it); a cavity's column is
+  // in it from the opening down to its floor (its walls flare occlusally: no undercut).
   real floor(real x, real y, real top) const {
-    const real dz = step_ * 0.75;
-    real hi = top - kBelowTop, lo = hi;
-    for (int k = 0; k < 100000; ++k) {
-      lo = hi - dz;
-      if (!tooth_.in_cavity(f_.to_world({x, y, lo}))) break;
-      hi = lo;
-    }
-    for (int k = 0; k < 20; ++k) {
+    real hi = top - kBelowTop, lo = below_;
+    for (int k = 0; k < 40 && hi - lo > 1e-8; ++k) {
       const real mid = 0.5 * (lo + hi);
       (tooth_.in_cavity(f_.to_world({x, y, mid})) ? hi : lo) = mid;
     }
@@ -108,9 +103,9 @@ class Columns {
 
   const PreparedTooth& tooth_;
   ToothFrame f_;
-  real step_;
   real above_ = 0;
   real beside_ = 0;
+  real below_ = 0;  // under the cavity's lowest point
   std::optional<MeshDistance> paste_;
 };
 
@@ -197,10 +192,13 @@ MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns
   const int n = p.margin_samples;
   const real dr = step / 2;
   std::vector<real> gap(std::size_t(n), 0), excess(std::size_t(n), 0);
+  real last = 0;  // the last ray's margin: the next starts a few steps inside it where that is open
   for (int k = 0; k < n; ++k) {
     const real th = 2 * std::numbers::pi * k / n;
     const real ux = std::cos(th), uy = std::sin(th);
-    real in = 0, out = dr;
+    real in = std::max<real>(0, last - 4 * dr);
+    if (in > 0 && where(in * ux, in * uy) != 0) in = 0;
+    real out = in + dr;
     int beyond = 0;
     for (; out <= reach; in = out, out += dr)
       if ((beyond = where(out * ux, out * uy)) != 0) break;
@@ -211,11 +209,12 @@ MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns
       m.reading.push_back(3);
       continue;
     }
-    for (int b = 0; b < 30; ++b) {
+    for (int b = 0; b < 20; ++b) {  // to a millionth of the step
       const real mid = 0.5 * (in + out);
       (where(mid * ux, mid * uy) == 0 ? in : out) = mid;
     }
     const real r = 0.5 * (in + out);
+    last = r;
     m.point_mm.push_back(Vec3{r * ux, r * uy, cols.intact_top(r * ux, r * uy).value_or(0)} * 1e3);
     // Inside: how far the restoration's top falls short of the intact surface.
     const real ri = std::max<real>(0, r - probe);
@@ -355,7 +354,7 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
     throw std::invalid_argument(fmt::format("GradeParams::margin_samples is {}: give 16 to 100000", p.margin_samples));
   if (p.max_sites < 0) throw std::invalid_argument("GradeParams::max_sites is negative: give 0 or more");
   const real step = p.column > 0 ? p.column : p.spacing / 3;
-  const Columns cols(tooth, paste, step);
+  const Columns cols(tooth, paste);
   SurfaceGrade g;
   g.anatomic = anatomic_form(tooth, cols, p, step);
   g.margin = marginal_adaptation(tooth, cols, p, step);
