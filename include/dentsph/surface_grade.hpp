@@ -45,6 +45,11 @@ struct GradeParams {
   // 0: a particle's cross-section, spacing^2 (m^2).
   real overhang_threshold = 0;
   real overhang_min_area = 0;
+  // Surface voids: pits in the restoration's surface narrower than twice pit_radius (m), found by
+  // closing its height map with a disc of that radius; one whose volume is under min_void (m^3; 0:
+  // spacing^3, a particle's volume) is porosity below what the model resolves.
+  real pit_radius = 0.5e-3;
+  real min_void = 0;
 };
 
 // The restoration's occlusal surface against the intact tooth's, column by column along the long
@@ -120,10 +125,35 @@ struct ProximalGrade {
   real overhang_min_area_mm2 = 0;  // an overhang is judged from this area on
 };
 
+// A void open to the surface: a pit in the restoration's top, away from the margin (a pit that
+// reaches the margin is the margin's gap).
+struct SurfacePit {
+  Vec3 centre_mm;        // tooth frame, on the surface
+  real volume_mm3 = 0;   // below the closed surface
+  real depth_mm = 0;     // the deepest
+};
+
+// Voids open to the surface, apart from the enclosed ones the assessment counts: the restoration's
+// height map (its top over the opening, the tooth's or the paste on it around) closed with a disc
+// of pit_radius; where it lies more than the margin's step threshold under its closing, a pit.
+struct SurfaceVoids {
+  bool measured = false;
+  std::string why_not;
+  int count = 0;                // pits of at least min_void_mm3
+  real volume_mm3 = 0;          // their volume
+  real deepest_mm = 0;
+  int pore_count = 0;           // smaller pits: porosity below what the model resolves
+  real pore_volume_mm3 = 0;
+  real min_void_mm3 = 0;
+  real pit_width_mm = 0;        // the widest pit found: twice pit_radius
+  std::vector<SurfacePit> pits; // those counted
+};
+
 struct SurfaceGrade {
   AnatomicForm anatomic;
   MarginalAdaptation margin;
   ProximalGrade proximal;
+  SurfaceVoids voids;
 };
 
 // Grades `paste` (the paste's surface, world m) against `tooth`. An empty surface grades the empty

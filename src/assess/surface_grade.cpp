@@ -121,25 +121,65 @@ real percentile(std::vector<real> v, real q) {
   return v[std::min(k, v.size() - 1)];
 }
 
-AnatomicForm anatomic_form(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p, real step) {
+// The restoration's heights in columns `step` apart over the cavity's box and `pad` columns around
+// it (tooth frame, m): in the opening the restoration's top, on the tooth its top or the paste
+// lying on it.
+struct HeightMap {
+  enum Kind : signed char { opening, tooth, off };
+  real x0 = 0, y0 = 0, step = 0;
+  int nx = 0, ny = 0;
+  std::vector<signed char> kind;
+  std::vector<real> intact, top;
+  std::size_t at(int i, int j) const { return std::size_t(i) * std::size_t(ny) + std::size_t(j); }
+  real x(int i) const { return x0 + (i + 0.5) * step; }
+  real y(int j) const { return y0 + (j + 0.5) * step; }
+};
+
+HeightMap height_map(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p, real step, int pad) {
+  HeightMap h;
+  const Bounds box = local_box(tooth.frame(), tooth.cavity_bounds());
+  h.step = step;
+  h.x0 = box.min.x - pad * step;
+  h.y0 = box.min.y - pad * step;
+  h.nx = int(std::ceil((box.max.x - box.min.x) / step)) + 2 * pad;
+  h.ny = int(std::ceil((box.max.y - box.min.y) / step)) + 2 * pad;
+  const std::size_t n = std::size_t(h.nx) * std::size_t(h.ny);
+  h.kind.assign(n, HeightMap::off);
+  h.intact.assign(n, 0);
+  h.top.assign(n, 0);
+  const real bridge = p.bridge > 0 ? p.bridge : p.spacing;
+  for (int i = 0; i < h.nx; ++i)
+    for (int j = 0; j < h.ny; ++j) {
+      const real x = h.x(i), y = h.y(j);
+      const auto t = cols.intact_top(x, y);
+      if (!t) continue;
+      const std::size_t c = h.at(i, j);
+      h.intact[c] = *t;
+      if (cols.opening(x, y, *t)) {
+        h.kind[c] = HeightMap::opening;
+        h.top[c] = cols.restoration_top(x, y, *t, p.band_up, bridge);
+      } else {
+        h.kind[c] = HeightMap::tooth;
+        h.top[c] = *t + cols.paste_over(x, y, *t, p.band_up);
+      }
+    }
+  return h;
+}
+
+AnatomicForm anatomic_form(const HeightMap& h, const GradeParams& p) {
   AnatomicForm a;
-  a.column_mm = step * 1e3;
+  a.column_mm = h.step * 1e3;
   a.alpha_max_mm = p.alpha_max * 1e3;
   a.charlie_under_mm = p.charlie_under * 1e3;
-  const ToothFrame& f = tooth.frame();
-  const Bounds box = local_box(f, tooth.cavity_bounds());
-  const Vec3 lo = box.min, hi = box.max;
-  const int nx = int(std::ceil((hi.x - lo.x) / step)), ny = int(std::ceil((hi.y - lo.y) / step));
   std::vector<real> abs_dev, under;
   real sum = 0, sum2 = 0;
   const real cell_mm2 = a.column_mm * a.column_mm;
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j) {
-      const real x = lo.x + (i + 0.5) * step, y = lo.y + (j + 0.5) * step;
-      const auto top = cols.intact_top(x, y);
-      if (!top || !cols.opening(x, y, *top)) continue;
-      const real d = (cols.restoration_top(x, y, *top, p.band_up, p.bridge > 0 ? p.bridge : p.spacing) - *top) * 1e3;
-      a.column_centre_mm.push_back(Vec3{x, y, *top} * 1e3);
+  for (int i = 0; i < h.nx; ++i)
+    for (int j = 0; j < h.ny; ++j) {
+      const std::size_t c = h.at(i, j);
+      if (h.kind[c] != HeightMap::opening) continue;
+      const real d = (h.top[c] - h.intact[c]) * 1e3;
+      a.column_centre_mm.push_back(Vec3{h.x(i), h.y(j), h.intact[c]} * 1e3);
       a.deviation_mm.push_back(d);
       sum += d;
       sum2 += d * d;
@@ -162,6 +202,90 @@ AnatomicForm anatomic_form(const PreparedTooth& tooth, const Columns& cols, cons
   a.p95_under_mm = percentile(under, 0.95);
   a.band = a.p95_abs_mm <= p.alpha_max * 1e3 ? 'A' : (a.p95_under_mm > p.charlie_under * 1e3 ? 'C' : 'B');
   return a;
+}
+
+// The height map closed (dilated, then eroded) with a disc of `r` columns over the columns on the
+// tooth; pits are the opening's columns more than `thr` under it, in 4-connected regions that do not
+// reach out of the opening.
+SurfaceVoids surface_voids(const HeightMap& h, const GradeParams& p, real thr) {
+  SurfaceVoids v;
+  const int r = std::max(1, int(std::lround(p.pit_radius / h.step)));
+  v.pit_width_mm = 2 * r * h.step * 1e3;
+  v.min_void_mm3 = (p.min_void > 0 ? p.min_void : p.spacing * p.spacing * p.spacing) * 1e9;
+  std::vector<std::pair<int, int>> disc;
+  for (int di = -r; di <= r; ++di)
+    for (int dj = -r; dj <= r; ++dj)
+      if (di * di + dj * dj <= r * r) disc.push_back({di, dj});
+  auto pass = [&](const std::vector<real>& in, bool dilate) {
+    std::vector<real> out(in.size(), 0);
+    for (int i = 0; i < h.nx; ++i)
+      for (int j = 0; j < h.ny; ++j) {
+        if (h.kind[h.at(i, j)] == HeightMap::off) continue;
+        real e = in[h.at(i, j)];
+        for (const auto& [di, dj] : disc) {
+          const int a = i + di, b = j + dj;
+          if (a < 0 || b < 0 || a >= h.nx || b >= h.ny || h.kind[h.at(a, b)] == HeightMap::off) continue;
+          e = dilate ? std::max(e, in[h.at(a, b)]) : std::min(e, in[h.at(a, b)]);
+        }
+        out[h.at(i, j)] = e;
+      }
+    return out;
+  };
+  const std::vector<real> closed = pass(pass(h.top, true), false);
+  bool any = false;
+  std::vector<char> seen(h.top.size(), 0);
+  const real cell_mm2 = h.step * h.step * 1e6;
+  for (int i = 0; i < h.nx; ++i)
+    for (int j = 0; j < h.ny; ++j) {
+      const std::size_t c0 = h.at(i, j);
+      if (h.kind[c0] != HeightMap::opening) continue;
+      any = true;
+      if (seen[c0] || closed[c0] - h.top[c0] <= thr) continue;
+      // One pit: its region, its volume under the closed surface, whether it reaches the margin.
+      SurfacePit pit;
+      bool marginal = false;
+      real weight = 0;
+      std::vector<std::pair<int, int>> todo = {{i, j}};
+      seen[c0] = 1;
+      while (!todo.empty()) {
+        const auto [a, b] = todo.back();
+        todo.pop_back();
+        const std::size_t c = h.at(a, b);
+        const real d = closed[c] - h.top[c];
+        pit.volume_mm3 += d * 1e3 * cell_mm2;
+        pit.depth_mm = std::max(pit.depth_mm, d * 1e3);
+        pit.centre_mm += Vec3{h.x(a), h.y(b), h.top[c]} * (1e3 * d);
+        weight += d;
+        const int next[4][2] = {{a + 1, b}, {a - 1, b}, {a, b + 1}, {a, b - 1}};
+        for (const auto& [u, w] : next) {
+          if (u < 0 || w < 0 || u >= h.nx || w >= h.ny || h.kind[h.at(u, w)] != HeightMap::opening) {
+            marginal = true;
+            continue;
+          }
+          const std::size_t n = h.at(u, w);
+          if (seen[n] || closed[n] - h.top[n] <= thr) continue;
+          seen[n] = 1;
+          todo.push_back({u, w});
+        }
+      }
+      if (marginal) continue;  // the margin's gap, graded there
+      pit.centre_mm = pit.centre_mm / weight;
+      if (pit.volume_mm3 < v.min_void_mm3) {
+        ++v.pore_count;
+        v.pore_volume_mm3 += pit.volume_mm3;
+        continue;
+      }
+      ++v.count;
+      v.volume_mm3 += pit.volume_mm3;
+      v.deepest_mm = std::max(v.deepest_mm, pit.depth_mm);
+      v.pits.push_back(pit);
+    }
+  if (!any) {
+    v.why_not = "the cavity does not open at the tooth's occlusal surface";
+    return v;
+  }
+  v.measured = true;
+  return v;
 }
 
 MarginalAdaptation marginal_adaptation(const PreparedTooth& tooth, const Columns& cols, const GradeParams& p,
@@ -350,13 +474,17 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
   check("contact_open", p.contact_open, p.contact_open >= 0);
   check("overhang_threshold", p.overhang_threshold, p.overhang_threshold >= 0);
   check("overhang_min_area", p.overhang_min_area, p.overhang_min_area >= 0);
+  check("pit_radius", p.pit_radius, p.pit_radius > 0 && p.pit_radius < 5e-3);
+  check("min_void", p.min_void, p.min_void >= 0);
   if (p.margin_samples < 16 || p.margin_samples > 100000)
     throw std::invalid_argument(fmt::format("GradeParams::margin_samples is {}: give 16 to 100000", p.margin_samples));
   if (p.max_sites < 0) throw std::invalid_argument("GradeParams::max_sites is negative: give 0 or more");
   const real step = p.column > 0 ? p.column : p.spacing / 3;
   const Columns cols(tooth, paste);
+  const HeightMap h = height_map(tooth, cols, p, step, int(std::ceil(p.pit_radius / step)) + 1);
   SurfaceGrade g;
-  g.anatomic = anatomic_form(tooth, cols, p, step);
+  g.anatomic = anatomic_form(h, p);
+  g.voids = surface_voids(h, p, p.step_threshold > 0 ? p.step_threshold : std::max<real>(0.15e-3, p.spacing / 2));
   g.margin = marginal_adaptation(tooth, cols, p, step);
   g.proximal = proximal_grade(tooth, cols, p, step);
   return g;
@@ -418,7 +546,23 @@ std::string surface_grade_json(const SurfaceGrade& g) {
          {"overhang_threshold_mm", q.overhang_threshold_mm},
          {"overhang_min_area_mm2", q.overhang_min_area_mm2}};
   }
-  return json{{"anatomic_form", a}, {"marginal_adaptation", m}, {"proximal", x}}.dump();
+  json v;
+  if (!g.voids.measured) {
+    v = {{"measured", false}, {"why_not", g.voids.why_not}};
+  } else {
+    const SurfaceVoids& sv = g.voids;
+    json pits = json::array();
+    for (const SurfacePit& q : sv.pits)
+      pits.push_back({{"volume_mm3", q.volume_mm3},
+                      {"depth_mm", q.depth_mm},
+                      {"centre_mm", {q.centre_mm.x, q.centre_mm.y, q.centre_mm.z}}});
+    v = {{"measured", true},          {"count", sv.count},
+         {"volume_mm3", sv.volume_mm3}, {"deepest_mm", sv.deepest_mm},
+         {"pore_count", sv.pore_count}, {"pore_volume_mm3", sv.pore_volume_mm3},
+         {"min_void_mm3", sv.min_void_mm3}, {"pit_width_mm", sv.pit_width_mm},
+         {"pits", pits}};
+  }
+  return json{{"anatomic_form", a}, {"marginal_adaptation", m}, {"proximal", x}, {"surface_voids", v}}.dump();
 }
 
 std::string surface_grade_report(const SurfaceGrade& g) {
@@ -434,6 +578,12 @@ std::string surface_grade_report(const SurfaceGrade& g) {
                                   m.defects.size(), m.defects.size() == 1 ? "" : "s", m.length_mm, m.gap_length_mm,
                                   m.excess_length_mm, m.passes ? "passes" : "fails", m.max_sites, m.max_site_mm)
                     : fmt::format("margin: not measured ({})\n", m.why_not);
+  const SurfaceVoids& v = g.voids;
+  if (v.measured)
+    out += fmt::format("surface voids (pits open to the surface, narrower than {:.1f} mm): {} ({:.3f} mm^3){}\n",
+                       v.pit_width_mm, v.count, v.volume_mm3,
+                       v.pore_count > 0 ? fmt::format("; {} smaller, porosity below what the model resolves", v.pore_count)
+                                        : "");
   const ProximalGrade& q = g.proximal;
   if (q.measured)
     out += fmt::format("proximal ({}): contact {}, {:.2f} mm {} the intact contour; overhang {:.2f} mm over "

@@ -109,6 +109,34 @@ Criterion margin_criterion(const nlohmann::json& s) {
   return c;
 }
 
+// Voids open to the surface (summary.json's "grading.surface_voids"): good when there is none of a
+// particle's volume or more.
+Criterion surface_voids_criterion(const nlohmann::json& s) {
+  const nlohmann::json& v = s["grading"].value("surface_voids", nlohmann::json::object());
+  const auto count = v.value("measured", false) ? number_at(v, "count") : std::nullopt;
+  const double least = number_at(v, "min_void_mm3").value_or(0.027);
+  Criterion c = make("surface_voids", "Surface voids (pits open to the surface)", "grading.surface_voids.count", count,
+                     count ? fmt::format("{:.0f} ({:.3f} mm^3)", *count, number_at(v, "volume_mm3").value_or(0)) : "",
+                     fmt::format("none of {:.3f} mm^3 (a particle's volume) or more", least),
+                     "Condense each increment from its middle outwards and smooth its surface with the burnisher "
+                     "before curing: a pit left in the surface stains and traps plaque.");
+  if (count) c.verdict = judge(*count == 0);
+  if (!v.value("measured", false)) c.details.push_back("not measured: " + v.value("why_not", std::string("no surface")));
+  if (v.contains("pits") && v["pits"].is_array())
+    for (const nlohmann::json& q : v["pits"]) {
+      const auto ce = q.value("centre_mm", nlohmann::json::array());
+      const double x = ce.size() == 3 && ce[0].is_number() ? ce[0].get<double>() : 0;
+      c.details.push_back(fmt::format("a pit of {:.3f} mm^3, {:.2f} mm deep, {:.1f} mm {} of the cavity's middle",
+                                      q.value("volume_mm3", 0.0), q.value("depth_mm", 0.0), std::abs(x),
+                                      x >= 0 ? "mesial" : "distal"));
+    }
+  if (const auto pores = number_at(v, "pore_count"); pores && *pores > 0)
+    c.details.push_back(fmt::format("{:.0f} smaller pit{} ({:.3f} mm^3 in all): porosity below what the simulation "
+                                    "resolves, not judged",
+                                    *pores, *pores == 1 ? "" : "s", number_at(v, "pore_volume_mm3").value_or(0)));
+  return c;
+}
+
 // A Class II's proximal contact and overhang (summary.json's "grading.proximal"): the contact good
 // when tight, the overhang good within its threshold.
 std::vector<Criterion> proximal_criteria(const nlohmann::json& s) {
@@ -276,6 +304,7 @@ std::vector<Criterion> filling_criteria(const nlohmann::json& s, const nlohmann:
   if (s.contains("grading")) {
     out.push_back(anatomic_form_criterion(s));
     out.push_back(margin_criterion(s));
+    if (s["grading"].contains("surface_voids")) out.push_back(surface_voids_criterion(s));
     for (Criterion& p : proximal_criteria(s)) out.push_back(std::move(p));
   }
 

@@ -101,6 +101,14 @@ constexpr Field kSummaryFields[] = {
     {"grading.proximal.why_not", Kind::text},
     {"grading.proximal.side", Kind::text},
     {"grading.proximal.contact", Kind::text},
+    {"grading.surface_voids", Kind::object},
+    {"grading.surface_voids.measured", Kind::flag},
+    {"grading.surface_voids.why_not", Kind::text},
+    {"grading.surface_voids.pits", Kind::list},
+    {"grading.surface_voids.pits[]", Kind::object},
+    {"grading.surface_voids.pits[].centre_mm", Kind::list},
+    {"grading.surface_voids.pits[].volume_mm3", Kind::number},
+    {"grading.surface_voids.pits[].depth_mm", Kind::number},
 };
 
 // Everything session_folder.cpp and criteria.cpp read of procedure.json.
@@ -219,6 +227,7 @@ void check_figures(const fs::path& file, const nlohmann::json& summary) {
       {"grading.marginal_adaptation.length_mm", 0, kMax}, {"grading.marginal_adaptation.max_sites", 0, kMax},
       {"grading.marginal_adaptation.max_site_mm", 0, kMax}, {"grading.proximal.gap_mm", -kMax, kMax},
       {"grading.proximal.overhang_mm", -kMax, kMax}, {"grading.proximal.overhang_area_mm2", 0, kMax},
+      {"grading.surface_voids.count", 0, kMax}, {"grading.surface_voids.volume_mm3", 0, kMax},
   };
   for (const Range& r : kRanges) {
     // Present but not a number, or a number out of range (JSON has no NaN; an overflowed literal

@@ -277,6 +277,21 @@ TEST(Report, TheSurfacesGradingIsJudgedByTheTutorsCriteria) {
   EXPECT_EQ(by_id(proximal("light", 0.2, 0.0), "contact").verdict, Verdict::needs_work);
   s["grading"].erase("proximal");
 
+  // Surface voids: good with none; each pit in the details.
+  s["grading"]["surface_voids"] = {{"measured", true}, {"count", 0}, {"volume_mm3", 0.0}, {"min_void_mm3", 0.027},
+                                   {"pore_count", 2}, {"pore_volume_mm3", 0.01}, {"pits", nlohmann::json::array()}};
+  cs = filling_criteria(s, nullptr);
+  EXPECT_EQ(by_id(cs, "surface_voids").verdict, Verdict::good);
+  EXPECT_EQ(by_id(cs, "surface_voids").details.size(), 1u);  // the porosity
+  s["grading"]["surface_voids"]["count"] = 1;
+  s["grading"]["surface_voids"]["volume_mm3"] = 0.06;
+  s["grading"]["surface_voids"]["pits"] = {{{"volume_mm3", 0.06}, {"depth_mm", 0.4}, {"centre_mm", {0.0, 0.0, 0.0}}}};
+  cs = filling_criteria(s, nullptr);
+  EXPECT_EQ(by_id(cs, "surface_voids").verdict, Verdict::needs_work);
+  EXPECT_EQ(by_id(cs, "surface_voids").shown, "1 (0.060 mm^3)");
+  EXPECT_NE(by_id(cs, "surface_voids").details[0].find("a pit of 0.060 mm^3, 0.40 mm deep"), std::string::npos);
+  s["grading"].erase("surface_voids");
+
   // The page shows them, and a tampered grading is refused naming the field.
   s["grading"] = grading("bravo", 1, 0.5);
   const std::string html = session_report_html(read_session(write_folder("graded", s)));

@@ -125,10 +125,10 @@ TEST(ReportBrowser, OfflineRunsReportRendersWithItsPicturesPlotAndNumbers) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(dom, m, std::regex("id=\"force-plot\"[^>]*data-plotted=\"([0-9]+)\""))) << dom.substr(0, 3000);
   EXPECT_GE(std::stoi(m[1]), 3);  // the force, the device limit, the increments
-  // The filling's six numbers, its surface's grading's two (anatomic form, margin) and the cure's
-  // one (the built-in procedure cures; 0.075 s is before its light: the first increment's
-  // adequately cured share, 0).
-  EXPECT_EQ(expect_numbers_equal(dom, summary), 9);
+  // The filling's six numbers, its surface's grading's three (anatomic form, margin, surface voids)
+  // and the cure's one (the built-in procedure cures; 0.075 s is before its light: the first
+  // increment's adequately cured share, 0).
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 10);
   EXPECT_NE(dom.find("id=\"picture-grading\""), std::string::npos);
   EXPECT_NE(dom.find("A. Student, class I"), std::string::npos);
   EXPECT_NE(dom.find("id=\"picture-cut\""), std::string::npos);
@@ -178,7 +178,7 @@ TEST(ReportBrowser, OfflineRunsReportShowsTheLightCuring) {
   EXPECT_NE(dom.find(cure["message"].get<std::string>()), std::string::npos) << cure["message"];
   EXPECT_NE(dom.find(one["message"].get<std::string>()), std::string::npos) << one["message"];
   EXPECT_NE(dom.find("data-criterion=\"cure_1\""), std::string::npos);
-  EXPECT_EQ(expect_numbers_equal(dom, summary), 9);
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 10);
   // The procedure's log counts each dispense's particles (it once logged an event before applying
   // it, so every count was the interval's before and no increment's thickness was measured).
   const nlohmann::json proc = nlohmann::json::parse(std::ifstream(out / "procedure.json"));
@@ -215,9 +215,9 @@ TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   const std::string dom = dump_dom(out / "report.html");
   EXPECT_NE(dom.find("id=\"haptic\""), std::string::npos);
   EXPECT_NE(dom.find("data-plotted=\""), std::string::npos);
-  // The filling's six numbers, its surface's grading's two, the haptic loop's six and the cure's one
-  // (the built-in procedure).
-  EXPECT_EQ(expect_numbers_equal(dom, summary), 15);
+  // The filling's six numbers, its surface's grading's three, the haptic loop's six and the cure's
+  // one (the built-in procedure).
+  EXPECT_EQ(expect_numbers_equal(dom, summary), 16);
   EXPECT_NE(dom.find("force sent to the device"), std::string::npos);
 
   // Its replay written as a run folder: the same forces (exit 0), a report of its own, and the
@@ -232,7 +232,7 @@ TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   const nlohmann::json proc = nlohmann::json::parse(std::ifstream(replayed / "procedure.json"));
   ASSERT_FALSE(proc["increments"].empty());
   EXPECT_GT(proc["increments"][0]["particles"].get<int>(), 100);
-  EXPECT_EQ(expect_numbers_equal(dump_dom(replayed / "report.html"), rs), 8);
+  EXPECT_EQ(expect_numbers_equal(dump_dom(replayed / "report.html"), rs), 9);
 }
 
 TEST(ReportBrowser, ClassComparisonOfThreeSessionsDrawsItsCharts) {

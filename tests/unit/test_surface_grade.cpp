@@ -140,6 +140,35 @@ TEST(SurfaceGrade, AnUnderContourAndAnExcessAreFoundOverTheirMarginsLength) {
   EXPECT_EQ(g.anatomic.band, 'B');
 }
 
+// Voids open to the surface: a pit 0.6 mm across and 0.4 mm deep in the middle of a restoration
+// filled to the intact surface is one, of about its volume (the reconstruction narrows it by half a
+// spacing all round: 0.25 mm radius, 0.35 mm deep, 0.069 mm^3), apart from the enclosed voids; the
+// restoration without it has none, and a dip that reaches the margin (the under-contoured end) is
+// the margin's gap, not a surface void.
+TEST(SurfaceGrade, APitOpenToTheSurfaceIsASurfaceVoidAndADipAtTheMarginIsNot) {
+  const PreparedTooth t = box_tooth();
+  const auto pitted = lattice(t, 0, [&](const Vec3& l) {
+    return t.in_cavity(t.frame().to_world(l)) && !(std::hypot(l.x, l.y) < 0.3e-3 && l.z > -0.4e-3);
+  });
+  const SurfaceGrade g = grade_surface(t, particle_surface(pitted, s), fine());
+  ASSERT_TRUE(g.voids.measured) << g.voids.why_not;
+  ASSERT_EQ(g.voids.count, 1);
+  EXPECT_NEAR(g.voids.pits[0].depth_mm, 0.35, 0.06);
+  EXPECT_NEAR(g.voids.pits[0].volume_mm3, std::numbers::pi * 0.25 * 0.25 * 0.35, 0.03);
+  EXPECT_NEAR(g.voids.pits[0].centre_mm.x, 0, 0.05);
+  EXPECT_NEAR(g.voids.pits[0].centre_mm.y, 0, 0.05);
+  EXPECT_TRUE(g.margin.defects.empty());
+
+  const auto whole = lattice(t, 0, [&](const Vec3& l) { return t.in_cavity(t.frame().to_world(l)); });
+  EXPECT_EQ(grade_surface(t, particle_surface(whole, s), fine()).voids.count, 0);
+  const auto short_end = lattice(t, 0, [&](const Vec3& l) {
+    return t.in_cavity(t.frame().to_world(l)) && !(l.x > 1.5e-3 && l.z > -0.3e-3);
+  });
+  const SurfaceGrade dip = grade_surface(t, particle_surface(short_end, s), fine());
+  EXPECT_EQ(dip.voids.count, 0);
+  EXPECT_EQ(dip.margin.defects.size(), 1u);
+}
+
 TEST(SurfaceGrade, AnEmptyCavityIsUnderContouredToItsFloorAndAllGap) {
   const PreparedTooth t = box_tooth();
   const SurfaceGrade g = grade_surface(t, SurfaceMesh{}, fine());
