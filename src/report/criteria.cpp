@@ -39,11 +39,24 @@ std::string describe_void(const nlohmann::json& v) {
                      x >= 0 ? "mesial" : "distal", v.value("wall_distance_mm", 0.0));
 }
 
+// A section of summary.json's "grading" (an empty object where it is absent), its figure `key`
+// where the section was measured, and the reason it was not.
+nlohmann::json grading_section(const nlohmann::json& s, const char* name) {
+  return s["grading"].value(name, nlohmann::json::object());
+}
+std::optional<double> measured(const nlohmann::json& section, const char* key) {
+  return section.value("measured", false) ? number_at(section, key) : std::nullopt;
+}
+void say_if_not_measured(Criterion& c, const nlohmann::json& section) {
+  if (!section.value("measured", false))
+    c.details.push_back("not measured: " + section.value("why_not", std::string("no surface")));
+}
+
 // The restoration's surface against the intact tooth (summary.json's "grading.anatomic_form",
 // surface_grade.hpp): good in the alpha band.
 Criterion anatomic_form_criterion(const nlohmann::json& s) {
-  const nlohmann::json& a = s["grading"].value("anatomic_form", nlohmann::json::object());
-  const auto p95 = a.value("measured", false) ? number_at(a, "p95_abs_mm") : std::nullopt;
+  const nlohmann::json a = grading_section(s, "anatomic_form");
+  const auto p95 = measured(a, "p95_abs_mm");
   const std::string band = a.value("band", "");
   const double alpha = number_at(a, "alpha_max_mm").value_or(0.25), charlie = number_at(a, "charlie_under_mm").value_or(1.0);
   Criterion c = make("anatomic_form", "Anatomic form", "grading.anatomic_form.p95_abs_mm", p95,
@@ -58,7 +71,7 @@ Criterion anatomic_form_criterion(const nlohmann::json& s) {
                                     number_at(a, "rms_mm").value_or(0), number_at(a, "max_under_mm").value_or(0),
                                     number_at(a, "max_over_mm").value_or(0), charlie));
   if (p95) c.verdict = judge(band == "alpha");
-  if (!a.value("measured", false)) c.details.push_back("not measured: " + a.value("why_not", std::string("no surface")));
+  say_if_not_measured(c, a);
   const auto under = number_at(a, "under_area_mm2"), over = number_at(a, "over_area_mm2");
   if (p95 && under && over)
     c.details.push_back(fmt::format("{:.2f} mm^2 of the opening under-contoured and {:.2f} mm^2 over-contoured by more "
@@ -70,8 +83,8 @@ Criterion anatomic_form_criterion(const nlohmann::json& s) {
 // The occlusal margin (summary.json's "grading.marginal_adaptation"): the preclinical rubric, good
 // with at most max_sites defect sites and none longer than max_site_mm.
 Criterion margin_criterion(const nlohmann::json& s) {
-  const nlohmann::json& m = s["grading"].value("marginal_adaptation", nlohmann::json::object());
-  const auto sites = m.value("measured", false) ? number_at(m, "sites") : std::nullopt;
+  const nlohmann::json m = grading_section(s, "marginal_adaptation");
+  const auto sites = measured(m, "sites");
   const double max_sites = number_at(m, "max_sites").value_or(3), max_site = number_at(m, "max_site_mm").value_or(1.0);
   const double largest = number_at(m, "largest_site_mm").value_or(0);
   Criterion c = make("margin", "Marginal adaptation", "grading.marginal_adaptation.sites", sites,
@@ -86,7 +99,7 @@ Criterion margin_criterion(const nlohmann::json& s) {
                                     number_at(m, "gap_length_mm").value_or(0), number_at(m, "excess_length_mm").value_or(0),
                                     number_at(m, "length_mm").value_or(0), number_at(m, "step_threshold_mm").value_or(0.15)));
   if (sites) c.verdict = judge(*sites <= max_sites && largest <= max_site);
-  if (!m.value("measured", false)) c.details.push_back("not measured: " + m.value("why_not", std::string("no surface")));
+  say_if_not_measured(c, m);
   if (m.contains("defects") && m["defects"].is_array())
     for (const nlohmann::json& d : m["defects"]) {
       const auto ce = d.value("centre_mm", nlohmann::json::array());
@@ -112,8 +125,8 @@ Criterion margin_criterion(const nlohmann::json& s) {
 // Voids open to the surface (summary.json's "grading.surface_voids"): good when there is none of a
 // particle's volume or more.
 Criterion surface_voids_criterion(const nlohmann::json& s) {
-  const nlohmann::json& v = s["grading"].value("surface_voids", nlohmann::json::object());
-  const auto count = v.value("measured", false) ? number_at(v, "count") : std::nullopt;
+  const nlohmann::json v = grading_section(s, "surface_voids");
+  const auto count = measured(v, "count");
   const double least = number_at(v, "min_void_mm3").value_or(0.027);
   Criterion c = make("surface_voids", "Surface voids (pits open to the surface)", "grading.surface_voids.count", count,
                      count ? fmt::format("{:.0f} ({:.3f} mm^3)", *count, number_at(v, "volume_mm3").value_or(0)) : "",
@@ -121,7 +134,7 @@ Criterion surface_voids_criterion(const nlohmann::json& s) {
                      "Condense each increment from its middle outwards and smooth its surface with the burnisher "
                      "before curing: a pit left in the surface stains and traps plaque.");
   if (count) c.verdict = judge(*count == 0);
-  if (!v.value("measured", false)) c.details.push_back("not measured: " + v.value("why_not", std::string("no surface")));
+  say_if_not_measured(c, v);
   if (v.contains("pits") && v["pits"].is_array())
     for (const nlohmann::json& q : v["pits"]) {
       const auto ce = q.value("centre_mm", nlohmann::json::array());
@@ -141,7 +154,7 @@ Criterion surface_voids_criterion(const nlohmann::json& s) {
 // when tight, the overhang good within its threshold.
 std::vector<Criterion> proximal_criteria(const nlohmann::json& s) {
   std::vector<Criterion> out;
-  const nlohmann::json& q = s["grading"].value("proximal", nlohmann::json::object());
+  const nlohmann::json q = grading_section(s, "proximal");
   if (!q.value("measured", false)) return out;
   const std::string contact = q.value("contact", "");
   const auto gap = number_at(q, "gap_mm");
