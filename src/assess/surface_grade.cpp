@@ -109,9 +109,13 @@ class Columns {
   std::optional<MeshDistance> paste_;
 };
 
+// A length (m), or an area or a volume (m^2, m^3) where the field says so.
 void check(const char* field, real v, bool ok) {
   if (!(std::isfinite(v) && ok))
-    throw std::invalid_argument(fmt::format("GradeParams::{} is {}: give a positive, finite length in metres", field, v));
+    throw std::invalid_argument(fmt::format(
+        "GradeParams::{} is {}: give a finite value in SI units within its range (surface_grade.hpp; 0 where it "
+        "takes a default)",
+        field, v));
 }
 
 real percentile(std::vector<real> v, real q) {
