@@ -6,6 +6,8 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -80,13 +82,19 @@ class Columns {
   // paste keeps a crevice narrower than a particle from the walls (the SPH gap at a wall,
   // docs/assessment.md "The wall standoff"): a column down it would read the floor.
   real restoration_top(real x, real y, real top, real band_up, real bridge) const {
-    real z = floor(x, y, top);
-    for (int k = 0; k < 17; ++k) {
-      const real r = k == 0 ? 0 : (k <= 8 ? bridge / 2 : bridge);
+    return restoration_tops(x, y, top, band_up, bridge).first;
+  }
+  // The same, and the column's own (the floor or the paste in the column itself, unbridged).
+  std::pair<real, real> restoration_tops(real x, real y, real top, real band_up, real bridge) const {
+    real own = floor(x, y, top);
+    if (const auto p = paste_top(x, y, top + band_up)) own = std::max(own, *p);
+    real z = own;
+    for (int k = 1; k < 17; ++k) {
+      const real r = k <= 8 ? bridge / 2 : bridge;
       const real a = 2 * std::numbers::pi * (k % 8) / 8 + (k > 8 ? std::numbers::pi / 8 : 0);
       if (const auto p = paste_top(x + r * std::cos(a), y + r * std::sin(a), top + band_up)) z = std::max(z, *p);
     }
-    return z;
+    return {z, own};
   }
   // The paste lying on the intact surface at (x, y): its height above it (0: none).
   real paste_over(real x, real y, real top, real band_up) const {
@@ -134,6 +142,7 @@ struct HeightMap {
   int nx = 0, ny = 0;
   std::vector<signed char> kind;
   std::vector<real> intact, top;
+  std::vector<real> own;  // the opening's top in the column alone, unbridged (its pits as narrow as they are)
   std::size_t at(int i, int j) const { return std::size_t(i) * std::size_t(ny) + std::size_t(j); }
   real x(int i) const { return x0 + (i + 0.5) * step; }
   real y(int j) const { return y0 + (j + 0.5) * step; }
@@ -151,6 +160,7 @@ HeightMap height_map(const PreparedTooth& tooth, const Columns& cols, const Grad
   h.kind.assign(n, HeightMap::off);
   h.intact.assign(n, 0);
   h.top.assign(n, 0);
+  h.own.assign(n, 0);
   const real bridge = p.bridge > 0 ? p.bridge : p.spacing;
   for (int i = 0; i < h.nx; ++i)
     for (int j = 0; j < h.ny; ++j) {
@@ -161,10 +171,10 @@ HeightMap height_map(const PreparedTooth& tooth, const Columns& cols, const Grad
       h.intact[c] = *t;
       if (cols.opening(x, y, *t)) {
         h.kind[c] = HeightMap::opening;
-        h.top[c] = cols.restoration_top(x, y, *t, p.band_up, bridge);
+        std::tie(h.top[c], h.own[c]) = cols.restoration_tops(x, y, *t, p.band_up, bridge);
       } else {
         h.kind[c] = HeightMap::tooth;
-        h.top[c] = *t + cols.paste_over(x, y, *t, p.band_up);
+        h.top[c] = h.own[c] = *t + cols.paste_over(x, y, *t, p.band_up);
       }
     }
   return h;
@@ -210,7 +220,8 @@ AnatomicForm anatomic_form(const HeightMap& h, const GradeParams& p) {
 
 // The height map closed (dilated, then eroded) with a disc of `r` columns over the columns on the
 // tooth; pits are the opening's columns more than `thr` under it, in 4-connected regions that do not
-// reach out of the opening.
+// reach out of the opening. The columns' own heights, unbridged: a pit narrower than the bridge is
+// still a pit, and the crevice the paste keeps from the walls reaches the margin, so is none.
 SurfaceVoids surface_voids(const HeightMap& h, const GradeParams& p, real thr) {
   SurfaceVoids v;
   const int r = std::max(1, int(std::lround(p.pit_radius / h.step)));
@@ -235,16 +246,17 @@ SurfaceVoids surface_voids(const HeightMap& h, const GradeParams& p, real thr) {
       }
     return out;
   };
-  const std::vector<real> closed = pass(pass(h.top, true), false);
+  const std::vector<real>& top = h.own;
+  const std::vector<real> closed = pass(pass(top, true), false);
   bool any = false;
-  std::vector<char> seen(h.top.size(), 0);
+  std::vector<char> seen(top.size(), 0);
   const real cell_mm2 = h.step * h.step * 1e6;
   for (int i = 0; i < h.nx; ++i)
     for (int j = 0; j < h.ny; ++j) {
       const std::size_t c0 = h.at(i, j);
       if (h.kind[c0] != HeightMap::opening) continue;
       any = true;
-      if (seen[c0] || closed[c0] - h.top[c0] <= thr) continue;
+      if (seen[c0] || closed[c0] - top[c0] <= thr) continue;
       // One pit: its region, its volume under the closed surface, whether it reaches the margin.
       SurfacePit pit;
       bool marginal = false;
@@ -255,10 +267,10 @@ SurfaceVoids surface_voids(const HeightMap& h, const GradeParams& p, real thr) {
         const auto [a, b] = todo.back();
         todo.pop_back();
         const std::size_t c = h.at(a, b);
-        const real d = closed[c] - h.top[c];
+        const real d = closed[c] - top[c];
         pit.volume_mm3 += d * 1e3 * cell_mm2;
         pit.depth_mm = std::max(pit.depth_mm, d * 1e3);
-        pit.centre_mm += Vec3{h.x(a), h.y(b), h.top[c]} * (1e3 * d);
+        pit.centre_mm += Vec3{h.x(a), h.y(b), top[c]} * (1e3 * d);
         weight += d;
         const int next[4][2] = {{a + 1, b}, {a - 1, b}, {a, b + 1}, {a, b - 1}};
         for (const auto& [u, w] : next) {
@@ -267,7 +279,7 @@ SurfaceVoids surface_voids(const HeightMap& h, const GradeParams& p, real thr) {
             continue;
           }
           const std::size_t n = h.at(u, w);
-          if (seen[n] || closed[n] - h.top[n] <= thr) continue;
+          if (seen[n] || closed[n] - top[n] <= thr) continue;
           seen[n] = 1;
           todo.push_back({u, w});
         }

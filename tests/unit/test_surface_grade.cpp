@@ -141,10 +141,10 @@ TEST(SurfaceGrade, AnUnderContourAndAnExcessAreFoundOverTheirMarginsLength) {
 }
 
 // Voids open to the surface: a pit 0.6 mm across and 0.4 mm deep in the middle of a restoration
-// filled to the intact surface is one, of about its volume (the reconstruction narrows it by half a
-// spacing all round: 0.25 mm radius, 0.35 mm deep, 0.069 mm^3), apart from the enclosed voids; the
-// restoration without it has none, and a dip that reaches the margin (the under-contoured end) is
-// the margin's gap, not a surface void.
+// filled to the intact surface is one, of the particles' volume it lacks within 15% (0.113 mm^3;
+// measured 0.123, the rim's rounding included), apart from the enclosed voids; the restoration
+// without it has none, and a dip that reaches the margin (the under-contoured end) is the margin's
+// gap, not a surface void.
 TEST(SurfaceGrade, APitOpenToTheSurfaceIsASurfaceVoidAndADipAtTheMarginIsNot) {
   const PreparedTooth t = box_tooth();
   const auto pitted = lattice(t, 0, [&](const Vec3& l) {
@@ -153,8 +153,9 @@ TEST(SurfaceGrade, APitOpenToTheSurfaceIsASurfaceVoidAndADipAtTheMarginIsNot) {
   const SurfaceGrade g = grade_surface(t, particle_surface(pitted, s), fine());
   ASSERT_TRUE(g.voids.measured) << g.voids.why_not;
   ASSERT_EQ(g.voids.count, 1);
-  EXPECT_NEAR(g.voids.pits[0].depth_mm, 0.35, 0.06);
-  EXPECT_NEAR(g.voids.pits[0].volume_mm3, std::numbers::pi * 0.25 * 0.25 * 0.35, 0.03);
+  EXPECT_NEAR(g.voids.pits[0].depth_mm, 0.40, 0.06);
+  const real removed = std::numbers::pi * 0.3 * 0.3 * 0.4;  // mm^3, the particles' place
+  EXPECT_NEAR(g.voids.pits[0].volume_mm3, removed, 0.15 * removed);
   EXPECT_NEAR(g.voids.pits[0].centre_mm.x, 0, 0.05);
   EXPECT_NEAR(g.voids.pits[0].centre_mm.y, 0, 0.05);
   EXPECT_TRUE(g.margin.defects.empty());
