@@ -166,6 +166,9 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
 // per-column and per-point lists.
 std::string surface_grade_json(const SurfaceGrade& g);
 
+// "alpha", "bravo", "charlie" for AnatomicForm::band 'A', 'B', 'C' ("none" otherwise).
+const char* anatomic_band_name(char band);
+
 // Its lines for a person (the run's report on the console), each ending in a newline.
 std::string surface_grade_report(const SurfaceGrade& g);
 

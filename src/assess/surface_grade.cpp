@@ -471,7 +471,6 @@ ProximalGrade proximal_grade(const PreparedTooth& tooth, const Columns& cols, co
   return g;
 }
 
-const char* band_name(char b) { return b == 'A' ? "alpha" : b == 'B' ? "bravo" : b == 'C' ? "charlie" : "none"; }
 
 }  // namespace
 
@@ -506,6 +505,10 @@ SurfaceGrade grade_surface(const PreparedTooth& tooth, const SurfaceMesh& paste,
   return g;
 }
 
+const char* anatomic_band_name(char b) {
+  return b == 'A' ? "alpha" : b == 'B' ? "bravo" : b == 'C' ? "charlie" : "none";
+}
+
 std::string surface_grade_json(const SurfaceGrade& g) {
   using nlohmann::json;
   json a;
@@ -513,7 +516,7 @@ std::string surface_grade_json(const SurfaceGrade& g) {
     a = {{"measured", false}, {"why_not", g.anatomic.why_not}};
   } else {
     const AnatomicForm& f = g.anatomic;
-    a = {{"measured", true},          {"band", band_name(f.band)},         {"rms_mm", f.rms_mm},
+    a = {{"measured", true},          {"band", anatomic_band_name(f.band)},         {"rms_mm", f.rms_mm},
          {"mean_mm", f.mean_mm},      {"max_under_mm", f.max_under_mm},    {"max_over_mm", f.max_over_mm},
          {"p95_abs_mm", f.p95_abs_mm}, {"p95_under_mm", f.p95_under_mm},   {"under_area_mm2", f.under_area_mm2},
          {"over_area_mm2", f.over_area_mm2}, {"columns", f.columns},       {"column_mm", f.column_mm},
@@ -586,7 +589,7 @@ std::string surface_grade_report(const SurfaceGrade& g) {
   const AnatomicForm& a = g.anatomic;
   out += a.measured ? fmt::format("anatomic form against the intact tooth: {} (95% of the opening within {:.2f} mm; "
                                   "RMS {:.2f} mm, mean {:+.2f} mm)\n",
-                                  band_name(a.band), a.p95_abs_mm, a.rms_mm, a.mean_mm)
+                                  anatomic_band_name(a.band), a.p95_abs_mm, a.rms_mm, a.mean_mm)
                     : fmt::format("anatomic form: not measured ({})\n", a.why_not);
   const MarginalAdaptation& m = g.margin;
   out += m.measured ? fmt::format("margin: {} defect site{} along {:.1f} mm ({:.1f} mm gap, {:.1f} mm excess): {} the "

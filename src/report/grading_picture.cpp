@@ -55,7 +55,7 @@ std::string grading_svg(const SurfaceGrade& g) {
       w, h, w, h);
   s += fmt::format("<text x=\"{:.0f}\" y=\"20\" font-size=\"13\">The restoration against the intact tooth, from above "
                    "(anatomic form {}; margin {})</text>\n",
-                   kPad, !a.measured ? "not measured" : a.band == 'A' ? "alpha" : a.band == 'B' ? "bravo" : "charlie",
+                   kPad, a.measured ? anatomic_band_name(a.band) : "not measured",
                    m.measured ? fmt::format("{} site{}", m.defects.size(), m.defects.size() == 1 ? "" : "s") : "not measured");
   const double cell = a.column_mm * kPxPerMm;
   for (std::size_t k = 0; k < a.column_centre_mm.size(); ++k) {

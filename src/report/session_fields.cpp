@@ -1,6 +1,7 @@
 // The fields the report reads, checked (session_fields.hpp).
 #include "report/session_fields.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -8,7 +9,6 @@
 
 #include <fmt/format.h>
 
-#include "report/criteria.hpp"
 #include "report/session_folder.hpp"
 
 namespace dentsph::report {
@@ -232,21 +232,13 @@ void check_figures(const fs::path& file, const nlohmann::json& summary) {
   for (const Range& r : kRanges) {
     // Present but not a number, or a number out of range (JSON has no NaN; an overflowed literal
     // such as 1e999 reads as infinity).
-    const std::optional<double> v = number_at(summary, r.path);
-    bool present = true;
-    const nlohmann::json* at = &summary;
-    for (std::string_view rest = r.path; present;) {
-      const std::size_t dot = rest.find('.');
-      const std::string key(rest.substr(0, dot));
-      present = at->is_object() && at->contains(key);
-      if (!present) break;
-      at = &(*at)[key];
-      if (dot == std::string_view::npos) break;
-      rest.remove_prefix(dot + 1);
-    }
-    if (!present) continue;
-    if (!v || !std::isfinite(*v) || *v < r.lo || *v > r.hi)
-      refuse(file, r.path, *at, fmt::format("a number in [{:g}, {:g}]", r.lo, r.hi).c_str());
+    std::string pointer = std::string("/") + r.path;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    const nlohmann::json::json_pointer at(pointer);
+    if (!summary.contains(at)) continue;
+    const nlohmann::json& v = summary.at(at);
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < r.lo || v.get<double>() > r.hi)
+      refuse(file, r.path, v, fmt::format("a number in [{:g}, {:g}]", r.lo, r.hi).c_str());
   }
 }
 

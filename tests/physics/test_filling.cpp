@@ -116,6 +116,18 @@ void fills_the_molar(const char* file, CavityClass kind, Solver solver = Solver:
   // docs/tooth.md), 2 to 9 particles crept into the scans' upper walls.
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
+  // The run's end graded the restoration's surface against the scanned tooth (docs/assessment.md,
+  // "The surface graded"): its anatomic form, its margin, its surface voids, and a Class II's
+  // proximal contact.
+  const auto written = nlohmann::json::parse(std::ifstream(opt.out_dir / "summary.json"));
+  ASSERT_TRUE(written.contains("grading")) << written.dump().substr(0, 400);
+  const nlohmann::json& g = written["grading"];
+  EXPECT_TRUE(g["anatomic_form"]["measured"].get<bool>()) << g.dump();
+  EXPECT_GT(g["anatomic_form"]["columns"].get<int>(), 500);
+  EXPECT_TRUE(g["marginal_adaptation"]["measured"].get<bool>()) << g.dump();
+  EXPECT_TRUE(g["surface_voids"]["measured"].get<bool>()) << g.dump();
+  EXPECT_EQ(g["proximal"]["measured"].get<bool>(), kind == CavityClass::class_2) << g.dump();
+  std::printf("  %s", s.grading_report.c_str());
   std::printf("  %s", s.cure_report.c_str());
   const auto c = nlohmann::json::parse(s.cure_json);
   ASSERT_EQ(c["increments"].size(), 3u);
