@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "colour_map.hpp"
+#include "dentsph/limits.hpp"
 #include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/tools.hpp"
@@ -29,6 +30,10 @@ constexpr KindName kKinds[] = {{ScriptAction::Kind::move, "move"},         {Scri
                                {ScriptAction::Kind::light_off, "light_off"}, {ScriptAction::Kind::load_preset, "load_preset"},
                                {ScriptAction::Kind::end, "end"}};
 
+// Each reset or load_preset builds the scene again (milliseconds to a second on a molar): 10,000
+// of them took 50 s for 97 steps.
+constexpr std::size_t kMaxScriptRebuilds = 100;
+
 }  // namespace
 
 InputScript parse_input_script(const std::string& json_text, const std::string& source) {
@@ -42,6 +47,13 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
   script.source = source;
   std::vector<std::string_view> names;
   for (const KindName& k : kKinds) names.push_back(k.name);
+  if (actions.size() > limits::max_events)
+    top.fail("actions", fmt::format("{} actions, over the limit of {} (README, \"Resource limits\")", actions.size(),
+                                    limits::max_events),
+             "split the script, or drop repeated actions");
+  std::size_t rebuilds = 0;                 // reset and load_preset actions: each builds the scene again
+  constexpr std::size_t none = ~std::size_t{0};
+  std::size_t paused_by = none;             // the pause in force (no resume at its step yet)
   for (std::size_t i = 0; i < actions.size(); ++i) {
     const scene::Reader a = top.element(actions, "actions", i, "an action");
     a.only({"step", "action", "position_mm", "tool", "mode", "preset", "temperature_c"});
@@ -65,6 +77,22 @@ InputScript parse_input_script(const std::string& json_text, const std::string& 
     if (!script.actions.empty() && act.step < script.actions.back().step)
       a.fail("step", fmt::format("{} is before the previous action's step {}", act.step, script.actions.back().step),
              "list the actions in step order");
+    // The simulation does not step while paused, and a script runs unattended: an action after the
+    // pause's step would wait for ever (until --timeout).
+    if (paused_by != none && act.step > script.actions[paused_by].step)
+      a.fail("step",
+             fmt::format("{} comes after the pause at step {} (actions[{}]), and the simulation does not step while "
+                         "paused, so it would never come",
+                         act.step, script.actions[paused_by].step, paused_by),
+             fmt::format("add a resume at step {}, or end the script there", script.actions[paused_by].step));
+    if (act.kind == ScriptAction::Kind::pause) paused_by = i;
+    if (act.kind == ScriptAction::Kind::resume) paused_by = none;
+    if ((act.kind == ScriptAction::Kind::reset || act.kind == ScriptAction::Kind::load_preset) &&
+        ++rebuilds > kMaxScriptRebuilds)
+      a.fail("action",
+             fmt::format("more than {} reset and load_preset actions, each of which builds the scene again",
+                         kMaxScriptRebuilds),
+             "reset less often: a script is a session, not a benchmark of resets");
     switch (act.kind) {
       case ScriptAction::Kind::move:
         act.position_mm = a.vec3("position_mm", "the tool tip's position in mm, e.g. [0, 0, 2]");

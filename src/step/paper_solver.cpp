@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/limits.hpp"
 #include "step/paper.hpp"
 
 namespace dentsph::paper {
@@ -43,6 +44,12 @@ class PaperSolver final : public StepSolver {
   std::string time_step_problem(const Model& model, const StabilityLimits& l, real) const override {
     const std::string excess = time_step_excess(model.dt, l);
     if (excess.empty()) return "";
+    const real limit = std::min(l.acoustic, l.viscous);
+    if (limit < limits::min_dt)
+      return fmt::format("{}; no time step the program takes (at least {:.0e} s) is under it: lower the stiffest "
+                         "material's stiffness or viscosity, raise its rest density, or choose the iisph solver "
+                         "(simulation.solver, --solver iisph)",
+                         excess, limits::min_dt);
     return fmt::format("{}; set simulation.dt to at most {:.3g}, lower the stiffest material's stiffness or viscosity, "
                        "choose the iisph solver (simulation.solver, --solver iisph), or pass --allow-unstable to run "
                        "anyway",

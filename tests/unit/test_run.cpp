@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/run.hpp"
+#include "dentsph/scene.hpp"
 #include "io/summary.hpp"
 #include "support/small_scene.hpp"
 
@@ -93,6 +94,26 @@ TEST(Run, RefusesATimeStepOverTheLimitAndNamesTheField) {
     EXPECT_NE(msg.find("small.json"), std::string::npos) << msg;
     EXPECT_NE(msg.find("simulation.dt"), std::string::npos) << msg;
     EXPECT_NE(msg.find("acoustic"), std::string::npos) << msg;
+  }
+}
+
+// A material whose stability limit is under the shortest time step a scene may take gets advice it can
+// follow (the material, not a dt of 5e-11 s where dt must be at least 1e-9 s).
+TEST(Run, ALimitUnderTheShortestTimeStepAdvisesTheMaterial) {
+  nlohmann::json j = nlohmann::json::parse(std::ifstream("scenes/blob_on_plate.json"));
+  j["materials"]["paste"]["viscosity"] = 1e9;  // viscous limit 0.125 h^2 rho0 / mu = 5e-11 s
+  const Scene sc = parse_scene(j.dump(), "viscous.json");
+  RunOptions opt;
+  opt.steps = 1;
+  try {
+    run_offline(sc, opt);
+    FAIL() << "expected UnstableTimeStep";
+  } catch (const UnstableTimeStep& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("viscous.json: simulation.dt"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no time step the program takes (at least 1e-09 s) is under it"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("lower the stiffest material's stiffness or viscosity"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("set simulation.dt to at most"), std::string::npos) << msg;
   }
 }
 

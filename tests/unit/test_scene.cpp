@@ -664,7 +664,19 @@ const BrokenCase broken_cases[] = {
        j["simulation"]["solver"] = "iisph";
        j["materials"]["paste"]["interface_strength"] = 2e7;
      },
-     "materials.paste.interface_strength", "at most 1e7"},
+     "materials.paste.interface_strength", "2e7 is outside 0 to 1e7"},
+    {"a rest density of 1e-308", [](json& j) { j["materials"]["paste"]["rest_density"] = 1e-308; },
+     "materials.paste.rest_density", "1e-308 is outside 1 to 1e5"},
+    {"a viscosity of 1e300", [](json& j) { j["materials"]["paste"]["viscosity"] = 1e300; },
+     "materials.paste.viscosity", "1e300 is outside 0 to 1e9"},
+    {"a stiffness of 1e300", [](json& j) { j["materials"]["paste"]["stiffness"] = 1e300; },
+     "materials.paste.stiffness", "1e300 is outside 1e-6 to 1e12"},
+    {"a yield stress of 1e8",
+     [](json& j) {
+       j["simulation"]["solver"] = "iisph";
+       j["materials"]["paste"]["yield_stress"] = 1e8;
+     },
+     "materials.paste.yield_stress", "1e8 is outside 0 to 1e7"},
 };
 
 class BrokenScene : public ::testing::TestWithParam<BrokenCase> {};

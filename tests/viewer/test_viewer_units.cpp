@@ -6,6 +6,8 @@
 #include <cmath>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "camera.hpp"
 #include "colour_map.hpp"
 #include "dentsph/dental.hpp"
@@ -123,6 +125,34 @@ TEST(InputScript, ErrorsNameTheFileTheFieldAndTheFix) {
   EXPECT_NE(e.find("numbers within double range"), std::string::npos) << e;
   e = error_of(R"({"action": []})");
   EXPECT_NE(e.find("inputs.json"), std::string::npos) << e;
+}
+
+// A script runs unattended: what could never happen, or would take unbounded time, is refused.
+TEST(InputScript, AnActionAfterAPauseOrEndlessRebuildsAreRefused) {
+  // The steps stop while paused: an end after the pause waited for --timeout.
+  std::string e = error_of(R"({"actions": [{"step": 5, "action": "pause"}, {"step": 9, "action": "end"}]})");
+  EXPECT_NE(e.find("inputs.json: actions[1].step: 9 comes after the pause at step 5 (actions[0])"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("add a resume at step 5"), std::string::npos) << e;
+  e = error_of(R"({"actions": [{"step": 5, "action": "pause"}, {"step": 9, "action": "resume"}]})");
+  EXPECT_NE(e.find("actions[1].step"), std::string::npos) << e;
+  // A pause resumed at its step, or ending the script there, is fine.
+  EXPECT_EQ(error_of(R"({"actions": [{"step": 5, "action": "pause"}, {"step": 5, "action": "resume"},
+                                     {"step": 9, "action": "end"}]})"),
+            "");
+  EXPECT_EQ(error_of(R"({"actions": [{"step": 5, "action": "pause"}, {"step": 5, "action": "end"}]})"), "");
+  // 10,000 resets took 50 s for 97 steps.
+  nlohmann::json resets = {{"actions", nlohmann::json::array()}};
+  for (int i = 0; i < 101; ++i) resets["actions"].push_back({{"step", i}, {"action", i % 2 ? "reset" : "load_preset"},
+                                                              {"preset", "universal"}});
+  for (auto& a : resets["actions"])
+    if (a["action"] == "reset") a.erase("preset");
+  e = error_of(resets.dump());
+  EXPECT_NE(e.find("actions[100].action: more than 100 reset and load_preset actions"), std::string::npos) << e;
+  nlohmann::json many = {{"actions", nlohmann::json::array()}};
+  for (int i = 0; i < 1001; ++i) many["actions"].push_back({{"step", i}, {"action", "dispense"}});
+  e = error_of(many.dump());
+  EXPECT_NE(e.find("inputs.json: actions: 1001 actions, over the limit of 1000"), std::string::npos) << e;
 }
 
 // A block of paste on a plate and a one-particle tool above it.
