@@ -103,6 +103,13 @@ if [ -x "$viewer" ] && command -v xvfb-run > /dev/null; then
 else
   echo "viewer-surface           skipped: no $viewer or no xvfb-run"
 fi
+# The virtual handling tests (docs/model.md, "Handling tests"): each rig is of one size (the paste at
+# 0.3 mm in a mould or between plates), so each runs as a user runs it; the depth-of-cure mould at
+# its finest spacing is refused above, and one at its default spacing runs here.
+for t in rheometer slump packing tack condensation; do
+  check "material-test-$t" "0" "published" "$bin" material-test "$t" --threads 2
+done
+check material-test-depth-of-cure "0" "depth of cure: " "$bin" material-test depth-of-cure
 # The benchmark's short sweep.
 check bench-quick "0" "steps/s" "$bin" bench --quick --repeats 1
 
