@@ -26,7 +26,8 @@ EventSample tool_switch_event(std::uint64_t step, const std::string& name) {
 }
 
 std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads, Backend backend, State* final_state,
-                               const std::function<void(const State&, const EventSample&)>& on_event) {
+                               const std::function<void(const State&, const EventSample&)>& on_event,
+                               RunSummary* summary) {
   // The recorded session ran whatever its time step; a replay repeats it, diverging or not.
   Simulation sim(scene, {backend, threads, true});
   const State& state = sim.state();
@@ -70,6 +71,7 @@ std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threa
     forces.push_back(state.tool_wrench.force);
   }
   if (final_state) *final_state = sim.synced();
+  if (summary) *summary = sim.summary();
   return forces;
 }
 

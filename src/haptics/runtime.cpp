@@ -173,10 +173,8 @@ RealtimeResult run_realtime(const Scene& scene, Device& device, const RealtimeOp
   sum.realtime_json = realtime_json(res);
   if (!opt.out_dir.empty()) {
     std::filesystem::create_directories(opt.out_dir);
-    io::write_summary(opt.out_dir / "summary.json", sum);
     save_recording(opt.out_dir / "recording", res.recording);
-    io::write_preview_png(opt.out_dir / "preview.png", core.synced(), -scene.model.gravity, scene.model.kernel.h);
-    report::finish_run(opt.out_dir, scene, core.synced(), report::log_of_recording(scene, res.recording));
+    report::end_run(opt.out_dir, scene, core.synced(), sum, report::log_of_recording(scene, res.recording));
   }
   return res;
 }

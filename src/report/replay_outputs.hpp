@@ -1,7 +1,8 @@
 // `dentsph replay RECORDING --out DIR`: the replayed session written as a run folder, so that it
-// gets the same report as an offline run: summary.json (with the assessment), tool_force.csv,
-// preview.png and, through finish_run, the pictures, procedure.json (each increment's particles
-// known here, so their thickness is measured) and report.html.
+// gets the same report as an offline run: summary.json (the simulation's, as an offline run's:
+// its solver's statistics, its cure, the assessment), tool_force.csv, and through end_run
+// preview.png, the pictures, procedure.json (each increment's particles known here, so their
+// thickness is measured) and report.html.
 #pragma once
 
 #include "dentsph/backend.hpp"

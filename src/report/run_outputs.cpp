@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "dentsph/surface_grade.hpp"
+#include "io/preview.hpp"
+#include "io/summary.hpp"
 #include "report/grading_picture.hpp"
 #include "report/session_report.hpp"
 
@@ -99,7 +101,10 @@ std::string finish_run(const std::filesystem::path& dir, const Scene& scene, std
   return graded;
 }
 
-std::string finish_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const ProcedureLog& log) {
+std::string end_run(const std::filesystem::path& dir, const Scene& scene, const State& state, const RunSummary& summary,
+                    const ProcedureLog& log) {
+  io::write_summary(dir / "summary.json", summary);
+  io::write_preview_png(dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
   stamp_summary(dir, scene);
   // Paste that has set (now wall) is drawn as paste.
   std::vector<Role> roles(state.role.begin(), state.role.end());

@@ -148,10 +148,8 @@ RunSummary run_offline(const Scene& scene, const RunOptions& opt) {
     sum.assessment_report = a.report();
   }
   if (!opt.out_dir.empty()) {
-    io::write_summary(opt.out_dir / "summary.json", sum);
-    io::write_preview_png(opt.out_dir / "preview.png", state, -scene.model.gravity, scene.model.kernel.h);
     csv.reset();  // flushed and closed: the report reads it
-    sum.grading_report = report::finish_run(opt.out_dir, scene, state, procedure);
+    sum.grading_report = report::end_run(opt.out_dir, scene, state, sum, procedure);
   }
   return sum;
 }

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <regex>
 #include <string>
@@ -232,7 +233,32 @@ TEST(ReportBrowser, RealtimeSessionsReportShowsTheHapticLoop) {
   const nlohmann::json proc = nlohmann::json::parse(std::ifstream(replayed / "procedure.json"));
   ASSERT_FALSE(proc["increments"].empty());
   EXPECT_GT(proc["increments"][0]["particles"].get<int>(), 100);
-  EXPECT_EQ(expect_numbers_equal(dump_dom(replayed / "report.html"), rs), 9);
+  // The filling's six numbers, the grading's three and the cure's one, as an offline run's report.
+  EXPECT_EQ(expect_numbers_equal(dump_dom(replayed / "report.html"), rs), 10);
+
+  // One end of run: the replay's summary holds every field an offline run's does (the solver's
+  // statistics and the cure among them), but the snapshots' surfaces, which a replay does not write.
+  const fs::path offline = work() / "offline";
+  const Result off = dentsph("run --duration 0.2 --threads 1 --out " + offline.string() + " -q");
+  ASSERT_EQ(off.code, 0) << off.output;
+  const nlohmann::json os = nlohmann::json::parse(std::ifstream(offline / "summary.json"));
+  std::vector<std::string> missing;
+  std::function<void(const nlohmann::json&, const nlohmann::json&, const std::string&)> compare =
+      [&](const nlohmann::json& want, const nlohmann::json& have, const std::string& path) {
+        for (const auto& [key, value] : want.items()) {
+          const std::string at = path + "/" + key;
+          if (at == "/paste_surface") continue;
+          if (!have.contains(key)) {
+            missing.push_back(at);
+            continue;
+          }
+          if (value.is_object()) compare(value, have[key], at);
+        }
+      };
+  compare(os, rs, "");
+  EXPECT_TRUE(missing.empty()) << "the replay's summary lacks " << ::testing::PrintToString(missing);
+  EXPECT_TRUE(rs.contains("cure")) << rs.dump();
+  EXPECT_EQ(rs["solver"]["name"], summary["solver"]["name"]);
 }
 
 TEST(ReportBrowser, ClassComparisonOfThreeSessionsDrawsItsCharts) {

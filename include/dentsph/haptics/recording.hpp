@@ -16,6 +16,7 @@
 
 namespace dentsph {
 
+struct RunSummary;
 struct Scene;
 class State;
 
@@ -88,10 +89,12 @@ Recording load_recording(const std::filesystem::path& dir);
 // Deterministic: the same recording gives the same forces bit for bit on the backend that
 // recorded it (any thread count); another backend agrees within its parity tolerance.
 // `on_event` (when set) sees the state after each event is applied; `final_state` (when given)
-// receives the state at the end.
+// receives the state at the end, and `summary` the simulation's summary (its solver's statistics
+// and its cure, as an offline run's).
 std::vector<Vec3> replay_steps(const Scene& scene, const Recording& r, int threads = 1, Backend backend = Backend::cpu,
                                State* final_state = nullptr,
-                               const std::function<void(const State&, const EventSample&)>& on_event = {});
+                               const std::function<void(const State&, const EventSample&)>& on_event = {},
+                               RunSummary* summary = nullptr);
 
 // Replayed tool forces against a recording's.
 struct ReplayComparison {
