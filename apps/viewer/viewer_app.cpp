@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -18,14 +19,13 @@
 #include <imgui.h>
 
 #include "dentsph/dispense.hpp"
-#include "dentsph/surface.hpp"
-#include "io/role_colours.hpp"
 #include "camera.hpp"
 #include "colour_map.hpp"
+#include "frame_timer.hpp"
 #include "panels.hpp"
+#include "paste_surface_view.hpp"
 #include "renderers.hpp"
 #include "screenshot.hpp"
-#include "surface_worker.hpp"
 
 namespace dentsph::viewer {
 
@@ -84,13 +84,6 @@ Camera initial_camera(const Scene& sc) {
   return c;
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  return v[k];
-}
-
 // Mouse and keys: the tool (a stand-in haptic device), the camera, shortcuts.
 struct Input {
   bool dragging_tool = false, orbiting = false, panning = false;
@@ -101,6 +94,148 @@ struct Input {
 };
 
 Input* g_input = nullptr;
+
+// The script: its simulation actions posted to the session at their steps; its view actions
+// (colour_by, end) returned, applied as the snapshots reach their steps.
+std::vector<ScriptAction> schedule_script(SimSession& session, const InputScript& script, const Scene& sc) {
+  std::vector<ScriptAction> view_actions;
+  auto to_world = [&](const Vec3& mm) { return sc.tooth ? sc.tooth->frame().to_world(mm * 1e-3) : mm * 1e-3; };
+  for (const ScriptAction& a : script.actions) {
+    Command c;
+    switch (a.kind) {
+      case ScriptAction::Kind::move: c = {Command::Kind::tool_target}; c.target = to_world(a.position_mm); break;
+      case ScriptAction::Kind::press: c = {Command::Kind::press}; c.pressed = true; break;
+      case ScriptAction::Kind::release: c = {Command::Kind::press}; c.pressed = false; break;
+      case ScriptAction::Kind::dispense: c = {Command::Kind::dispense}; break;
+      case ScriptAction::Kind::switch_tool: c = {Command::Kind::switch_tool}; c.tool = a.name; break;
+      case ScriptAction::Kind::pause: c = {Command::Kind::pause}; break;
+      case ScriptAction::Kind::resume: c = {Command::Kind::resume}; break;
+      case ScriptAction::Kind::reset: c = {Command::Kind::reset}; break;
+      case ScriptAction::Kind::light_on: c = {Command::Kind::light}; c.pressed = true; break;
+      case ScriptAction::Kind::light_off: c = {Command::Kind::light}; c.pressed = false; break;
+      case ScriptAction::Kind::load_preset:
+        c = {Command::Kind::load_preset};
+        c.preset = a.name;
+        c.temperature_c = a.temperature_c;
+        break;
+      case ScriptAction::Kind::colour_by:
+      case ScriptAction::Kind::end: view_actions.push_back(a); continue;
+    }
+    session.post_at(a.step, c);
+  }
+  return view_actions;
+}
+
+// What the hand and the view do with the mouse and keys this frame.
+struct FrameInput {
+  Camera& cam;
+  Vec3& tool_target;  // where the mouse drives the tool (world, m)
+  UiState& ui;
+  const Snapshot& snap;
+  const std::vector<std::string>& tools;
+  real spacing;
+};
+
+// Reads the mouse and keys of one frame: the tool's target and the buttons as commands, the camera
+// moved, the view's toggles flipped (docs/viewer.md, "Keys and mouse").
+void read_input(GLFWwindow* win, Input& input, int fb_h, FrameInput f, std::vector<Command>& commands) {
+  const ImGuiIO& io = ImGui::GetIO();
+  double mx, my;
+  glfwGetCursorPos(win, &mx, &my);
+  const float dx = float(mx - input.last_x), dy = float(my - input.last_y);
+  input.last_x = mx;
+  input.last_y = my;
+  auto move_tool = [&](const Vec3& by) {
+    f.tool_target += by;
+    Command c{Command::Kind::tool_target};
+    c.target = f.tool_target;
+    commands.push_back(c);
+  };
+  if (!io.WantCaptureMouse) {
+    const bool left = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool right = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+    const bool ctrl = glfwGetKey(win, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS;
+    if (left && (dx != 0 || dy != 0)) move_tool(f.cam.view_plane_offset(dx, dy, fb_h));
+    if (right && shift) f.cam.pan(dx, dy, fb_h);
+    else if (right) f.cam.orbit(dx, dy);
+    if (input.wheel != 0) {
+      if (ctrl) f.cam.zoom(input.wheel);
+      else move_tool(f.cam.forward() * (input.wheel * 0.5 * f.spacing));
+      input.wheel = 0;
+    }
+  }
+  if (io.WantCaptureKeyboard) return;
+  const bool space = glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS;
+  if (space != input.space_was) {
+    Command c{Command::Kind::press};
+    c.pressed = space;
+    commands.push_back(c);
+    input.space_was = space;
+  }
+  auto pressed_once = [&](int key) {
+    const bool now = glfwGetKey(win, key) == GLFW_PRESS;
+    const bool edge = now && !input.key_down[key];
+    input.key_down[key] = now;
+    return edge;
+  };
+  UiState& ui = f.ui;
+  if (pressed_once(GLFW_KEY_P)) commands.push_back({f.snap.paused ? Command::Kind::resume : Command::Kind::pause});
+  if (pressed_once(GLFW_KEY_N)) commands.push_back({Command::Kind::single_step});
+  if (pressed_once(GLFW_KEY_R)) commands.push_back({Command::Kind::reset});
+  if (pressed_once(GLFW_KEY_D)) commands.push_back({Command::Kind::dispense});
+  if (pressed_once(GLFW_KEY_L)) {  // the curing light over the cavity, on or off
+    Command c{Command::Kind::light};
+    c.pressed = !f.snap.light.has_value();
+    commands.push_back(c);
+  }
+  if (pressed_once(GLFW_KEY_T)) {
+    ui.tool_index = (ui.tool_index + 1) % int(f.tools.size());
+    Command c{Command::Kind::switch_tool};
+    c.tool = f.tools[std::size_t(ui.tool_index)];
+    commands.push_back(c);
+  }
+  if (pressed_once(GLFW_KEY_C)) {
+    std::size_t k = 0;
+    while (kColourModes[k] != ui.colour_by) ++k;
+    ui.colour_by = kColourModes[(k + 1) % kColourModes.size()];
+  }
+  if (pressed_once(GLFW_KEY_B)) ui.show_boundary = !ui.show_boundary;
+  if (pressed_once(GLFW_KEY_X)) ui.cut = !ui.cut;
+  if (pressed_once(GLFW_KEY_S)) ui.surface = !ui.surface;
+  if (pressed_once(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win, GLFW_TRUE);
+}
+
+// The particles' colours by the chosen field (its range set automatically unless fixed in the
+// panel), and those drawn: all but the hidden walls and, with the surface on, the paste.
+class ParticleView {
+ public:
+  void draw(const Snapshot& snap, UiState& ui, const ViewUniforms& u, real spacing) {
+    const std::span<const float> field =
+        ui.colour_by == ColourBy::pressure     ? std::span<const float>(snap.pressure)
+        : ui.colour_by == ColourBy::density    ? std::span<const float>(snap.density)
+        : ui.colour_by == ColourBy::speed      ? std::span<const float>(snap.speed)
+        : ui.colour_by == ColourBy::conversion ? std::span<const float>(snap.conversion)
+                                               : std::span<const float>(snap.bonds);
+    // Conversion on its own scale, from uncured to fully cured paste.
+    if (ui.colour_by == ColourBy::conversion && ui.auto_range) ui.range = {0.f, float(snap.conversion_max)};
+    else if (ui.colour_by != ColourBy::role && ui.auto_range) ui.range = auto_range(field, snap.role);
+    particle_colours(ui.colour_by, field, snap.role, ui.range, rgb_);
+    xyz_.clear();
+    vis_rgb_.clear();
+    for (std::size_t i = 0; i < snap.role.size(); ++i) {
+      if (!ui.show_boundary && snap.role[i] == Role::boundary) continue;
+      if (ui.surface && snap.role[i] == Role::material) continue;
+      xyz_.insert(xyz_.end(), {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
+      vis_rgb_.insert(vis_rgb_.end(), {rgb_[3 * i], rgb_[3 * i + 1], rgb_[3 * i + 2]});
+    }
+    renderer_.draw(u, xyz_, vis_rgb_, float(0.5 * spacing));
+  }
+
+ private:
+  ParticleRenderer renderer_;
+  std::vector<float> rgb_, xyz_, vis_rgb_;  // reused between frames
+};
 
 }  // namespace
 
@@ -124,27 +259,18 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     }
   } imgui_guard;
 
-  ParticleRenderer particles;
+  const real spacing = increment_spacing(sc);
+  ParticleView particles;
   std::unique_ptr<ToothRenderer> tooth;
   if (sc.tooth) tooth = std::make_unique<ToothRenderer>(*sc.tooth);
   ArrowRenderer arrows;
-  const std::array<float, 3> paste_colour = io::role_colour(Role::material);
-  MeshRenderer paste_mesh(glm::vec3(paste_colour[0], paste_colour[1], paste_colour[2]));
-  // The paste's surface, built beside the frames from the paste of this step, this many particles
-  // (a paused simulation publishes the same paste again; a dispense adds to it).
-  std::unique_ptr<SurfaceWorker> surface_worker;
-  std::pair<std::uint64_t, std::size_t> paste_mesh_key{~std::uint64_t(0), 0};
-  std::uint64_t oldest_mesh = 0;  // the worker's surfaces from before this one are of another paste
-  bool surface_was_on = false;
-  std::vector<Vec3> snap_points;
-  SurfaceMesh paste_surface_mesh;
+  PasteSurfaceView paste_surface(sc, spacing, !opt.screenshot.empty());
   Camera cam = initial_camera(sc);
   UiState ui;
   ui.colour_by = colour_by_from_name(opt.colour_by);
   ui.cut = opt.cut;
   ui.surface = opt.surface;
   const std::vector<std::string> tools = session.tools();
-  const real spacing = increment_spacing(sc);
 
   Input input;
   g_input = &input;
@@ -153,35 +279,8 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     if (g_input && !ImGui::GetIO().WantCaptureMouse) g_input->wheel += float(dy);
   });
 
-  // The script: simulation actions scheduled at their steps now; view actions applied when the
-  // snapshots reach their steps.
-  std::vector<ScriptAction> view_actions;
-  auto to_world = [&](const Vec3& mm) { return sc.tooth ? sc.tooth->frame().to_world(mm * 1e-3) : mm * 1e-3; };
-  if (opt.script) {
-    for (const ScriptAction& a : opt.script->actions) {
-      Command c;
-      switch (a.kind) {
-        case ScriptAction::Kind::move: c = {Command::Kind::tool_target}; c.target = to_world(a.position_mm); break;
-        case ScriptAction::Kind::press: c = {Command::Kind::press}; c.pressed = true; break;
-        case ScriptAction::Kind::release: c = {Command::Kind::press}; c.pressed = false; break;
-        case ScriptAction::Kind::dispense: c = {Command::Kind::dispense}; break;
-        case ScriptAction::Kind::switch_tool: c = {Command::Kind::switch_tool}; c.tool = a.name; break;
-        case ScriptAction::Kind::pause: c = {Command::Kind::pause}; break;
-        case ScriptAction::Kind::resume: c = {Command::Kind::resume}; break;
-        case ScriptAction::Kind::reset: c = {Command::Kind::reset}; break;
-        case ScriptAction::Kind::light_on: c = {Command::Kind::light}; c.pressed = true; break;
-        case ScriptAction::Kind::light_off: c = {Command::Kind::light}; c.pressed = false; break;
-        case ScriptAction::Kind::load_preset:
-          c = {Command::Kind::load_preset};
-          c.preset = a.name;
-          c.temperature_c = a.temperature_c;
-          break;
-        case ScriptAction::Kind::colour_by:
-        case ScriptAction::Kind::end: view_actions.push_back(a); continue;
-      }
-      session.post_at(a.step, c);
-    }
-  }
+  const std::vector<ScriptAction> view_actions = opt.script ? schedule_script(session, *opt.script, sc)
+                                                            : std::vector<ScriptAction>{};
   std::size_t next_view_action = 0;
   const std::uint64_t script_end = opt.script ? opt.script->end_step() : 0;
 
@@ -190,17 +289,11 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   session.latest(snap);
   Vec3 tool_target = snap.tool_pose.position;
   std::uint64_t last_version = 0;
-  std::vector<float> xyz, rgb, vis_xyz, vis_rgb;
-  std::vector<double> frame_ms;
-  std::vector<double> fps_samples;
+  FrameTimer timer;
   FrameStats stats;
   ViewerResult result;
-  const auto t_start = clock_type::now();
-  auto t_second = t_start;
-  std::uint64_t frames_this_second = 0;
-  auto t_frame = t_start;
   float force_peak = 0;
-  auto next_frame = t_start;  // the frame cap's schedule
+  auto next_frame = clock_type::now();  // the frame cap's schedule
 
   for (;;) {
     if (glfwWindowShouldClose(win.handle) || g_close_requested.load()) {
@@ -209,80 +302,9 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     }
     glfwPollEvents();
     std::vector<Command> commands;
-
-    // ---- input -------------------------------------------------------------------------------
-    ImGuiIO& io = ImGui::GetIO();
-    double mx, my;
-    glfwGetCursorPos(win.handle, &mx, &my);
-    const float dx = float(mx - input.last_x), dy = float(my - input.last_y);
-    input.last_x = mx;
-    input.last_y = my;
     int fb_w = 1, fb_h = 1;
     glfwGetFramebufferSize(win.handle, &fb_w, &fb_h);
-    if (!io.WantCaptureMouse) {
-      const bool left = glfwGetMouseButton(win.handle, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-      const bool right = glfwGetMouseButton(win.handle, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-      const bool shift = glfwGetKey(win.handle, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
-      const bool ctrl = glfwGetKey(win.handle, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS;
-      if (left && (dx != 0 || dy != 0)) {
-        tool_target += cam.view_plane_offset(dx, dy, fb_h);
-        Command c{Command::Kind::tool_target};
-        c.target = tool_target;
-        commands.push_back(c);
-      }
-      if (right && shift) cam.pan(dx, dy, fb_h);
-      else if (right) cam.orbit(dx, dy);
-      if (input.wheel != 0) {
-        if (ctrl) {
-          cam.zoom(input.wheel);
-        } else {
-          tool_target += cam.forward() * (input.wheel * 0.5 * spacing);
-          Command c{Command::Kind::tool_target};
-          c.target = tool_target;
-          commands.push_back(c);
-        }
-        input.wheel = 0;
-      }
-    }
-    if (!io.WantCaptureKeyboard) {
-      const bool space = glfwGetKey(win.handle, GLFW_KEY_SPACE) == GLFW_PRESS;
-      if (space != input.space_was) {
-        Command c{Command::Kind::press};
-        c.pressed = space;
-        commands.push_back(c);
-        input.space_was = space;
-      }
-      auto pressed_once = [&](int key) {
-        const bool now = glfwGetKey(win.handle, key) == GLFW_PRESS;
-        const bool edge = now && !input.key_down[key];
-        input.key_down[key] = now;
-        return edge;
-      };
-      if (pressed_once(GLFW_KEY_P)) commands.push_back({snap.paused ? Command::Kind::resume : Command::Kind::pause});
-      if (pressed_once(GLFW_KEY_N)) commands.push_back({Command::Kind::single_step});
-      if (pressed_once(GLFW_KEY_R)) commands.push_back({Command::Kind::reset});
-      if (pressed_once(GLFW_KEY_D)) commands.push_back({Command::Kind::dispense});
-      if (pressed_once(GLFW_KEY_L)) {  // the curing light over the cavity, on or off
-        Command c{Command::Kind::light};
-        c.pressed = !snap.light.has_value();
-        commands.push_back(c);
-      }
-      if (pressed_once(GLFW_KEY_T)) {
-        ui.tool_index = (ui.tool_index + 1) % int(tools.size());
-        Command c{Command::Kind::switch_tool};
-        c.tool = tools[std::size_t(ui.tool_index)];
-        commands.push_back(c);
-      }
-      if (pressed_once(GLFW_KEY_C)) {
-        std::size_t k = 0;
-        while (kColourModes[k] != ui.colour_by) ++k;
-        ui.colour_by = kColourModes[(k + 1) % kColourModes.size()];
-      }
-      if (pressed_once(GLFW_KEY_B)) ui.show_boundary = !ui.show_boundary;
-      if (pressed_once(GLFW_KEY_X)) ui.cut = !ui.cut;
-      if (pressed_once(GLFW_KEY_S)) ui.surface = !ui.surface;
-      if (pressed_once(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win.handle, GLFW_TRUE);
-    }
+    read_input(win.handle, input, fb_h, {cam, tool_target, ui, snap, tools, spacing}, commands);
 
     // ---- the newest snapshot -------------------------------------------------------------------
     if (session.latest(snap) && snap.version != last_version) {
@@ -311,54 +333,9 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
       u.clip_plane = glm::vec4(g(n), float(-dot(n, cam.target)));
     }
     if (tooth) tooth->draw(u);
-    const std::span<const float> field =
-        ui.colour_by == ColourBy::pressure ? std::span<const float>(snap.pressure)
-        : ui.colour_by == ColourBy::density ? std::span<const float>(snap.density)
-        : ui.colour_by == ColourBy::speed   ? std::span<const float>(snap.speed)
-        : ui.colour_by == ColourBy::conversion ? std::span<const float>(snap.conversion)
-                                               : std::span<const float>(snap.bonds);
-    // Conversion on its own scale, from uncured to fully cured paste.
-    if (ui.colour_by == ColourBy::conversion && ui.auto_range) ui.range = {0.f, float(snap.conversion_max)};
-    else if (ui.colour_by != ColourBy::role && ui.auto_range) ui.range = auto_range(field, snap.role);
-    particle_colours(ui.colour_by, field, snap.role, ui.range, rgb);
-    vis_xyz.clear();
-    vis_rgb.clear();
-    // The paste as its surface (dentsph/surface.hpp), built again for each new snapshot: in the
-    // frame for a screenshot (the picture shows the paste it was asked of), else by the worker.
-    if (ui.surface) {
-      snap_points.resize(snap.role.size());
-      for (std::size_t i = 0; i < snap.role.size(); ++i) snap_points[i] = {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]};
-      // The paste within the scene's domain (a diverged step's flung or non-finite paste has none).
-      const std::vector<Vec3> paste_points = paste_within(snap_points, snap.role, sc.model.domain_min, sc.model.domain_max);
-      const std::pair<std::uint64_t, std::size_t> key{snap.steps, paste_points.size()};
-      // With the view just turned on, or after a reset (the steps went back), a surface built before
-      // is of another paste: nothing is drawn until this paste's is.
-      const bool fresh = !surface_was_on || key.first < paste_mesh_key.first;
-      const bool in_frame = !opt.screenshot.empty();
-      if (fresh) paste_mesh.upload({}, {});
-      if (key != paste_mesh_key || fresh) {
-        if (in_frame) {
-          paste_surface_mesh = particle_surface(paste_points, spacing);
-          paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
-        } else {
-          if (!surface_worker) surface_worker = std::make_unique<SurfaceWorker>(spacing);
-          const std::uint64_t number = surface_worker->submit(paste_points);
-          if (fresh) oldest_mesh = number;
-        }
-        paste_mesh_key = key;
-      }
-      if (surface_worker && surface_worker->take(paste_surface_mesh, oldest_mesh))
-        paste_mesh.upload(paste_surface_mesh.vertices, paste_surface_mesh.triangles);
-    }
-    surface_was_on = ui.surface;
-    if (ui.surface) paste_mesh.draw(u);
-    for (std::size_t i = 0; i < snap.role.size(); ++i) {
-      if (!ui.show_boundary && snap.role[i] == Role::boundary) continue;
-      if (ui.surface && snap.role[i] == Role::material) continue;
-      vis_xyz.insert(vis_xyz.end(), {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]});
-      vis_rgb.insert(vis_rgb.end(), {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]});
-    }
-    particles.draw(u, vis_xyz, vis_rgb, float(0.5 * spacing));
+    paste_surface.update(snap, ui.surface);
+    if (ui.surface) paste_surface.draw(u);
+    particles.draw(snap, ui, u, spacing);
     // The force on the tool, from its tip: 1.5 mm (out of the instrument) plus 4 mm at the largest
     // force of the last 10 s.
     const float f = float(norm(snap.device_force_N));
@@ -379,29 +356,9 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
     for (const Command& c : commands) session.post(c);
 
     // ---- frame statistics and the end of a counted run -------------------------------------------
-    ++result.frames;
     const auto now = clock_type::now();
-    frame_ms.push_back(std::chrono::duration<double, std::milli>(now - t_frame).count());
-    t_frame = now;
-    ++frames_this_second;
-    if (now - t_second >= std::chrono::seconds(1)) {
-      stats.fps = double(frames_this_second) / std::chrono::duration<double>(now - t_second).count();
-      fps_samples.push_back(stats.fps);
-      const std::size_t keep = std::min<std::size_t>(frame_ms.size(), 600);
-      std::vector<double> recent(frame_ms.end() - std::ptrdiff_t(keep), frame_ms.end());
-      stats.frame_p50_ms = percentile(recent, 0.5);
-      stats.frame_p99_ms = percentile(recent, 0.99);
-      frames_this_second = 0;
-      t_second = now;
-    }
-    stats.frames = result.frames;
-    if (fps_samples.empty() && frame_ms.size() >= 2) {
-      // Before the first full second: the mean so far.
-      stats.fps = double(result.frames) / std::max(1e-9, std::chrono::duration<double>(now - t_start).count());
-      stats.frame_p50_ms = percentile(frame_ms, 0.5);
-      stats.frame_p99_ms = percentile(frame_ms, 0.99);
-    }
-    const bool frames_done = opt.frames > 0 && result.frames >= opt.frames;
+    stats = timer.frame_done(now);
+    const bool frames_done = opt.frames > 0 && stats.frames >= opt.frames;
     const bool script_done = !opt.script || (session.schedule_done() && snap.steps >= script_end &&
                                              next_view_action == view_actions.size());
     if (frames_done && script_done) {
@@ -417,7 +374,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
                             clock_type::now() - std::chrono::milliseconds(100));
       std::this_thread::sleep_until(next_frame);
     }
-    if (opt.timeout_s > 0 && std::chrono::duration<double>(now - t_start).count() > opt.timeout_s) {
+    if (opt.timeout_s > 0 && timer.seconds_since_start(now) > opt.timeout_s) {
       result.timed_out = true;
       break;
     }
@@ -427,13 +384,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   session.latest(result.last);
   result.sim_steps = result.last.steps;
   result.sim_steps_per_second = result.last.steps_per_second;
-  result.fps_median = percentile(fps_samples, 0.5);
-  if (fps_samples.empty() && !frame_ms.empty()) {
-    const double total = std::chrono::duration<double>(clock_type::now() - t_start).count();
-    result.fps_median = total > 0 ? double(result.frames) / total : 0;
-  }
-  result.frame_p50_ms = percentile(frame_ms, 0.5);
-  result.frame_p99_ms = percentile(frame_ms, 0.99);
+  timer.finish(result);
   return result;
 }
 

@@ -1,0 +1,44 @@
+// The paste drawn as its surface (dentsph/surface.hpp, key S): built again for each new snapshot,
+// by a worker beside the frames (surface_worker.hpp) or, for a screenshot, in the frame, so that
+// the picture shows the paste it was asked of (docs/viewer.md).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "dentsph/scene.hpp"
+#include "dentsph/surface.hpp"
+#include "renderers.hpp"
+#include "sim_session.hpp"
+#include "surface_worker.hpp"
+
+namespace dentsph::viewer {
+
+class PasteSurfaceView {
+ public:
+  // `spacing`: the paste's particle spacing (m); `in_frame`: build each surface in the frame.
+  PasteSurfaceView(const Scene& scene, real spacing, bool in_frame);
+
+  // Called every frame with the newest snapshot: while `on`, submits its paste when it is new (by
+  // step and particle count) and uploads the newest surface finished.
+  void update(const Snapshot& snap, bool on);
+  void draw(const ViewUniforms& u) { mesh_renderer_.draw(u); }
+
+ private:
+  const Scene& scene_;
+  const real spacing_;
+  const bool in_frame_;
+  MeshRenderer mesh_renderer_;
+  std::unique_ptr<SurfaceWorker> worker_;
+  // The paste last submitted: its step and its particles (a paused simulation publishes the same
+  // paste again; a dispense adds to it).
+  std::pair<std::uint64_t, std::size_t> key_{~std::uint64_t(0), 0};
+  std::uint64_t oldest_ = 0;  // the worker's surfaces from before this one are of another paste
+  bool was_on_ = false;
+  std::vector<Vec3> points_;
+  SurfaceMesh mesh_;
+};
+
+}  // namespace dentsph::viewer
