@@ -11,7 +11,7 @@
 #include "dentsph/run.hpp"
 #include "io/preview.hpp"
 #include "report/run_outputs.hpp"
-#include "report/session_report.hpp"
+#include "dentsph/report/session_report.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Google Benchmark: the iisph solver's two pressure solves side by side (IisphParams::pressure_solve;
 // docs/model.md, "The pressure solve"; docs/performance.md, "The pressure solve: Jacobi and conjugate
-// gradients"): relaxed Jacobi (src/solver/pressure.cpp) and projected conjugate gradients (MPRGP,
+// gradients"): relaxed Jacobi (src/solver/pressure_jacobi.cpp) and projected conjugate gradients (MPRGP,
 // src/solver/pressure_cg.cpp), on two scenes:
 //   - BM_DentalSolve/<solve>/<threads>: the built-in dental scene on the iisph solver over the window
 //     bench_step's BM_DentalIisph steps (0.4 s of the procedure from its start, after 10 steps), its

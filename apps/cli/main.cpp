@@ -20,6 +20,7 @@
 #include "backend_option.hpp"
 #include "dentsph/bench.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/limits.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"

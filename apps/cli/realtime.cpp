@@ -7,10 +7,11 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/haptics/replay.hpp"
+#include "dentsph/haptics/replay_outputs.hpp"
 #include "dentsph/limits.hpp"
 #include "dentsph/scene.hpp"
 #include "option_checks.hpp"
-#include "report/replay_outputs.hpp"
 
 namespace dentsph::cli {
 
@@ -154,7 +155,7 @@ int replay_recording(Scene scene, const std::string& dir, int threads, Backend b
       !notice.empty())
     fmt::print("{}\n", notice);
   const std::vector<Vec3> f = out_dir.empty() ? replay_steps(scene, r, threads, backend)
-                                              : report::replay_to_folder(scene, r, threads, out_dir, backend);
+                                              : replay_to_folder(scene, r, threads, out_dir, backend);
   const ReplayComparison c = compare_replay(f, r, kBackendParityTolerance);
   const bool exact = r.backend == backend_name(backend);
   fmt::print("replayed {} steps and {} events of {} on {} (recorded on {}): {} tool forces differ from the recording "

@@ -8,10 +8,10 @@
 
 #include "option_checks.hpp"
 #include "progress.hpp"
-#include "report/class_report.hpp"
-#include "report/session_folder.hpp"
-#include "report/session_report.hpp"
-#include "report/session_store.hpp"
+#include "dentsph/report/class_report.hpp"
+#include "dentsph/report/session_folder.hpp"
+#include "dentsph/report/session_report.hpp"
+#include "dentsph/report/session_store.hpp"
 
 namespace dentsph::cli {
 

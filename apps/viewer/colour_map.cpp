@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "io/role_colours.hpp"
+#include "dentsph/io/role_colours.hpp"
 
 namespace dentsph::viewer {
 

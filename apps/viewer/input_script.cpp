@@ -11,8 +11,8 @@
 #include "dentsph/limits.hpp"
 #include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/scene_reader.hpp"
 #include "dentsph/tools.hpp"
-#include "scene/parse.hpp"
 
 namespace dentsph::viewer {
 

@@ -27,8 +27,8 @@
 #include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
-#include "io/summary.hpp"
-#include "report/viewer_report.hpp"
+#include "dentsph/io/summary.hpp"
+#include "dentsph/haptics/viewer_report.hpp"
 
 namespace {
 
@@ -74,14 +74,14 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
     positions[i] = {r.last.xyz[3 * i], r.last.xyz[3 * i + 1], r.last.xyz[3 * i + 2]};
   // The viewer's own loop keeps the tool force of every step: the report plots it (under a device
   // the recording has it).
-  const std::filesystem::path dir = dentsph::report::viewer_report_dir(file);
+  const std::filesystem::path dir = dentsph::viewer_report_dir(file);
   std::filesystem::remove(dir / "tool_force.csv");  // an earlier session's, in a folder used again
   if (!realtime && !forces.empty()) {
     std::filesystem::create_directories(dir);
     dentsph::io::ToolForceCsv csv(dir / "tool_force.csv");
     for (const auto& f : forces) csv.add(f.t, f.wrench);
   }
-  const auto report = dentsph::report::write_viewer_report(file, scene, positions, r.last.role, j,
+  const auto report = dentsph::write_viewer_report(file, scene, positions, r.last.role, j,
                                                            realtime ? &*realtime : nullptr);
   fmt::print("wrote {}\n", report.string());
 }

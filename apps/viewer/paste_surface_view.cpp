@@ -3,7 +3,7 @@
 
 #include <array>
 
-#include "io/role_colours.hpp"
+#include "dentsph/io/role_colours.hpp"
 
 namespace dentsph::viewer {
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "dentsph/dispense.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/step.hpp"
 #include "dentsph/tools.hpp"
 

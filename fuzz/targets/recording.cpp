@@ -4,6 +4,7 @@
 #include <string>
 
 #include "dentsph/haptics/recording.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/scene.hpp"
 #include "fuzz_support.hpp"
 #include "fuzz_targets.hpp"

@@ -12,8 +12,8 @@
 
 #include "fuzz_support.hpp"
 #include "fuzz_targets.hpp"
-#include "report/session_folder.hpp"
-#include "report/session_report.hpp"
+#include "dentsph/report/session_folder.hpp"
+#include "dentsph/report/session_report.hpp"
 
 namespace dentsph::fuzz {
 

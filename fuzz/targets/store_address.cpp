@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz_targets.hpp"
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 
 namespace dentsph::fuzz {
 

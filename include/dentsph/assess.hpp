@@ -87,8 +87,7 @@ struct Assessment {
 std::string assessment_json(const Assessment& a);
 
 // The voxelisation of one prepared tooth's cavity and the band above it, in the tooth frame,
-// built once (30 ms for the built-in scene on two threads, 60 ms on one); assess() then takes
-// about a millisecond for it. Immutable: copies share the voxels, assess() may run on any number of
+// built once (its cost: docs/assessment.md, "The voxels"); assess() is then cheap beside it. Immutable: copies share the voxels, assess() may run on any number of
 // threads. Throws std::invalid_argument for parameters out of range (the message names the field).
 class CavityAssessor {
  public:

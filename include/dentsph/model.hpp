@@ -87,7 +87,7 @@ enum class DensityKernel { poly6, cubic };
 const char* density_kernel_name(DensityKernel k);  // "poly6", "cubic"
 std::optional<DensityKernel> density_kernel_from_name(std::string_view name);
 // How the iisph solver solves its pressure (docs/model.md, "The pressure solve"): relaxed Jacobi
-// (solver/pressure.cpp; a correction travels about one particle layer an iteration, so its iterations
+// (solver/pressure_jacobi.cpp; a correction travels about one particle layer an iteration, so its iterations
 // grow with the square of the scene's depth in layers) or projected conjugate gradients
 // (solver/pressure_cg.cpp, MPRGP: with the square root of the condition number, about the depth).
 enum class PressureSolve { jacobi, cg };

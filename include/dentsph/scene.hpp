@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dentsph/curing_light.hpp"
+#include "dentsph/lattice.hpp"
 #include "dentsph/model.hpp"
 #include "dentsph/pose.hpp"
 #include "dentsph/state.hpp"
@@ -156,9 +157,5 @@ void intern_scene_materials(Scene& scene);
 // one in state.cure, or replaces the tool particles, which then follow the tool pose; a cure event
 // changes nothing here).
 void apply_event(const Scene& scene, State& state, const ProcedureEvent& event);
-
-// Particle mass that gives a particle inside an infinite simple cubic lattice of `spacing` the
-// density rho0 under the poly6 kernel of `kernel` (sum_j m W_poly6(r_ij) = rho0).
-real lattice_particle_mass(real rho0, real spacing, const KernelCoeffs& kernel);
 
 }  // namespace dentsph

@@ -1,5 +1,5 @@
 // Energy flowing from the device into the hand, from a recording.
-#include "dentsph/haptics/recording.hpp"
+#include "dentsph/haptics/replay.hpp"
 
 namespace dentsph {
 

@@ -1,4 +1,6 @@
 // A session's recording as three CSV files (17 significant digits: doubles read back exactly).
+#include "dentsph/haptics/replay.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,7 +13,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "dentsph/haptics/recording.hpp"
 #include "dentsph/limits.hpp"
 #include "dentsph/model.hpp"
 

@@ -1,5 +1,7 @@
 // Deterministic replay: the recorded tool pose of every step, keyed by step, not wall time, into a
 // Simulation on any backend.
+#include "dentsph/haptics/replay.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,7 +12,6 @@
 #include <fmt/ranges.h>
 
 #include "dentsph/dispense.hpp"
-#include "dentsph/haptics/recording.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/simulation.hpp"
 #include "dentsph/tools.hpp"

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "dentsph/haptics/recording.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/pose.hpp"
 #include "haptics/playback_device.hpp"
 

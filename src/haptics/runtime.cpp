@@ -18,6 +18,7 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/limits.hpp"
 #include "haptics/clock.hpp"
 #include "haptics/consumer_loop.hpp"
@@ -25,7 +26,7 @@
 #include "haptics/haptic_loop.hpp"
 #include "haptics/sim_loop.hpp"
 #include "io/preview.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "report/run_outputs.hpp"
 #include "report/session_assessment.hpp"
 

@@ -1,5 +1,5 @@
 #include "io/preview.hpp"
-#include "io/role_colours.hpp"
+#include "dentsph/io/role_colours.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 
 #include <cmath>
 #include <fstream>

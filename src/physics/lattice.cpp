@@ -1,12 +1,13 @@
 // Particle mass for a lattice at rest density: m = rho0 / sum_j W(|r_ij|) over the lattice, W the
 // density's kernel (poly6, or the cubic spline where KernelCoeffs::cubic_density).
+#include "dentsph/lattice.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "dentsph/limits.hpp"
-#include "dentsph/scene.hpp"
 #include "physics/kernels.hpp"
 
 namespace dentsph {

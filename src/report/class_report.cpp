@@ -1,5 +1,5 @@
 // The class comparison (class_report.hpp).
-#include "report/class_report.hpp"
+#include "dentsph/report/class_report.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -10,7 +10,7 @@
 #include "report/criteria.hpp"
 #include "report/html.hpp"
 #include "report/page.hpp"
-#include "report/session_folder.hpp"
+#include "dentsph/report/session_folder.hpp"
 
 namespace dentsph::report {
 

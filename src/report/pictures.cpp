@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "dentsph/mesh_normals.hpp"
-#include "io/role_colours.hpp"
+#include "dentsph/io/role_colours.hpp"
 #include "report/tooth_surface.hpp"
 
 namespace dentsph::report {

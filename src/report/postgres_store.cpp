@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 #include "report/sqlite_store.hpp"
 #include "report/store_schema.hpp"
 

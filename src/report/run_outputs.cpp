@@ -11,9 +11,9 @@
 
 #include "dentsph/surface_grade.hpp"
 #include "io/preview.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "report/grading_picture.hpp"
-#include "report/session_report.hpp"
+#include "dentsph/report/session_report.hpp"
 
 namespace dentsph::report {
 

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "report/session_folder.hpp"
+#include "dentsph/report/session_folder.hpp"
 
 namespace dentsph::report {
 

@@ -1,5 +1,5 @@
 // Reading a run folder for the report (session_folder.hpp).
-#include "report/session_folder.hpp"
+#include "dentsph/report/session_folder.hpp"
 
 #include "dentsph/limits.hpp"
 

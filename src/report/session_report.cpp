@@ -1,5 +1,5 @@
 // One session's report.html (session_report.hpp).
-#include "report/session_report.hpp"
+#include "dentsph/report/session_report.hpp"
 
 #include <algorithm>
 #include <fstream>

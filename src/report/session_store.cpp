@@ -1,5 +1,5 @@
 // The session store's front (session_store.hpp): which backend, and what they share.
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 
 #include "report/postgres_store.hpp"
 #include "report/session_fields.hpp"
-#include "report/session_folder.hpp"
+#include "dentsph/report/session_folder.hpp"
 #include "report/store_backend.hpp"
 
 namespace dentsph::report {

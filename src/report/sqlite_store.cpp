@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 #include "report/store_schema.hpp"
 
 namespace dentsph::report {

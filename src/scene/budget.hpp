@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "dentsph/limits.hpp"
-#include "scene/reader.hpp"
+#include "dentsph/scene_reader.hpp"
 
 namespace dentsph::scene {
 

@@ -41,7 +41,7 @@ Scene dental_base_scene(const ToothScene& ts, const DentalSceneParams& dp, const
   p.solver = dp.solver;
   set_lattice_spacing(p, s);
   p.gravity = fr.z * -9.81;
-  p.neighbour_skin = 0.1 * p.h;  // measured: 1609 -> 1824 steps/s on 2 threads
+  p.neighbour_skin = 0.1 * p.h;  // its gain measured: docs/performance.md, "The step on the CPU"
   p.iisph = dp.iisph;
   p.hold_outside_domain = true;  // paste beyond the domain has fallen off the lined tooth
   const Bounds cb = tooth.cavity_bounds();

@@ -16,15 +16,13 @@
 #include "dentsph/scene.hpp"
 #include "dentsph/state.hpp"
 #include "scene/budget.hpp"
-#include "scene/reader.hpp"
+#include "dentsph/scene_reader.hpp"
 #include "scene/shapes.hpp"
 
 namespace dentsph::scene {
 
 // ---- files and the top level (scene_json.cpp) ---------------------------------------------------
 
-// The JSON of `text`; a syntax error is a SceneError naming `source` and the line and column.
-Json parse_json(const std::string& text, const std::string& source);
 // A file's text; a missing or unreadable one is a SceneError naming it and `what` it should be
 // ("the scene file").
 std::string read_text_file(const std::filesystem::path& file, std::string_view what);

@@ -1,5 +1,5 @@
 // Typed, path-tracking access to scene JSON; see reader.hpp.
-#include "scene/reader.hpp"
+#include "dentsph/scene_reader.hpp"
 
 #include <fmt/format.h>
 

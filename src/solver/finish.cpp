@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/integrate.hpp"
+#include "physics/integrate_law.hpp"
 #include "physics/wrench.hpp"
 #include "solver/iisph.hpp"
 #include "solver/pressure_terms.hpp"

@@ -8,7 +8,7 @@
 //   pairs.cpp       every particle's density, and its row: the neighbours within h with their kernel
 //                   gradient and viscosity weight; bonds form below A
 //   advection.cpp   adhesion of the bonded pairs (bonds break past B), gravity: the velocity v*
-//   pressure.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
+//   pressure_jacobi.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
 //                   step where its equation of state puts it; v* + dt a_p
 //   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
 //   viscous_pressure.cpp  the pressure a viscous paste needs to stay incompressible (Uzawa, a step
@@ -91,7 +91,7 @@ inline constexpr int kInterfacePasses = 3;
 // iterations, or fewer where iisph.viscosity_tolerance is reached.
 void implicit_viscosity(const Model& model, State& state, IisphScratch& x, int threads,
                         std::chrono::steady_clock::time_point deadline);
-// The pressure solve, by model.iisph.pressure_solve: relaxed Jacobi (pressure.cpp) or projected
+// The pressure solve, by model.iisph.pressure_solve: relaxed Jacobi (pressure_jacobi.cpp) or projected
 // conjugate gradients (pressure_cg.cpp). Each leaves every material particle's pressure acceleration
 // in x.accel, v* + dt a_p in x.v_star and x.v_a, and its iterations and errors in state.diagnostics.
 // Past `deadline` (StepOptions::deadline) a solve stops after its least iterations and sets

@@ -1,8 +1,8 @@
 // The iisph solver's pressure by projected conjugate gradients (iisph.pressure_solve "cg"; docs/model.md,
-// "The pressure solve"). The equations are pressure.cpp's: for every active row i,
+// "The pressure solve"). The equations are pressure_jacobi.cpp's: for every active row i,
 //   r_i = rho0_i - rho_adv_i - (A q)_i + rho_i^2 q_i / (k Kp_i),   q = p / rho^2 >= 0,
 // r_i = 0 where q_i > 0 and r_i >= 0 (no compression left) where q_i = 0. The pressure force is the
-// adjoint of the density's rate (pressure.cpp), so M A is symmetric and negative semi-definite (M: the
+// adjoint of the density's rate (pressure_jacobi.cpp), so M A is symmetric and negative semi-definite (M: the
 // particles' masses), and with H = M (-A + diag(rho^2 / (k Kp))) and b = -M (rho0 - rho_adv) the
 // equations are the optimality conditions of the bound-constrained quadratic programme
 //   minimise f(q) = 1/2 q.H q - b.q  subject to q >= 0,   its gradient H q - b = M r,
@@ -29,7 +29,7 @@
 //
 // It stops after min_iterations once the mean error of the material rows is at most density_error and
 // their largest at most max_density_error (the error of a row: |r_i| / rho0_i where it has pressure,
-// max(0, -r_i) / rho0_i where not: the compression it leaves; pressure.cpp's), and after
+// max(0, -r_i) / rho0_i where not: the compression it leaves; pressure_jacobi.cpp's), and after
 // max_iterations in any case (state.diagnostics.pressure_on_budget). Every sum is taken in fixed
 // blocks (block_sum.hpp) and every largest and smallest is exact, so every thread count gives the
 // same result bit for bit.

@@ -1,6 +1,6 @@
-// The pressure solve's terms shared by its two methods (pressure.cpp: relaxed Jacobi; pressure_cg.cpp:
+// The pressure solve's terms shared by its two methods (pressure_jacobi.cpp: relaxed Jacobi; pressure_cg.cpp:
 // projected conjugate gradients): the pressure accelerations of a field q = p / rho^2, the density
-// change they make over the step, and each row's right-hand side. pressure.cpp's header comment
+// change they make over the step, and each row's right-hand side. pressure_jacobi.cpp's header comment
 // derives the system.
 #pragma once
 

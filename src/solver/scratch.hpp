@@ -53,7 +53,7 @@ struct IisphScratch {
   std::vector<std::uint8_t> n_material, n_other;  // [n] entries at each end
   // [n] per row:
   std::vector<Vec3> grad_sum;        // S_i = sum_j m_j gradW_ij over every neighbour (material rows)
-  std::vector<real> diag_x;          // a_ii = -dt^2 / rho_i^2 diag_x (pressure.cpp)
+  std::vector<real> diag_x;          // a_ii = -dt^2 / rho_i^2 diag_x (pressure_jacobi.cpp)
   std::vector<real> visc_diag;       // material rows: sum_j of the row's visc
   std::vector<Vec3> visc_fixed;      // material rows: sum over boundary and tool neighbours of visc v_j
   std::vector<real> div_fixed;       // material rows: sum over boundary and tool neighbours of v_j . m_j gradW_ij

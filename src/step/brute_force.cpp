@@ -3,7 +3,7 @@
 // tested against; it shares the pair terms, pressure, integration and tool wrench.
 #include "dentsph/step.hpp"
 #include "physics/kernels.hpp"
-#include "step/pressure.hpp"
+#include "step/pressure_stage.hpp"
 #include "step/side.hpp"
 #include "step/stages.hpp"
 

@@ -10,7 +10,7 @@
 #include "physics/kernels.hpp"
 #include "physics/pair_terms.hpp"
 #include "step/grid.hpp"
-#include "step/pressure.hpp"
+#include "step/pressure_stage.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {

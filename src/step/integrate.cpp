@@ -1,11 +1,11 @@
-// Stage 6 over the particles (the law of one particle: physics/integrate.hpp): semi-implicit
+// Stage 6 over the particles (the law of one particle: physics/integrate_law.hpp): semi-implicit
 // (symplectic) Euler for material particles, a = f / rho + g, v += dt a, r += dt v (docs/model.md, "One step").
 // Boundary particles stay; tool particles take the rigid transform of the new tool pose, with the
 // velocity that move implies. The step's diagnostics and clock.
 #include <algorithm>
 #include <cmath>
 
-#include "physics/integrate.hpp"
+#include "physics/integrate_law.hpp"
 #include "step/stages.hpp"
 
 namespace dentsph::stages {

@@ -17,7 +17,7 @@ void sort_by_cell(const Model& model, State& state);
 void reorder(const Model& model, State& state, int threads, bool keep_pressure = false);
 // 3. Density: over the 27 neighbouring cells, building each moving particle's neighbour list
 // (radius h + skin), or, between rebuilds, over those lists (density.cpp); each particle's
-// pressure (stage 4, pressure.hpp) as soon as its density is known.
+// pressure (stage 4, pressure_stage.hpp) as soon as its density is known.
 void compute_density(const Model& model, State& state, int threads, bool build_lists);
 // Neighbour-list bookkeeping (neighbour_lists.cpp): whether this step must sort and rebuild, and
 // the positions remembered at a rebuild (with a skin only).
@@ -39,7 +39,7 @@ void integrate(const Model& model, State& state, int threads);
 void close_step(State& state, real a2max, real v2max, std::uint64_t non_finite, real dt);
 
 // The all-pairs versions of the neighbour stages (brute_force.cpp), and its stage 4 as a pass of
-// its own over all particles (the grid step applies pressure.hpp inside its density pass).
+// its own over all particles (the grid step applies pressure_stage.hpp inside its density pass).
 void update_bonds_all_pairs(const Model& model, State& state);
 void compute_density_all_pairs(const Model& model, State& state);
 void compute_pressure_all_pairs(State& state);

@@ -1,6 +1,6 @@
 // A set of points hashed into cells, asked whether any of its points lies within a radius of a
 // given one: the boundary sampler's Poisson-disk thinning (boundary.cpp) and the procedure's free
-// lattice sites (src/sim/procedure.cpp). Also the cell key and hash a grid of points uses
+// lattice sites (src/scene/procedure.cpp). Also the cell key and hash a grid of points uses
 // (mesh_repair.cpp's vertex merging).
 #pragma once
 

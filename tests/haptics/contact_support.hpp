@@ -9,6 +9,7 @@
 #include "dentsph/contact.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/haptics/device.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph::testing {

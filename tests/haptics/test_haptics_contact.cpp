@@ -16,6 +16,7 @@
 #include "path_device.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/haptics.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "runtime_support.hpp"
 
 namespace dentsph {

@@ -15,6 +15,7 @@
 #include "dentsph/haptics.hpp"
 #include "haptics/sim_loop.hpp"
 #include "dentsph/haptics/protocol.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "haptics/exchange.hpp"
 #include "haptics/force_interpolator.hpp"
 #include "haptics/clock.hpp"

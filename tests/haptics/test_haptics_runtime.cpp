@@ -20,6 +20,7 @@
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/tools.hpp"
 #include "press_scene.hpp"
 #include "runtime_support.hpp"

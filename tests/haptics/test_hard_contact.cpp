@@ -11,6 +11,7 @@
 #include "contact_support.hpp"
 #include "dentsph/contact.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/tools.hpp"
 #include "haptics/force_limiter.hpp"
 

@@ -22,7 +22,7 @@
 #include <stb/stb_image.h>
 
 #include "report/criteria.hpp"
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 #include "report_support.hpp"
 #include "support/cli_process.hpp"
 

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <thread>
 
-#include "report/session_store.hpp"
+#include "dentsph/report/session_store.hpp"
 #include "report/store_schema.hpp"
 #include "report_support.hpp"
 

@@ -1,5 +1,5 @@
 // The cure event of procedure and scene files (src/scene/tool_json.cpp), ActiveLights, and the
-// increments numbered by the dispense (src/sim/procedure.cpp).
+// increments numbered by the dispense (src/scene/procedure.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -11,7 +11,7 @@
 #include <stb/stb_image.h>
 
 #include "io/preview.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "io/vtk_writer.hpp"
 #include "support/builders.hpp"
 

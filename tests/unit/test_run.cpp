@@ -8,7 +8,7 @@
 
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "support/small_scene.hpp"
 
 namespace dentsph {

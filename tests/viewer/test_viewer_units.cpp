@@ -11,6 +11,7 @@
 #include "camera.hpp"
 #include "colour_map.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/scene.hpp"
 #include "input_script.hpp"
 #include "sim_session.hpp"

@@ -57,9 +57,8 @@ std::string describe(const cudaDeviceProp& p) {
 }
 
 // Threads per block of the neighbour passes: DENTSPH_CUDA_NEIGHBOUR_BLOCK (32 to 1024, a multiple
-// of 32) lets a benchmark compare launch shapes without a rebuild; 256 otherwise (measured best on
-// an H100 of 32, 64, 128 and 256 on every scene: the dental scene 3,511 steps/s against 3,144 at 64;
-// bench/results/nvidia-h100-80gb-hbm3.txt).
+// of 32) lets a benchmark compare launch shapes without a rebuild; 256 otherwise, the fastest of 32,
+// 64, 128 and 256 on every scene measured on an H100 (docs/cuda.md; bench/results/nvidia-h100-80gb-hbm3.txt).
 std::uint32_t neighbour_block() {
   const char* env = std::getenv("DENTSPH_CUDA_NEIGHBOUR_BLOCK");
   if (!env) return 256;

@@ -1,11 +1,11 @@
-// Stage 6 on the GPU, per particle (physics/integrate.hpp, as the CPU's integrate.cpp):
+// Stage 6 on the GPU, per particle (physics/integrate_law.hpp, as the CPU's integrate.cpp):
 // semi-implicit Euler for material, boundary at rest, tool particles to the rigid transform of the
 // new pose with the velocity that move implies. Returns the particle's part of the step's
 // diagnostics (largest |a|^2 and |v|^2, non-finite count).
 #pragma once
 
 #include "backend/cuda/view.hpp"
-#include "physics/integrate.hpp"
+#include "physics/integrate_law.hpp"
 
 namespace dentsph::gpu {
 

@@ -1,9 +1,9 @@
 // Stage 4 on the GPU, per particle: P_i = max(0, Kp_i (rho_i - rho0_i)) and V_i = m_i / rho_i
-// (physics/pressure.hpp, as the CPU's step/pressure.hpp).
+// (physics/pressure_law.hpp, as the CPU's step/pressure_stage.hpp).
 #pragma once
 
 #include "backend/cuda/view.hpp"
-#include "physics/pressure.hpp"
+#include "physics/pressure_law.hpp"
 
 namespace dentsph::gpu {
 

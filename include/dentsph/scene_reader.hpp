@@ -1,5 +1,6 @@
 // Typed access to the JSON objects of a scene file, with the path of every field kept for error
-// messages. Every problem becomes a SceneError reading "<source>: <path>: <problem>; <fix>".
+// messages. Every problem becomes a SceneError reading "<source>: <path>: <problem>; <fix>". The
+// scene files, procedure files and the viewer's input scripts are read with it.
 #pragma once
 
 #include <cstdint>
@@ -83,6 +84,10 @@ class Reader {
   std::string path_;
   std::string source_;
 };
+
+// The JSON of `text`; a syntax error is a SceneError naming `source` and the line and column
+// (scene_json.cpp).
+Json parse_json(const std::string& text, const std::string& source);
 
 // The known name closest to `name` when close enough to be a likely typo, else "".
 std::string_view closest(std::string_view name, const std::vector<std::string_view>& known);

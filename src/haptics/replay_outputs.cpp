@@ -1,20 +1,21 @@
 // A replay written as a run folder (replay_outputs.hpp).
-#include "report/replay_outputs.hpp"
+#include "dentsph/haptics/replay_outputs.hpp"
 
 #include <chrono>
 
 #include "dentsph/assess.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "dentsph/run.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "report/run_outputs.hpp"
 
-namespace dentsph::report {
+namespace dentsph {
 
 std::vector<Vec3> replay_to_folder(const Scene& scene, const Recording& r, int threads,
                                    const std::filesystem::path& dir, Backend backend) {
   std::filesystem::create_directories(dir);
-  ProcedureLog log(make_state(scene));
+  report::ProcedureLog log(make_state(scene));
   State state;
   RunSummary sum;
   const auto t0 = std::chrono::steady_clock::now();
@@ -49,8 +50,8 @@ std::vector<Vec3> replay_to_folder(const Scene& scene, const Recording& r, int t
     sum.assessment_json = assessment_json(a);
     sum.assessment_report = a.report();
   }
-  end_run(dir, scene, state, sum, log);
+  report::end_run(dir, scene, state, sum, log);
   return forces;
 }
 
-}  // namespace dentsph::report
+}  // namespace dentsph

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "report/session_folder.hpp"
+#include "dentsph/report/session_folder.hpp"
 
 namespace dentsph::report {
 

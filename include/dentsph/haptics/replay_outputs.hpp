@@ -5,18 +5,17 @@
 // thickness is measured) and report.html.
 #pragma once
 
-#include "dentsph/backend.hpp"
-
 #include <filesystem>
 #include <vector>
 
+#include "dentsph/backend.hpp"
 #include "dentsph/haptics/recording.hpp"
 #include "dentsph/scene.hpp"
 
-namespace dentsph::report {
+namespace dentsph {
 
 // Replays `recording` into `scene` (replay_steps) and writes `dir`; returns the tool forces.
 std::vector<Vec3> replay_to_folder(const Scene& scene, const Recording& recording, int threads,
                                    const std::filesystem::path& dir, Backend backend = Backend::cpu);
 
-}  // namespace dentsph::report
+}  // namespace dentsph

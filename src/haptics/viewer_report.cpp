@@ -1,14 +1,15 @@
 // A viewer session's report (viewer_report.hpp).
-#include "report/viewer_report.hpp"
+#include "dentsph/haptics/viewer_report.hpp"
 
 #include <fstream>
 
 #include <fmt/format.h>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/haptics/replay.hpp"
 #include "report/run_outputs.hpp"
 
-namespace dentsph::report {
+namespace dentsph {
 
 std::filesystem::path viewer_report_dir(const std::filesystem::path& summary_file) {
   return summary_file.parent_path() / (summary_file.stem().string() + "_report");
@@ -49,8 +50,9 @@ std::filesystem::path write_viewer_report(const std::filesystem::path& summary_f
   if (rt) save_recording(dir / "recording", rt->recording);
   std::uint32_t initial = 0;
   for (const ParticleInit& p : scene.particles) initial += p.role == Role::material;
-  finish_run(dir, scene, positions, roles, rt ? log_of_recording(scene, rt->recording) : ProcedureLog(initial));
+  report::finish_run(dir, scene, positions, roles,
+                     rt ? report::log_of_recording(scene, rt->recording) : report::ProcedureLog(initial));
   return dir / "report.html";
 }
 
-}  // namespace dentsph::report
+}  // namespace dentsph

@@ -1,5 +1,5 @@
 // Stage 4 for one particle: P_i = max(0, Kp_i (rho_i - rho0_i)), repulsion only (the paper,
-// section 3.1; physics/pressure.hpp), and its volume m_i / rho_i, which every pair term of the force pass needs. It
+// section 3.1; physics/pressure_law.hpp), and its volume m_i / rho_i, which every pair term of the force pass needs. It
 // needs particle i's density alone, so the grid step's density pass applies it as soon as rho_i is
 // known; the all-pairs reference applies it in a pass of its own (brute_force.cpp).
 #pragma once
@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "dentsph/state.hpp"
-#include "physics/pressure.hpp"
+#include "physics/pressure_law.hpp"
 
 namespace dentsph::stages {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "report/class_report.hpp"
+#include "dentsph/report/class_report.hpp"
 
 namespace dentsph::report {
 

@@ -1,6 +1,6 @@
 // Stage 4's law for one particle (docs/model.md, "One step", step 4; the paper, section 3.1): repulsion only,
 // P = max(0, Kp (rho - rho0)), and the volume m / rho that every pair term needs. Written once for
-// the CPU step (step/pressure.hpp) and the CUDA stage body (backend/cuda/pressure.hpp).
+// the CPU step (step/pressure_stage.hpp) and the CUDA stage body (backend/cuda/pressure.hpp).
 #pragma once
 
 #include "dentsph/config.hpp"

@@ -14,7 +14,7 @@
 #include "dentsph/simulation.hpp"
 #include "dentsph/surface.hpp"
 #include "io/preview.hpp"
-#include "io/summary.hpp"
+#include "dentsph/io/summary.hpp"
 #include "io/vtk_writer.hpp"
 #include "report/run_outputs.hpp"
 

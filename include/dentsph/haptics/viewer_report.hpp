@@ -11,7 +11,7 @@
 #include "dentsph/haptics.hpp"
 #include "dentsph/scene.hpp"
 
-namespace dentsph::report {
+namespace dentsph {
 
 // The folder a viewer summary's report goes in: "shot.json" -> "shot_report".
 std::filesystem::path viewer_report_dir(const std::filesystem::path& summary_file);
@@ -23,4 +23,4 @@ std::filesystem::path write_viewer_report(const std::filesystem::path& summary_f
                                           std::span<const Vec3> positions, std::span<const Role> roles,
                                           const nlohmann::json& viewer_summary, const RealtimeResult* realtime);
 
-}  // namespace dentsph::report
+}  // namespace dentsph
