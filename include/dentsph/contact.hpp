@@ -25,7 +25,7 @@
 namespace dentsph {
 
 struct Scene;
-struct State;
+class State;
 
 // The contact's spring, damper and friction (device frame: device N per device m). The device
 // profile gives the first two (DeviceProfile::contact).
