@@ -8,10 +8,10 @@
 #include <filesystem>
 
 #include "dentsph/dental.hpp"
+#include "dentsph/report/session_report.hpp"
 #include "dentsph/run.hpp"
 #include "io/preview.hpp"
 #include "report/run_outputs.hpp"
-#include "dentsph/report/session_report.hpp"
 
 namespace {
 

@@ -15,7 +15,7 @@ STATIC ...)) and what each links (target_link_libraries, PUBLIC and PRIVATE alik
   3. No library includes a header of a library it does not link (directly or through the libraries
      it links): each include of src/ and include/dentsph/ is checked against the link graph.
   4. The programs (apps/) include the public headers (include/dentsph/) and their own, never a
-     private header of src/ (listed in ALLOWED_APP_PRIVATE while they remain).
+     private header of src/.
 
 Exit status 0 when all hold; 1, listing each break as FILE: INCLUDE (why).
 """
@@ -25,9 +25,6 @@ import sys
 
 ROOT = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 os.chdir(ROOT)
-
-# The private headers the programs still include (issue: apps use include/ only). Empty it as they go.
-ALLOWED_APP_PRIVATE = set()
 
 # Libraries of one layer, which may include each other's headers and share folders: the CUDA
 # backend's device code is a library of its own only because nvcc builds it, and its stage bodies
@@ -137,7 +134,7 @@ def main():
             path = os.path.join(dirpath, f)
             for inc in includes(path):
                 folder = os.path.dirname(inc)
-                if folder in lib_of_folder and (path, inc) not in ALLOWED_APP_PRIVATE:
+                if folder in lib_of_folder:
                     problems.append(f"{path}: {inc} (a program includes a private header of src/{folder}: make what "
                                     f"it needs public in include/dentsph/)")
     for p in problems:

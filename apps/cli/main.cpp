@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "backend_option.hpp"
+#include "dental_options.hpp"
 #include "dentsph/bench.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/haptics/replay.hpp"
@@ -25,7 +26,6 @@
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
 #include "dentsph/solver.hpp"
-#include "dental_options.hpp"
 #include "material_test.hpp"
 #include "option_checks.hpp"
 #include "output_dir.hpp"

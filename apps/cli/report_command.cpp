@@ -6,12 +6,12 @@
 
 #include <fmt/format.h>
 
-#include "option_checks.hpp"
-#include "progress.hpp"
 #include "dentsph/report/class_report.hpp"
 #include "dentsph/report/session_folder.hpp"
 #include "dentsph/report/session_report.hpp"
 #include "dentsph/report/session_store.hpp"
+#include "option_checks.hpp"
+#include "progress.hpp"
 
 namespace dentsph::cli {
 

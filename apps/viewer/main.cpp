@@ -13,22 +13,22 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "dentsph/dental.hpp"
-#include "dentsph/paste_presets.hpp"
-#include "dentsph/solver.hpp"
-#include "dentsph/run.hpp"
-#include "dentsph/scene.hpp"
 #include "backend_option.hpp"
 #include "colour_map.hpp"
-#include "dentsph/haptics.hpp"
 #include "dental_options.hpp"
+#include "dentsph/dental.hpp"
+#include "dentsph/haptics.hpp"
+#include "dentsph/haptics/viewer_report.hpp"
+#include "dentsph/io/summary.hpp"
+#include "dentsph/paste_presets.hpp"
+#include "dentsph/run.hpp"
+#include "dentsph/scene.hpp"
+#include "dentsph/solver.hpp"
+#include "input_script.hpp"
 #include "option_checks.hpp"
 #include "realtime.hpp"
-#include "input_script.hpp"
 #include "sim_session.hpp"
 #include "viewer_app.hpp"
-#include "dentsph/io/summary.hpp"
-#include "dentsph/haptics/viewer_report.hpp"
 
 namespace {
 

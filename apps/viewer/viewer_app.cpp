@@ -18,9 +18,9 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
-#include "dentsph/dispense.hpp"
 #include "camera.hpp"
 #include "colour_map.hpp"
+#include "dentsph/dispense.hpp"
 #include "frame_timer.hpp"
 #include "panels.hpp"
 #include "paste_surface_view.hpp"

@@ -10,10 +10,10 @@
 #include <string_view>
 #include <vector>
 
-#include "fuzz_support.hpp"
-#include "fuzz_targets.hpp"
 #include "dentsph/report/session_folder.hpp"
 #include "dentsph/report/session_report.hpp"
+#include "fuzz_support.hpp"
+#include "fuzz_targets.hpp"
 
 namespace dentsph::fuzz {
 

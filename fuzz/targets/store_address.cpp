@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "fuzz_targets.hpp"
 #include "dentsph/report/session_store.hpp"
+#include "fuzz_targets.hpp"
 
 namespace dentsph::fuzz {
 

@@ -53,6 +53,9 @@ class Reader {
 
   // Required fields: missing, wrong type, non-finite or out of range is an error.
   real number(std::string_view key, std::string_view hint, Range range = Range::any) const;
+  // A number within [lo, hi] (the physical bounds of a field whose value past them is finite but
+  // overflows or vanishes in a step).
+  real number_in(std::string_view key, std::string_view hint, real lo, real hi) const;
   Vec3 vec3(std::string_view key, std::string_view hint) const;
   std::int64_t integer(std::string_view key, std::string_view hint, std::int64_t lo,
                        std::int64_t hi) const;

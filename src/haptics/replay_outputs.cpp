@@ -6,8 +6,8 @@
 #include "dentsph/assess.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/haptics/replay.hpp"
-#include "dentsph/run.hpp"
 #include "dentsph/io/summary.hpp"
+#include "dentsph/run.hpp"
 #include "report/run_outputs.hpp"
 
 namespace dentsph {

@@ -25,8 +25,6 @@
 #include "haptics/contact_loop.hpp"
 #include "haptics/haptic_loop.hpp"
 #include "haptics/sim_loop.hpp"
-#include "io/preview.hpp"
-#include "dentsph/io/summary.hpp"
 #include "report/run_outputs.hpp"
 #include "report/session_assessment.hpp"
 

@@ -1,5 +1,5 @@
-#include "io/preview.hpp"
 #include "dentsph/io/role_colours.hpp"
+#include "io/preview.hpp"
 
 #include <algorithm>
 #include <array>

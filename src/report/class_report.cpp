@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
+#include "dentsph/report/session_folder.hpp"
 #include "report/criteria.hpp"
 #include "report/html.hpp"
 #include "report/page.hpp"
-#include "dentsph/report/session_folder.hpp"
 
 namespace dentsph::report {
 

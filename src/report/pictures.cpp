@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "dentsph/mesh_normals.hpp"
 #include "dentsph/io/role_colours.hpp"
+#include "dentsph/mesh_normals.hpp"
 #include "report/tooth_surface.hpp"
 
 namespace dentsph::report {

@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "dentsph/io/summary.hpp"
+#include "dentsph/report/session_report.hpp"
 #include "dentsph/surface_grade.hpp"
 #include "io/preview.hpp"
-#include "dentsph/io/summary.hpp"
 #include "report/grading_picture.hpp"
-#include "dentsph/report/session_report.hpp"
 
 namespace dentsph::report {
 

@@ -6,9 +6,9 @@
 #include <iterator>
 #include <string_view>
 
+#include "dentsph/report/session_folder.hpp"
 #include "report/postgres_store.hpp"
 #include "report/session_fields.hpp"
-#include "dentsph/report/session_folder.hpp"
 #include "report/store_backend.hpp"
 
 namespace dentsph::report {

@@ -10,11 +10,10 @@
 
 #include "dentsph/assess.hpp"
 #include "dentsph/dental.hpp"
+#include "dentsph/io/summary.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/simulation.hpp"
 #include "dentsph/surface.hpp"
-#include "io/preview.hpp"
-#include "dentsph/io/summary.hpp"
 #include "io/vtk_writer.hpp"
 #include "report/run_outputs.hpp"
 

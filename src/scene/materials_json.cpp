@@ -1,8 +1,5 @@
 // Materials of a scene: the named table, the default material per role, and per-block overrides
 // (docs/scene-format.md, "materials", "roles", "Choosing a block's material").
-#include <string>
-#include <utility>
-
 #include <fmt/format.h>
 
 #include "scene/parse.hpp"
@@ -11,63 +8,45 @@ namespace dentsph::scene {
 
 namespace {
 
-// One material field: its JSON key, where it goes, what it accepts, and the physical bounds of a
-// material a step can take (a value past them is finite but makes every step's numbers overflow or
-// vanish: a rest density of 1e-308 asks for a time step of 1e-312 s).
+// One material field: its JSON key, where it goes, and the physical bounds of a material a step can
+// take (a value past them is finite but makes every step's numbers overflow or vanish: a rest
+// density of 1e-308 asks for a time step of 1e-312 s).
 struct MaterialField {
   std::string_view key;
   real Material::*member;
-  Range range;
   real lo, hi;
   std::string_view hint;
 };
 
 constexpr MaterialField material_fields[] = {
-    {"viscosity", &Material::mu, Range::non_negative, 0, 1e9,
+    {"viscosity", &Material::mu, 0, 1e9,
      "the dynamic viscosity mu in Pa s (0 to 1e9), e.g. 0.5"},
-    {"stiffness", &Material::Kp, Range::positive, 1e-6, 1e12,
+    {"stiffness", &Material::Kp, 1e-6, 1e12,
      "the pressure stiffness Kp in m^2/s^2 (1e-6 to 1e12; sqrt(Kp) is the sound speed), e.g. 60"},
-    {"rest_density", &Material::rho0, Range::positive, 1, 1e5,
+    {"rest_density", &Material::rho0, 1, 1e5,
      "the rest density rho0 in kg/m^3 (1 to 1e5: water 1000, amalgam 11600), e.g. 1000"},
-    {"adhesion", &Material::Ka, Range::non_negative, 0, 1e9,
+    {"adhesion", &Material::Ka, 0, 1e9,
      "the adhesion strength Ka in Pa (0 to 1e9; 0 for walls and tools), e.g. 200"},
 };
-
-// A number as a person writes it: 1e7, not 1e+07.
-std::string written(real x) {
-  std::string s = fmt::format("{:.3g}", x);
-  for (const auto& [from, to] : {std::pair{"e+0", "e"}, {"e+", "e"}, {"e-0", "e-"}})
-    if (const auto at = s.find(from); at != std::string::npos) s.replace(at, std::string_view(from).size(), to);
-  return s;
-}
-
-// A field's value, required to lie within its bounds.
-real bounded(const Reader& m, const MaterialField& f, std::string_view hint) {
-  const real x = m.number(f.key, hint, f.range);
-  if (x < f.lo || x > f.hi)
-    m.fail(f.key, fmt::format("{} is outside {} to {}", written(x), written(f.lo), written(f.hi)),
-           fmt::format("give {}", hint));
-  return x;
-}
 
 // The optional fields: a non-Newtonian material's (docs/model.md, "Rheology"; Newtonian without them) and
 // its contact's strength with an instrument ("Tack").
 constexpr MaterialField rheology_fields[] = {
-    {"flow_index", &Material::flow_index, Range::positive, 0.1, 2,
+    {"flow_index", &Material::flow_index, 0.1, 2,
      "the Herschel-Bulkley flow index n (0.1 to 2; 1 Newtonian, under 1 shear-thinning), e.g. 0.5"},
-    {"yield_stress", &Material::yield_stress, Range::non_negative, 0, 1e7,
+    {"yield_stress", &Material::yield_stress, 0, 1e7,
      "the yield stress in Pa (0 to 1e7: more is a solid, not a paste; 0: none), e.g. 100"},
-    {"max_viscosity", &Material::max_viscosity, Range::non_negative, 0, 1e9,
+    {"max_viscosity", &Material::max_viscosity, 0, 1e9,
      "the unyielded paste's viscosity in Pa s (>= viscosity, at most 1e9: the viscosity solve would not converge "
      "beyond; 0: 1000 times it), e.g. 1e6"},
-    {"interface_strength", &Material::interface_strength, Range::non_negative, 0, 1e7,
+    {"interface_strength", &Material::interface_strength, 0, 1e7,
      "the tension in Pa a paste's contact with an instrument carries (0 to 1e7; 0: no limit; iisph), e.g. 5e4"},
 };
 
 // Reads the rheology fields `m` has into `mat`, then checks the whole law.
 void read_rheology(const Reader& m, Material& mat) {
   for (const MaterialField& f : rheology_fields)
-    if (m.has(f.key)) mat.*f.member = bounded(m, f, f.hint);
+    if (m.has(f.key)) mat.*f.member = m.number_in(f.key, f.hint, f.lo, f.hi);
   if (mat.yield_stress > 0 && !(mat.mu > 0))
     m.fail("yield_stress", "a yield stress with no viscosity (the paste would have no law once it flows)",
            "give \"viscosity\" > 0, the plastic viscosity (Pa s) or consistency (Pa s^n) of the flowing paste");
@@ -75,7 +54,8 @@ void read_rheology(const Reader& m, Material& mat) {
     m.fail("max_viscosity", fmt::format("{} Pa s is under the viscosity {} Pa s", mat.max_viscosity, mat.mu),
            "give the unyielded viscosity at least the flowing one, or 0 for 1000 times it");
   if (mat.max_viscosity == 0 && !newtonian(mat) && mat.mu > 1e6)
-    m.fail("max_viscosity", "the unyielded viscosity (1000 times the viscosity) is over 1e9 Pa s (the viscosity solve would not converge)",
+    m.fail("max_viscosity",
+           "the unyielded viscosity (1000 times the viscosity) is over 1e9 Pa s (the viscosity solve would not converge)",
            "give max_viscosity at most 1e9 Pa s");
 }
 
@@ -86,7 +66,7 @@ Material read_material(const Reader& m) {
   m.only({"viscosity", "stiffness", "rest_density", "adhesion", "flow_index", "yield_stress", "max_viscosity",
           "interface_strength"});
   Material mat;
-  for (const MaterialField& f : material_fields) mat.*f.member = bounded(m, f, f.hint);
+  for (const MaterialField& f : material_fields) mat.*f.member = m.number_in(f.key, f.hint, f.lo, f.hi);
   read_rheology(m, mat);
   return mat;
 }
@@ -103,12 +83,12 @@ Material read_override(const Reader& m, const SceneMaterials& table,
   Material mat = base.value_or(Material{});
   for (const MaterialField& f : material_fields) {
     if (base) {
-      if (m.has(f.key)) mat.*f.member = bounded(m, f, f.hint);
+      if (m.has(f.key)) mat.*f.member = m.number_in(f.key, f.hint, f.lo, f.hi);
     } else {
       const std::string hint =
           fmt::format("{} (or a \"base\" material to start from: there is no default from {})",
                       f.hint, fallback.from);
-      mat.*f.member = bounded(m, f, hint);
+      mat.*f.member = m.number_in(f.key, hint, f.lo, f.hi);
     }
   }
   read_rheology(m, mat);

@@ -14,9 +14,9 @@
 #include "dentsph/model.hpp"
 #include "dentsph/paste_presets.hpp"
 #include "dentsph/scene.hpp"
+#include "dentsph/scene_reader.hpp"
 #include "dentsph/state.hpp"
 #include "scene/budget.hpp"
-#include "dentsph/scene_reader.hpp"
 #include "scene/shapes.hpp"
 
 namespace dentsph::scene {

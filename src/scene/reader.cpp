@@ -147,6 +147,12 @@ real Reader::number_or(std::string_view key, real fallback, std::string_view hin
   return optional_number(key, hint, range).value_or(fallback);
 }
 
+real Reader::number_in(std::string_view key, std::string_view hint, real lo, real hi) const {
+  const real x = number(key, hint);
+  if (x < lo || x > hi) fail(key, fmt::format("must be in [{:g}, {:g}], got {:g}", lo, hi, x), fmt::format("give {}", hint));
+  return x;
+}
+
 Vec3 Reader::vec3(std::string_view key, std::string_view hint) const {
   const Json& v = require(key, hint);
   if (!v.is_array() || v.size() != 3)

@@ -13,10 +13,10 @@
 
 #include "client_process.hpp"
 #include "contact_support.hpp"
-#include "path_device.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/replay.hpp"
+#include "path_device.hpp"
 #include "runtime_support.hpp"
 
 namespace dentsph {

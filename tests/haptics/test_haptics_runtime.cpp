@@ -15,7 +15,6 @@
 #include <nlohmann/json.hpp>
 
 #include "client_process.hpp"
-#include "support/cli_process.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
@@ -24,6 +23,7 @@
 #include "dentsph/tools.hpp"
 #include "press_scene.hpp"
 #include "runtime_support.hpp"
+#include "support/cli_process.hpp"
 
 namespace dentsph {
 namespace {

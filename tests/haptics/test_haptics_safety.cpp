@@ -25,8 +25,8 @@
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics.hpp"
-#include "dentsph/limits.hpp"
 #include "dentsph/haptics/protocol.hpp"
+#include "dentsph/limits.hpp"
 #include "press_scene.hpp"
 #include "runtime_support.hpp"
 

@@ -21,8 +21,8 @@
 #include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
 
-#include "report/criteria.hpp"
 #include "dentsph/report/session_store.hpp"
+#include "report/criteria.hpp"
 #include "report_support.hpp"
 #include "support/cli_process.hpp"
 

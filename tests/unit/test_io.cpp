@@ -10,8 +10,8 @@
 
 #include <stb/stb_image.h>
 
-#include "io/preview.hpp"
 #include "dentsph/io/summary.hpp"
+#include "io/preview.hpp"
 #include "io/vtk_writer.hpp"
 #include "support/builders.hpp"
 

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dentsph/io/summary.hpp"
 #include "dentsph/run.hpp"
 #include "dentsph/scene.hpp"
-#include "dentsph/io/summary.hpp"
 #include "support/small_scene.hpp"
 
 namespace dentsph {
