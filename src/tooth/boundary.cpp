@@ -19,6 +19,7 @@
 #include <functional>
 #include <cmath>
 #include <tuple>
+#include <vector>
 
 #include "dentsph/tooth.hpp"
 #include "tooth/disk_set.hpp"
@@ -86,41 +87,51 @@ BoundarySamples matrix_band(const PreparedTooth& tooth, real spacing) {
 
 namespace {
 
-BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
-                              const LevelSets& src) {
-  const real s = params.spacing;
-  const ToothFrame& f = tooth.frame();
+// A coarse cell of edge s centred on s (i, j, k) of the tooth frame, with the prepared tooth's and
+// the region's distances at its centre; it holds refine^3 points of the fine lattice of pitch
+// s / refine, indexed (refine i + a, refine j + b, refine k + d).
+struct Coarse {
+  std::int64_t i, j, k;
+  real dp, dc;  // prepared-tooth and cavity distances at the centre
+};
 
-  // Region: the removed tooth's box, grown by the band and the layers.
-  const Bounds cw = tooth.cavity_bounds();
+// A fine lattice point projected onto a layer's level set.
+struct Candidate {
+  std::int64_t i, j, k;  // fine lattice index, the thinning order
+  Vec3 p;
+  Vec3 normal;  // the distance's gradient at p
+};
+
+// A world box as the tooth frame's axis-aligned box around it.
+Bounds frame_bounds(const ToothFrame& f, const Bounds& world) {
   Bounds local{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
   for (int k = 0; k < 8; ++k) {
-    const Vec3 c = f.to_local(
-        {k & 1 ? cw.max.x : cw.min.x, k & 2 ? cw.max.y : cw.min.y, k & 4 ? cw.max.z : cw.min.z});
+    const Vec3 c = f.to_local({k & 1 ? world.max.x : world.min.x, k & 2 ? world.max.y : world.min.y,
+                               k & 4 ? world.max.z : world.min.z});
     local.min = vmin(local.min, c);
     local.max = vmax(local.max, c);
   }
+  return local;
+}
+
+// The coarse cells over the removed tooth's box (grown by the band and the layers) that can hold
+// layer points: their centre within half a diagonal of the layers' level range and of the band.
+std::vector<Coarse> cells_near_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
+                                      const LevelSets& src) {
+  const real s = params.spacing;
+  const ToothFrame& f = tooth.frame();
+  const Bounds local = frame_bounds(f, tooth.cavity_bounds());
   const real grow = margin + (params.layers + 1) * s;
-  // Coarse cells of edge s centred on s (i, j, k), each holding refine^3 points of the fine
-  // lattice of pitch c = s / refine, indexed (refine i + a, refine j + b, refine k + d).
-  const real c = s / refine;
   const auto lo = [&](real v) { return std::int64_t(std::floor((v - grow) / s)); };
   const auto hi = [&](real v) { return std::int64_t(std::ceil((v + grow) / s)); };
   const std::int64_t i0 = lo(local.min.x), i1 = hi(local.max.x), j0 = lo(local.min.y),
                      j1 = hi(local.max.y), k0 = lo(local.min.z), k1 = hi(local.max.z);
-  struct Coarse {
-    std::int64_t i, j, k;
-    real dp, dc;  // prepared-tooth and cavity distances at the centre
-  };
-  std::vector<Coarse> coarse;
   const real half_diag = s * std::sqrt(real(3)) / 2;
   const real deepest = params.layers * s;
   const real level_lo = std::min(real(0), (params.layers - 1) * src.step),
              level_hi = std::max(real(0), (params.layers - 1) * src.step);
-  // A cell can hold layer points only if its centre is within half a diagonal of the layers'
-  // level range and of the band. Both distances are 1-Lipschitz, so blocks of 4^3 cells are
-  // ruled out at once from their centre: far from the surface a distance query costs several
-  // times more than near it.
+  // Both distances are 1-Lipschitz, so blocks of 4^3 cells are ruled out at once from their
+  // centre: far from the surface a distance query costs several times more than near it.
   auto relevant = [&](real dp, real dc, real slack) {
     return dc <= margin + deepest + half_diag + slack && dp <= level_hi + half_diag + slack &&
            dp >= level_lo - half_diag - slack;
@@ -134,8 +145,8 @@ BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& 
   for (std::int64_t bk = k0; bk <= k1; bk += block)
     for (std::int64_t bj = j0; bj <= j1; bj += block)
       for (std::int64_t bi = i0; bi <= i1; bi += block) blocks.push_back({bi, bj, bk});
-  // Queries are independent: threads fill their own lists, merged and sorted afterwards so the
-  // result does not depend on the thread count.
+  // Queries are independent: threads fill their own lists, merged in thread order (the layers'
+  // candidates are sorted afterwards, so the result does not depend on the thread count).
   std::vector<std::vector<Coarse>> found{std::size_t(omp_get_max_threads())};
 #pragma omp parallel
   {
@@ -159,62 +170,75 @@ BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& 
           }
     }
   }
+  std::vector<Coarse> coarse;
   for (auto& v : found) coarse.insert(coarse.end(), v.begin(), v.end());
+  return coarse;
+}
 
-  BoundarySamples out;
-  out.spacing = s;
+// The fine lattice points of the cells near the level set `level` projected onto it (Newton on the
+// distance function) and kept where they lie within `band` of the region and `keep` agrees; in
+// lattice order.
+std::vector<Candidate> layer_candidates(const std::vector<Coarse>& coarse, const ToothFrame& f, real s, real level,
+                                        real band, const LevelSets& src) {
+  const real c = s / refine;
+  const real half_diag = s * std::sqrt(real(3)) / 2;
   const real fine_reach = c * std::sqrt(real(3)) / 2;
   const real centre = c * (refine - 1) / 2.0;  // fine points sit symmetrically in the cell
-  for (int layer = 0; layer < params.layers; ++layer) {
-    const real level = layer * src.step;
-    const real band = margin + layer * s;
-    DiskSet disks(exclusion * s);
-    struct Candidate {
-      std::int64_t i, j, k;  // fine lattice index, the thinning order
-      Vec3 p;
-      Vec3 normal;  // the distance's gradient at p
-    };
-    std::vector<const Coarse*> cells;
-    for (const Coarse& q : coarse)
-      if (std::fabs(q.dp - level) <= half_diag && q.dc <= band + half_diag) cells.push_back(&q);
-    std::vector<std::vector<Candidate>> per_thread{std::size_t(omp_get_max_threads())};
+  std::vector<const Coarse*> cells;
+  for (const Coarse& q : coarse)
+    if (std::fabs(q.dp - level) <= half_diag && q.dc <= band + half_diag) cells.push_back(&q);
+  std::vector<std::vector<Candidate>> per_thread{std::size_t(omp_get_max_threads())};
 #pragma omp parallel
-    {
-      auto& mine = per_thread[std::size_t(omp_get_thread_num())];
+  {
+    auto& mine = per_thread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 16)
-      for (std::size_t n = 0; n < cells.size(); ++n) {
-        const Coarse& q = *cells[n];
-        for (int d = 0; d < refine; ++d)
-          for (int b = 0; b < refine; ++b)
-            for (int a = 0; a < refine; ++a) {
-              const Vec3 offset = Vec3{real(a), real(b), real(d)} * c - Vec3{1, 1, 1} * centre;
-              // Lipschitz: skip fine points the cell centre's distance already rules out.
-              if (std::fabs(q.dp - level) - norm(offset) > fine_reach) continue;
-              Vec3 p = f.to_world(Vec3{real(q.i), real(q.j), real(q.k)} * s + offset);
-              SurfacePoint sp = src.surface(p);
-              if (std::fabs(sp.distance - level) > fine_reach) continue;
-              // Newton on the distance function (|gradient| = 1): one step lands on the level
-              // set unless the nearest feature changes; a few more settle creases.
-              bool ok = false;
-              for (int it = 0; it < newton_steps; ++it) {
-                const real e = sp.distance - level;
-                if (std::fabs(e) <= on_surface * s) {
-                  ok = true;
-                  break;
-                }
-                p -= sp.normal * e;
-                sp = src.surface(p);
+    for (std::size_t n = 0; n < cells.size(); ++n) {
+      const Coarse& q = *cells[n];
+      for (int d = 0; d < refine; ++d)
+        for (int b = 0; b < refine; ++b)
+          for (int a = 0; a < refine; ++a) {
+            const Vec3 offset = Vec3{real(a), real(b), real(d)} * c - Vec3{1, 1, 1} * centre;
+            // Lipschitz: skip fine points the cell centre's distance already rules out.
+            if (std::fabs(q.dp - level) - norm(offset) > fine_reach) continue;
+            Vec3 p = f.to_world(Vec3{real(q.i), real(q.j), real(q.k)} * s + offset);
+            SurfacePoint sp = src.surface(p);
+            if (std::fabs(sp.distance - level) > fine_reach) continue;
+            // Newton on the distance function (|gradient| = 1): one step lands on the level
+            // set unless the nearest feature changes; a few more settle creases.
+            bool ok = false;
+            for (int it = 0; it < newton_steps; ++it) {
+              const real e = sp.distance - level;
+              if (std::fabs(e) <= on_surface * s) {
+                ok = true;
+                break;
               }
-              if (!ok || src.region(p) > band || (src.keep && !src.keep(p, sp))) continue;
-              mine.push_back({refine * q.i + a, refine * q.j + b, refine * q.k + d, p, sp.normal});
+              p -= sp.normal * e;
+              sp = src.surface(p);
             }
-      }
+            if (!ok || src.region(p) > band || (src.keep && !src.keep(p, sp))) continue;
+            mine.push_back({refine * q.i + a, refine * q.j + b, refine * q.k + d, p, sp.normal});
+          }
     }
-    std::vector<Candidate> cand;
-    for (auto& v : per_thread) cand.insert(cand.end(), v.begin(), v.end());
-    std::sort(cand.begin(), cand.end(), [](const Candidate& x, const Candidate& y) {
-      return std::tie(x.k, x.j, x.i) < std::tie(y.k, y.j, y.i);
-    });
+  }
+  std::vector<Candidate> cand;
+  for (auto& v : per_thread) cand.insert(cand.end(), v.begin(), v.end());
+  std::sort(cand.begin(), cand.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.k, x.j, x.i) < std::tie(y.k, y.j, y.i);
+  });
+  return cand;
+}
+
+BoundarySamples sample_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
+                              const LevelSets& src) {
+  const real s = params.spacing;
+  const std::vector<Coarse> coarse = cells_near_layers(tooth, params, margin, src);
+  BoundarySamples out;
+  out.spacing = s;
+  for (int layer = 0; layer < params.layers; ++layer) {
+    const std::vector<Candidate> cand =
+        layer_candidates(coarse, tooth.frame(), s, layer * src.step, margin + layer * s, src);
+    // Thinned greedily in lattice order to a Poisson-disk set.
+    DiskSet disks(exclusion * s);
     const std::size_t first = out.points.size();
     for (const Candidate& q : cand)
       if (disks.try_add(q.p)) {

@@ -7,6 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "tooth/geometry.hpp"
 #include "tooth/prepared.hpp"
@@ -146,23 +150,9 @@ struct VolumeIntegrator {
   }
 };
 
-}  // namespace
-
-std::string CavityReport::summary() const {
-  return fmt::format(
-      "occlusal reference at {}; thinnest wall {:.2f} mm, thinnest floor {:.2f} mm; tooth "
-      "removed {:.2f} mm^3",
-      mm3(occlusal_point), min_wall * 1e3, min_floor * 1e3, cavity_volume * 1e9);
-}
-
-PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
-                           const CavityParams& p) {
-  check_params(p);
-  auto impl =
-      std::make_shared<PreparedTooth::Impl>(PreparedTooth::Impl{tooth, given, p, {}, {}, {}, {}});
-  ToothFrame& f = impl->frame;
-
-  // Occlusal reference: rays down the axis from above the tooth, at the axis and around it.
+// The frame moved to the occlusal reference: rays down the axis from above the tooth, at the axis
+// and around it; the highest hit is z = 0.
+ToothFrame occlusal_frame(const MeshDistance& tooth, const ToothFrame& given) {
   const Bounds tb = local_bounds(tooth.mesh(), given);
   const real start = tb.max.z + 1e-3;
   real top = -inf;
@@ -178,115 +168,129 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
   if (!axis_hit)
     refuse("the long axis does not meet the tooth's occlusal surface",
            "check the tooth frame: its origin and z axis must pass through the crown");
+  ToothFrame f = given;
   f.origin = given.to_world({0, 0, top});
-  const Bounds lb = local_bounds(tooth.mesh(), f);
+  return f;
+}
 
-  // The shape, in the frame: z = 0 at the reference, walls diverging occlusally by the taper.
-  const real t = std::tan(p.taper_deg * pi / 180);
+// The preparation's outline in the frame (z = 0 at the reference, walls diverging occlusally by
+// the taper), in "xi" = sigma x, where the proximal side is +xi.
+struct Outline {
+  real t = 0;             // the taper's tangent
+  real sigma = 1;         // +1: the proximal box mesial (+x); -1: distal
+  bool class2 = false;
+  real xi_axial = 0;      // the proximal box's axial wall at the gingival floor (Class II)
+  // Converts a [lo, hi] xi range to x sides.
+  std::pair<Side, Side> x_sides(Side xi_lo, Side xi_hi) const {
+    if (sigma > 0) return {xi_lo, xi_hi};
+    return {Side{-xi_hi.a, -xi_hi.slope}, Side{-xi_lo.a, -xi_lo.slope}};
+  }
+};
+
+// The occlusal box and, for a Class II, the proximal box, added to `shape` (`lb`: the tooth's
+// bounds in the frame). Refuses a gingival floor below the tooth or an axial wall past the axis.
+Outline cavity_boxes(const MeshDistance& tooth, const ToothFrame& f, const Bounds& lb, const CavityParams& p,
+                     CavityShape& shape) {
+  Outline o;
+  o.t = std::tan(p.taper_deg * pi / 180);
+  o.sigma = p.side == ProximalSide::mesial ? 1 : -1;
+  o.class2 = p.kind == CavityClass::class_2;
+  const real t = o.t;
   const real z_top = lb.max.z + p.rounding + 1e-3;  // above every cusp: no top rounding in tooth
-  const real sigma = p.side == ProximalSide::mesial ? 1 : -1;
-  const bool class2 = p.kind == CavityClass::class_2;
-  // In "xi" = sigma x, the proximal side is +xi. Converts a [lo, hi] xi range to x sides.
-  auto x_sides = [&](Side xi_lo, Side xi_hi) {
-    if (sigma > 0) return std::pair{xi_lo, xi_hi};
-    return std::pair{Side{-xi_hi.a, -xi_hi.slope}, Side{-xi_lo.a, -xi_lo.slope}};
-  };
   const real xi_out = std::fmax(lb.max.x, -lb.min.x) + p.rounding + 1e-3;  // beyond the tooth
-  real xi_axial = 0;
   {
     SlantedBox occlusal;
     const Side far{-p.length / 2, -t};
-    const Side near = class2 ? Side{xi_out, 0} : Side{p.length / 2, t};
-    std::tie(occlusal.x_lo, occlusal.x_hi) = x_sides(far, near);
+    const Side near = o.class2 ? Side{xi_out, 0} : Side{p.length / 2, t};
+    std::tie(occlusal.x_lo, occlusal.x_hi) = o.x_sides(far, near);
     occlusal.y_lo = {-p.width / 2, -t};
     occlusal.y_hi = {p.width / 2, t};
     occlusal.z_lo = -p.depth;
     occlusal.z_hi = z_top;
-    impl->shape.boxes.emplace_back(occlusal, p.rounding, "occlusal box");
+    shape.boxes.emplace_back(occlusal, p.rounding, "occlusal box");
   }
-  if (class2) {
-    // The axial wall stands box_axial_depth inside the proximal surface at the gingival floor.
-    const Vec3 floor_centre{0, 0, -p.box_depth};
-    if (!tooth.inside(f.to_world(floor_centre)))
-      refuse(fmt::format("the gingival floor, {:.2f} mm below the occlusal reference, lies below "
-                         "the tooth on its axis",
-                         p.box_depth * 1e3),
-             "reduce box_depth");
-    const real to_surface =
-        tooth.ray(f.to_world(floor_centre), f.x * sigma).value_or(0);  // m along +xi
-    xi_axial = to_surface - p.box_axial_depth;
-    if (xi_axial < 0)
-      refuse(fmt::format("the proximal surface is {:.2f} mm from the axis at the gingival floor, "
-                         "so an axial depth of {:.2f} mm reaches past the long axis",
-                         to_surface * 1e3, p.box_axial_depth * 1e3),
-             "reduce box_axial_depth");
-    SlantedBox box;
-    std::tie(box.x_lo, box.x_hi) = x_sides(Side{xi_axial - t * p.box_depth, -t}, Side{xi_out, 0});
-    box.y_lo = {-p.box_width / 2, -t};
-    box.y_hi = {p.box_width / 2, t};
-    box.z_lo = -p.box_depth;
-    box.z_hi = z_top;
-    impl->shape.boxes.emplace_back(box, p.rounding, "proximal box");
-  }
+  if (!o.class2) return o;
+  // The axial wall stands box_axial_depth inside the proximal surface at the gingival floor.
+  const Vec3 floor_centre{0, 0, -p.box_depth};
+  if (!tooth.inside(f.to_world(floor_centre)))
+    refuse(fmt::format("the gingival floor, {:.2f} mm below the occlusal reference, lies below "
+                       "the tooth on its axis",
+                       p.box_depth * 1e3),
+           "reduce box_depth");
+  const real to_surface = tooth.ray(f.to_world(floor_centre), f.x * o.sigma).value_or(0);  // m along +xi
+  o.xi_axial = to_surface - p.box_axial_depth;
+  if (o.xi_axial < 0)
+    refuse(fmt::format("the proximal surface is {:.2f} mm from the axis at the gingival floor, "
+                       "so an axial depth of {:.2f} mm reaches past the long axis",
+                       to_surface * 1e3, p.box_axial_depth * 1e3),
+           "reduce box_axial_depth");
+  SlantedBox box;
+  std::tie(box.x_lo, box.x_hi) = o.x_sides(Side{o.xi_axial - t * p.box_depth, -t}, Side{xi_out, 0});
+  box.y_lo = {-p.box_width / 2, -t};
+  box.y_hi = {p.box_width / 2, t};
+  box.z_lo = -p.box_depth;
+  box.z_hi = z_top;
+  shape.boxes.emplace_back(box, p.rounding, "proximal box");
+  return o;
+}
 
-  // Fit: horizontal rays from the walls and vertical rays from the floors, inside the part of
-  // each wall the rounding leaves flat, from the floor up to a third of the depth below the
-  // reference (higher up the occlusal surface itself may dip below z = 0 in a groove).
-  const real r = p.rounding, step = 0.4e-3;
+// The surfaces the fit is checked on: horizontal rays from the walls and vertical rays from the
+// floors, inside the part of each wall the rounding leaves flat, from the floor up to a third of
+// the depth below the reference (higher up the occlusal surface itself may dip below z = 0 in a
+// groove).
+std::vector<Probe> fit_probes(const Outline& o, const CavityParams& p) {
+  const real t = o.t, sigma = o.sigma, r = p.rounding, step = 0.4e-3;
   auto wall_heights = [&](real floor_depth) {
     return steps(-floor_depth + r, std::fmin(-floor_depth / 3, -floor_depth + r), step);
   };
   std::vector<Probe> probes;
   const std::string prox = p.side == ProximalSide::mesial ? "mesial (+x)" : "distal (-x)";
-  {
-    const real xi_far = -p.length / 2;
-    const real xi_near = class2 ? xi_axial : p.length / 2;
-    for (real side : {-1.0, 1.0}) {
-      Probe wall{fmt::format("{} side wall of the occlusal box", side > 0 ? "+y" : "-y"),
-                 {},
-                 {0, side, 0}};
-      for (real z : wall_heights(p.depth))
-        for (real xi : steps(xi_far + r, xi_near - r, step))
-          wall.points.push_back({sigma * xi, side * (p.width / 2 + t * z), z});
-      probes.push_back(std::move(wall));
-    }
-    auto end_wall = [&](real xi_sign) {
-      const std::string name = sigma * xi_sign > 0 ? "mesial (+x)" : "distal (-x)";
-      Probe wall{name + " end wall of the occlusal box", {}, {sigma * xi_sign, 0, 0}};
-      for (real z : wall_heights(p.depth))
-        for (real y : steps(-p.width / 2 + r, p.width / 2 - r, step))
-          wall.points.push_back({sigma * xi_sign * (p.length / 2 + t * z), y, z});
-      probes.push_back(std::move(wall));
-    };
-    end_wall(-1);
-    if (!class2) end_wall(1);
-    Probe floor{"pulpal floor", {}, {0, 0, -1}, true};
-    const real half_w = p.width / 2 - t * p.depth - r;
-    for (real xi : steps(xi_far + r, xi_near - r, step))
-      for (real y : steps(-half_w, half_w, step)) floor.points.push_back({sigma * xi, y, -p.depth});
-    probes.push_back(std::move(floor));
+  const real xi_far = -p.length / 2;
+  const real xi_near = o.class2 ? o.xi_axial : p.length / 2;
+  for (real side : {-1.0, 1.0}) {
+    Probe wall{fmt::format("{} side wall of the occlusal box", side > 0 ? "+y" : "-y"), {}, {0, side, 0}};
+    for (real z : wall_heights(p.depth))
+      for (real xi : steps(xi_far + r, xi_near - r, step)) wall.points.push_back({sigma * xi, side * (p.width / 2 + t * z), z});
+    probes.push_back(std::move(wall));
   }
-  if (class2) {
-    // Beside the box, at its axial wall (nearer the proximal surface the walls thin out as the
-    // crown's contour curves in: that is where the box is meant to break through).
-    for (real side : {-1.0, 1.0}) {
-      Probe wall{fmt::format("{} side wall of the {} box", side > 0 ? "+y" : "-y", prox),
-                 {},
-                 {0, side, 0}};
-      for (real z : steps(-p.box_depth + r, -p.depth, step))
-        wall.points.push_back(
-            {sigma * (xi_axial - t * (p.box_depth + z) + r), side * (p.box_width / 2 + t * z), z});
-      probes.push_back(std::move(wall));
-    }
-    Probe floor{"gingival floor", {}, {0, 0, -1}, true};
-    const real half_w = p.box_width / 2 - t * p.box_depth - r;
-    for (real xi : steps(xi_axial + r, xi_axial + std::fmax(r, p.box_axial_depth / 2), step))
-      for (real y : steps(-half_w, half_w, step))
-        floor.points.push_back({sigma * xi, y, -p.box_depth});
-    probes.push_back(std::move(floor));
+  auto end_wall = [&](real xi_sign) {
+    const std::string name = sigma * xi_sign > 0 ? "mesial (+x)" : "distal (-x)";
+    Probe wall{name + " end wall of the occlusal box", {}, {sigma * xi_sign, 0, 0}};
+    for (real z : wall_heights(p.depth))
+      for (real y : steps(-p.width / 2 + r, p.width / 2 - r, step))
+        wall.points.push_back({sigma * xi_sign * (p.length / 2 + t * z), y, z});
+    probes.push_back(std::move(wall));
+  };
+  end_wall(-1);
+  if (!o.class2) end_wall(1);
+  Probe floor{"pulpal floor", {}, {0, 0, -1}, true};
+  const real half_w = p.width / 2 - t * p.depth - r;
+  for (real xi : steps(xi_far + r, xi_near - r, step))
+    for (real y : steps(-half_w, half_w, step)) floor.points.push_back({sigma * xi, y, -p.depth});
+  probes.push_back(std::move(floor));
+  if (!o.class2) return probes;
+  // Beside the box, at its axial wall (nearer the proximal surface the walls thin out as the
+  // crown's contour curves in: that is where the box is meant to break through).
+  for (real side : {-1.0, 1.0}) {
+    Probe wall{fmt::format("{} side wall of the {} box", side > 0 ? "+y" : "-y", prox), {}, {0, side, 0}};
+    for (real z : steps(-p.box_depth + r, -p.depth, step))
+      wall.points.push_back({sigma * (o.xi_axial - t * (p.box_depth + z) + r), side * (p.box_width / 2 + t * z), z});
+    probes.push_back(std::move(wall));
   }
-  impl->report.min_wall = inf;
-  impl->report.min_floor = inf;
+  Probe gingival{"gingival floor", {}, {0, 0, -1}, true};
+  const real box_half_w = p.box_width / 2 - t * p.box_depth - r;
+  for (real xi : steps(o.xi_axial + r, o.xi_axial + std::fmax(r, p.box_axial_depth / 2), step))
+    for (real y : steps(-box_half_w, box_half_w, step)) gingival.points.push_back({sigma * xi, y, -p.box_depth});
+  probes.push_back(std::move(gingival));
+  return probes;
+}
+
+// The thinnest tooth left beside the walls and under the floors, into `report`; refuses the first
+// surface that leaves less than min_wall or min_floor, naming it and where.
+void check_fit(const MeshDistance& tooth, const ToothFrame& f, const std::vector<Probe>& probes, const CavityParams& p,
+               CavityReport& report) {
+  report.min_wall = inf;
+  report.min_floor = inf;
   for (const Probe& probe : probes) {
     real least = inf;
     Vec3 where;
@@ -294,7 +298,7 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
       const real th = thickness(tooth, f, q, probe.direction);
       if (th < least) least = th, where = q;
     }
-    real& keep = probe.floor ? impl->report.min_floor : impl->report.min_wall;
+    real& keep = probe.floor ? report.min_floor : report.min_wall;
     keep = std::fmin(keep, least);
     const real need = probe.floor ? p.min_floor : p.min_wall;
     if (least >= need) continue;
@@ -310,35 +314,61 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
                        least == 0 ? ": the outline runs off the crown" : ""),
            "make the outline narrower or shorter, or the cavity shallower");
   }
+}
 
-  // Volume of the tooth removed, by octree cells of root size 8 finest cells.
-  Bounds cb = impl->shape.bounds();
+// The tooth the shape removes, by octree cells of root size 8 finest cells over the shape's bounds
+// within the tooth's (`lb`): its volume and the box of the cells that count (frame coordinates).
+VolumeIntegrator removed_tooth(const CavityShape& shape, const MeshDistance& tooth, const ToothFrame& f, const Bounds& lb) {
+  Bounds cb = shape.bounds();
   cb.min = vmax(cb.min, lb.min);
   cb.max = vmin(cb.max, lb.max);
-  VolumeIntegrator vi{impl->shape, tooth, f};
+  VolumeIntegrator vi{shape, tooth, f};
   constexpr int levels = 3;
   const real root = volume_cell * (1 << levels);
   const auto cells = [&](real lo, real hi) { return int(std::ceil((hi - lo) / root)); };
-  const int nx = cells(cb.min.x, cb.max.x), ny = cells(cb.min.y, cb.max.y),
-            nz = cells(cb.min.z, cb.max.z);
+  const int nx = cells(cb.min.x, cb.max.x), ny = cells(cb.min.y, cb.max.y), nz = cells(cb.min.z, cb.max.z);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        vi.cell(cb.min + Vec3{i + 0.5, j + 0.5, k + 0.5} * root, root / 2, levels);
-  if (!(vi.volume > 0))
-    refuse("it removes no tooth", "check the frame: the cavity must sit on the occlusal surface");
-  impl->report.cavity_volume = vi.volume;
-  impl->report.occlusal_point = f.origin;
-  impl->cavity_local = vi.hit;
+      for (int i = 0; i < nx; ++i) vi.cell(cb.min + Vec3{i + 0.5, j + 0.5, k + 0.5} * root, root / 2, levels);
+  if (!(vi.volume > 0)) refuse("it removes no tooth", "check the frame: the cavity must sit on the occlusal surface");
+  return vi;
+}
+
+// A box in the frame as the world's axis-aligned box around it.
+Bounds world_bounds(const ToothFrame& f, const Bounds& local) {
   Bounds w{{inf, inf, inf}, {-inf, -inf, -inf}};
   for (int k = 0; k < 8; ++k) {
-    const Vec3 c =
-        f.to_world({k & 1 ? vi.hit.max.x : vi.hit.min.x, k & 2 ? vi.hit.max.y : vi.hit.min.y,
-                    k & 4 ? vi.hit.max.z : vi.hit.min.z});
+    const Vec3 c = f.to_world({k & 1 ? local.max.x : local.min.x, k & 2 ? local.max.y : local.min.y,
+                               k & 4 ? local.max.z : local.min.z});
     w.min = vmin(w.min, c);
     w.max = vmax(w.max, c);
   }
-  impl->cavity_world = w;
+  return w;
+}
+
+}  // namespace
+
+std::string CavityReport::summary() const {
+  return fmt::format(
+      "occlusal reference at {}; thinnest wall {:.2f} mm, thinnest floor {:.2f} mm; tooth "
+      "removed {:.2f} mm^3",
+      mm3(occlusal_point), min_wall * 1e3, min_floor * 1e3, cavity_volume * 1e9);
+}
+
+PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
+                           const CavityParams& p) {
+  check_params(p);
+  auto impl =
+      std::make_shared<PreparedTooth::Impl>(PreparedTooth::Impl{tooth, given, p, {}, {}, {}, {}});
+  const ToothFrame& f = impl->frame = occlusal_frame(tooth, given);
+  const Bounds lb = local_bounds(tooth.mesh(), f);
+  const Outline outline = cavity_boxes(tooth, f, lb, p, impl->shape);
+  check_fit(tooth, f, fit_probes(outline, p), p, impl->report);
+  const VolumeIntegrator removed = removed_tooth(impl->shape, tooth, f, lb);
+  impl->report.cavity_volume = removed.volume;
+  impl->report.occlusal_point = f.origin;
+  impl->cavity_local = removed.hit;
+  impl->cavity_world = world_bounds(f, removed.hit);
   return PreparedTooth(std::move(impl));
 }
 
