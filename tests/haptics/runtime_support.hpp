@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
+#include <functional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -14,6 +18,7 @@
 
 #include "client_process.hpp"
 #include "dentsph/haptics.hpp"
+#include "dentsph/haptics/protocol.hpp"
 #include "press_scene.hpp"
 
 // Built with ThreadSanitizer (clang's __has_feature, gcc's __SANITIZE_THREAD__): the simulation
@@ -66,17 +71,80 @@ inline void expect_safe(const RealtimeResult& r, const DeviceProfile& p) {
   }
 }
 
+// Waits, polling, until `done()` or `limit_s` of wall time has passed; returns whether it was done.
+// The limit is a guard against a hang, never the measure: a test waits on its events.
+inline bool wait_until(const std::function<bool()>& done, double limit_s = 60) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
+}
+
+// The longest stretch of ticks whose pose was stale (haptic_protocol::kPoseStale), from where the
+// watchdog's ramp down is over (and two ticks more) to its last tick: {start, end} in the recording's
+// seconds, {0, 0} when no pose went stale.
+inline std::pair<double, double> longest_stale_stretch(const RealtimeResult& r, const WatchdogParams& w) {
+  std::pair<double, double> best{0, 0};
+  double from = -1;
+  for (const HapticSample& s : r.recording.haptic) {
+    if (!(s.status & haptic_protocol::kPoseStale)) {
+      from = -1;
+      continue;
+    }
+    if (from < 0) from = s.t;
+    const double start = from + w.ramp_down_s + 0.002;
+    if (s.t >= start && s.t - start > best.second - best.first) best = {start, s.t};
+  }
+  return best;
+}
+
+// The runtime on a thread of its own while `drive` runs on this one (starting clients and waiting
+// for them to finish: events, not the clock), given the haptic loop's live figures, stopped once
+// `drive` returns. `o.duration_s` is a guard (60 s when unset): a run that lasts that long did not
+// see its events.
+inline RealtimeResult run_while(const Scene& scene, Device& device, RealtimeOptions o,
+                                const std::function<void(const HapticLive&)>& drive) {
+  std::atomic<bool> stop{false};
+  HapticLive live;
+  o.stop = &stop;
+  o.live = &live;
+  if (o.duration_s <= 0) o.duration_s = 60;
+  o.record_capacity_s = std::max(o.record_capacity_s, o.duration_s);
+  RealtimeResult r;
+  std::thread runtime([&] { r = run_realtime(scene, device, o); });
+  drive(live);
+  stop.store(true);
+  runtime.join();
+  return r;
+}
+
+// Whether the haptic loop has ticked `n` more times from now (each tick reads what the device was
+// sent before it), waiting for it: n = 1 when the runtime has just started, a few once a client has
+// exited, so that its last messages (its goodbye) are read before the runtime stops.
+inline bool haptic_ticks_pass(const HapticLive& live, std::uint64_t n = 1) {
+  const std::uint64_t from = live.ticks.load(std::memory_order_relaxed);
+  return wait_until([&] { return live.ticks.load(std::memory_order_relaxed) >= from + n; });
+}
+
 // The press scene under the runtime with a UDP device, the reference client (given arguments)
-// playing it from a separate process; the runtime's result and the client's report.
-inline std::pair<RealtimeResult, nlohmann::json> run_with_client(const RealtimeOptions& o, std::vector<std::string> args,
+// playing it from a separate process; the runtime's result and the client's report. The client
+// starts once the haptic loop runs, and the runtime stops once the client has finished, so that a
+// slow start on either side changes nothing (`o.duration_s` is only a guard).
+inline std::pair<RealtimeResult, nlohmann::json> run_with_client(RealtimeOptions o, std::vector<std::string> args,
                                                                  const std::string& tag) {
   const Scene scene = press_scene();
   std::uint16_t port = 0;
   auto device = make_udp_device({"127.0.0.1", 0}, &port);
-  ClientProcess client(port, std::move(args), tag);
-  if (!client.started()) return {};
-  RealtimeResult r = run_realtime(scene, *device, o);
-  nlohmann::json c = client.wait();
+  o.duration_s = 60;
+  nlohmann::json c;
+  RealtimeResult r = run_while(scene, *device, o, [&](const HapticLive& live) {
+    if (!haptic_ticks_pass(live)) return;
+    ClientProcess client(port, std::move(args), tag);
+    if (client.started()) c = client.wait();
+    haptic_ticks_pass(live, 20);
+  });
   print_timing(r);
   std::printf("client: %s\n", c.dump().c_str());
   return {std::move(r), std::move(c)};

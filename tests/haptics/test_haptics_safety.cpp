@@ -50,7 +50,6 @@ using testing::run_with_client;
 TEST(HapticSafety, AnAbsurdPoseIsRefusedAndTheForceHolds) {
   for (const std::string spike : {"50", "1e300", "0.2"}) {  // 0.2 m: in the workspace, but 20 cm in 1 ms
     RealtimeOptions o = options(ForceMode::coupling);
-    o.duration_s = 2.0;
     const auto [r, c] = run_with_client(o, {"--duration", "1.8", "--motion", "hold", "--depth", "0.05",
                                             "--spike-at", "1.0", "--spike-m", spike}, "spike");
     ASSERT_FALSE(c.is_null()) << "the client failed";
@@ -104,7 +103,6 @@ TEST(HapticSafety, AnAbsurdPoseIsRefusedAndTheForceHolds) {
 // faster than a hand, or outside the workspace, and refused; the device never feels a thrown tool.
 TEST(HapticSafety, AClientInMillimetresIsRefusedNotFollowed) {
   RealtimeOptions o = options(ForceMode::coupling);
-  o.duration_s = 1.2;
   const auto [r, c] = run_with_client(o, {"--duration", "1.0", "--motion", "press", "--depth", "0.03", "--scale",
                                           "1000"}, "millimetres");
   ASSERT_FALSE(c.is_null()) << "the client failed";
@@ -128,20 +126,17 @@ TEST(HapticSafety, AClientInMillimetresIsRefusedNotFollowed) {
 TEST(HapticSafety, ANewClientStartsWithItsOwnToolAndTheForceRampsIn) {
   const Scene scene = press_scene();
   RealtimeOptions o = options(ForceMode::coupling);
-  o.duration_s = 2.4;
   std::uint16_t port = 0;
   auto device = make_udp_device({"127.0.0.1", 0}, &port);
   // A presses 5 cm down into the paste and holds, says bye; B connects at once, its device 9 cm
   // above the paste's surface... clear of it (the device's origin is the tool's first keyframe).
   nlohmann::json a_report, b_report;
-  std::thread clients([&] {
-    ClientProcess a(port, {"--duration", "1.0", "--motion", "hold", "--depth", "0.05"}, "first");
-    a_report = a.wait();
-    ClientProcess b(port, {"--duration", "1.0", "--motion", "still"}, "second");
-    b_report = b.wait();
+  const RealtimeResult r = testing::run_while(scene, *device, o, [&](const HapticLive& live) {
+    if (!testing::haptic_ticks_pass(live)) return;
+    a_report = ClientProcess(port, {"--duration", "1.0", "--motion", "hold", "--depth", "0.05"}, "first").wait();
+    b_report = ClientProcess(port, {"--duration", "1.0", "--motion", "still"}, "second").wait();
+    testing::haptic_ticks_pass(live, 20);
   });
-  const RealtimeResult r = run_realtime(scene, *device, o);
-  clients.join();
   print_timing(r);
   ASSERT_FALSE(a_report.is_null());
   ASSERT_FALSE(b_report.is_null());
@@ -184,7 +179,6 @@ TEST(HapticSafety, ANewClientStartsWithItsOwnToolAndTheForceRampsIn) {
 TEST(HapticSafety, AClientThatRestartsItsNumberingIsANewSession) {
   for (const bool hello : {false, true}) {
     RealtimeOptions o = options(ForceMode::coupling);
-    o.duration_s = 2.2;
     std::vector<std::string> args = {"--duration", "2.0", "--motion", "press", "--depth", "0.03", "--restart-at", "1.0"};
     if (hello) args.push_back("--hello");
     const auto [r, c] = run_with_client(o, args, hello ? "restart_hello" : "restart");
@@ -316,7 +310,6 @@ std::string protocol_doc() {
 // device reports is named in the document.
 TEST(HapticProtocolDoc, AClientWrittenFromItIsUnderstoodAndEveryCounterIsNamed) {
   RealtimeOptions o = options(ForceMode::coupling);
-  o.duration_s = 1.7;
   const auto [r, c] = run_with_client(o, {"--duration", "1.5", "--motion", "press", "--depth", "0.03", "--hello",
                                           "--heartbeat-every", "0.01"}, "doc");
   ASSERT_FALSE(c.is_null()) << "the client failed";
@@ -365,7 +358,6 @@ TEST_P(ButtonToggledFast, IsRateLimited) {
   const FastButton& b = GetParam();
   RealtimeOptions o = options(ForceMode::direct);
   o.workspace.origin = {0.03, 0, 0.11};  // the still device's tool beside the increments' drop
-  o.duration_s = 2.2;
   const real s = increment_spacing(press_scene());
   o.dispense_volume = 20 * s * s * s;
   const auto [r, c] = run_with_client(o, {"--duration", "2.0", "--motion", "still", b.client_option, "250"}, b.name);
@@ -375,7 +367,7 @@ TEST_P(ButtonToggledFast, IsRateLimited) {
   std::printf("%s: presses counted %llu, refused %llu, applied %llu\n", b.name, (unsigned long long)counted,
               (unsigned long long)refused, (unsigned long long)(r.sim.*b.applied));
   EXPECT_GT(refused, 100u);
-  EXPECT_LE(counted, std::uint64_t(3 * b.per_second));  // 2.2 s
+  EXPECT_LE(counted, std::uint64_t(3 * b.per_second));  // the client's 2 s
   EXPECT_GE(counted, std::uint64_t(b.per_second));
   EXPECT_EQ(r.sim.*b.applied, counted);
   EXPECT_EQ(h[b.refused_key], refused);
