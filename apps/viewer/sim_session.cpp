@@ -43,7 +43,7 @@ SimSession::~SimSession() { stop(); }
 
 void SimSession::reset() {
   auto fresh = std::make_unique<Simulation>(scene_, SimulationOptions{opt_.backend, opt_.threads, false});
-  if (paste_edited_) fresh->set_paste(scene_.model, paste_);  // the paste as edited, not as the scene gave it
+  if (paste_edited_) fresh->set_paste(adhesion_, paste_);  // the paste as edited, not as the scene gave it
   sim_ = std::move(fresh);  // only once it stands: a reset that fails keeps the running simulation
   tool_name_ = scene_.tooth ? "ball_burnisher" : "scene tool";
   target_ = scene_.tool.keyframes.empty() ? Vec3{} : scene_.tool.at(0).position;
@@ -222,25 +222,22 @@ void SimSession::set_material(const MaterialEdit& m, Simulation& sim) {
     message_ = "material: Kp must be positive, mu and Ka non-negative";
     return;
   }
-  ModelParams p = scene_.params;
-  p.adhesion.A = m.A;
-  p.adhesion.B = m.B;
-  p.adhesion.eps = m.eps;
-  p.adhesion.zeta = m.zeta;
+  AdhesionParams adhesion = sim.model().adhesion;
+  adhesion.A = m.A;
+  adhesion.B = m.B;
+  adhesion.eps = m.eps;
+  adhesion.zeta = m.zeta;
   Material paste = paste_;
   paste.Kp = m.Kp;
   paste.Ka = m.Ka;
   paste.mu = m.mu;
   try {
-    const Model model = make_model(p);
-    // Refused when dt would be over the acoustic or viscous limit: the paste would explode.
-    sim.set_paste(model, paste);
-    scene_.params = p;
-    // The new adhesion kernel; the scene keeps its materials as it gave them (a reset builds its
-    // particles from them, then edits the paste again), the Simulation's Model has the edit.
-    MaterialTable materials = std::move(scene_.model.materials);
-    scene_.model = model;
-    scene_.model.materials = std::move(materials);
+    // Made on the Simulation's Model, the one its stepper reads; refused (nothing changed) for an
+    // impossible kernel, or where dt would be over the acoustic or viscous limit: the paste would
+    // explode. The scene stays as it was given: a reset builds its particles from it and then
+    // makes the edit again.
+    sim.set_paste(adhesion, paste);
+    adhesion_ = adhesion;
     paste_ = paste;
     paste_edited_ = true;
   } catch (const std::exception& e) {

@@ -167,6 +167,7 @@ class SimSession {
   std::optional<CavityAssessor> assessor_;
   real force_scale_ = 1;  // device N per simulated N: the scene's, or the runtime's override
   Material paste_;
+  AdhesionParams adhesion_;  // the edit's kernel (set_material), made again after a reset
   bool paste_edited_ = false;
   std::string tool_name_ = "ball_burnisher";
   std::string message_;

@@ -61,7 +61,8 @@ std::unique_ptr<Stepper> make_cuda_stepper(const Model& model, const State& stat
 // The same algorithm run on the CPU: the CUDA backend's stage bodies looped over the particles,
 // a stable sort for CUB's radix sort, sums for the reductions. Always built; tested against step().
 std::unique_ptr<Stepper> make_emulated_gpu_stepper(const Model& model, const State& state);
-// The stepper of `backend` for `state` under `model`; `threads` are the CPU step's. Throws
+// The stepper of `backend` for `state` under `model` (the caller's, outliving the stepper, which
+// reads it by reference); `threads` are the CPU step's. Throws
 // CudaUnavailable for cuda where it cannot run, and std::invalid_argument for a model the backend
 // cannot step.
 std::unique_ptr<Stepper> make_stepper(Backend backend, const Model& model, const State& state, int threads,

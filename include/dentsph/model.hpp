@@ -202,6 +202,14 @@ inline void set_lattice_spacing(ModelParams& p, real s) {
 // whose message names the offending field and says how to fix it.
 Model make_model(const ModelParams& p);
 
+// Checks an adhesion kernel against the kernel support h: A < h < B, eps > zeta > 0; throws
+// std::invalid_argument naming the field (make_model checks its adhesion so).
+void check_adhesion(const AdhesionParams& a, real h);
+
+// `m` with the adhesion kernel `a` (checked against m's h, its constants derived again), the rest
+// of it unchanged: a paste edit of a running Simulation (Simulation::set_paste).
+Model with_adhesion(Model m, const AdhesionParams& a);
+
 // C_d of docs/model.md ("Kernels"): 1 / (x*^zeta - x*^eps) with x* = (zeta/eps)^(1/(eps-zeta)).
 real adhesion_normalisation(real eps, real zeta);
 

@@ -122,7 +122,8 @@ class Simulation {
  public:
   // The scene's initial state (make_state) and the stepper of `options.backend` for it. Throws
   // UnstableTimeStep when dt is over a limit (unless allowed) and CudaUnavailable where the cuda
-  // backend cannot run. `scene` must outlive the Simulation; its Model is copied.
+  // backend cannot run. `scene` must outlive the Simulation. The run's Model starts as the scene's
+  // and is the Simulation's alone: its stepper reads it by reference, set_paste edits it.
   Simulation(const Scene& scene, const SimulationOptions& options = {});
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -155,13 +156,16 @@ class Simulation {
   // The instrument `name` in place of the tool (switch_instrument; std::invalid_argument for an
   // unknown name, nothing changed).
   void switch_instrument(const std::string& name);
-  // An edit of the Model's paste material (MaterialTable::paste, or the entry of scene_paste's
-  // values): its viscosity, stiffness and adhesion strength become `paste`'s (its rest density
-  // stays), so every particle of it takes them (other materials, and paste the cure has changed,
-  // keep theirs), and the Model becomes `model` with the run's material table (same dt, h and grid;
-  // the adhesion kernel may differ), unless dt would be over the acoustic or viscous limit of the
-  // State that gives: then nothing changes and it throws UnstableTimeStep naming the limit.
-  void set_paste(const Model& model, const Material& paste);
+  // An edit of the run's paste, made here on the Model this Simulation owns (its stepper reads
+  // that one): the paste material's (MaterialTable::paste, or the entry of scene_paste's) viscosity,
+  // stiffness and adhesion strength become `paste`'s (its rest density stays), so every particle of
+  // it takes them (other materials, and paste the cure has changed, keep theirs), and the adhesion
+  // kernel becomes `adhesion`'s (A, B, eps, zeta; its constants derived again). The rest of the
+  // Model (dt, h, the grid, the wall field, the materials) stays the run's. Throws
+  // std::invalid_argument naming the field for an impossible kernel, and UnstableTimeStep naming
+  // the limit where dt would be over the acoustic or viscous limit of the State that gives; either
+  // way nothing changes.
+  void set_paste(const AdhesionParams& adhesion, const Material& paste);
 
   // One step with the tool moved to `tool_pose`: the statistics and the force limit updated,
   // divergence checked, and, when the run cures, the cure updated for the step

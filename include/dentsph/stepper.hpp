@@ -69,7 +69,8 @@ class Stepper {
 enum class ThreadPolicy { fixed, governed };
 
 // The CPU step of `model` on `threads` threads: the model's solver object (solver.hpp), sized for
-// `state`, steps the host State itself.
+// `state`, steps the host State itself. `model` is the caller's and must outlive the stepper, which
+// reads it by reference at every step (a Simulation owns its run's Model).
 std::unique_ptr<Stepper> make_cpu_stepper(const Model& model, const State& state, int threads,
                                           ThreadPolicy policy = ThreadPolicy::fixed);
 

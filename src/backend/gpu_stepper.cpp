@@ -51,7 +51,7 @@ class GpuStepper final : public Stepper {
 
   Backend backend_;
   MakeEngine make_;
-  Model model_;
+  const Model& model_;  // the caller's (a Simulation's): it outlives the stepper
   std::unique_ptr<gpu::Engine> engine_;
   const State* synced_ = nullptr;  // the State whose particles are the engine's now
 };

@@ -108,6 +108,30 @@ void check_iisph_params(const IisphParams& ip) {
     fail("iisph.stiffness", fmt::format("must be in (0, 1], got {}; 0.5 is the paper's paste's stiffness", ip.stiffness));
 }
 
+void check_adhesion(const AdhesionParams& a, real h) {
+  require_finite_positive(a.A, "adhesion.A", "give the bond-forming distance in metres, a little under h");
+  require_finite_positive(a.B, "adhesion.B", "give the bond-breaking distance in metres, a little over h");
+  if (!(a.A < h && h < a.B))
+    fail("adhesion.A/adhesion.B",
+         fmt::format("need A < h < B (docs/model.md, \"Adhesion hysteresis\"), got A = {}, h = {}, B = {}; e.g. A = 0.6 h, "
+                     "B = 1.5 h",
+                     a.A, h, a.B));
+  require_finite_positive(a.eps, "adhesion.eps", "the paper uses eps = 3");
+  require_finite_positive(a.zeta, "adhesion.zeta", "the paper uses zeta = 2");
+  if (!(a.eps > a.zeta))
+    fail("adhesion.eps", fmt::format("must exceed adhesion.zeta (got eps = {}, zeta = {}); the paper uses 3 and 2", a.eps, a.zeta));
+}
+
+Model with_adhesion(Model m, const AdhesionParams& a) {
+  check_adhesion(a, m.kernel.h);
+  const bool cubic_density = m.kernel.cubic_density;
+  m.adhesion = a;
+  m.adhesion.Cd = adhesion_normalisation(a.eps, a.zeta);
+  m.kernel = kernels::make_coeffs(m.kernel.h, m.adhesion);
+  m.kernel.cubic_density = cubic_density;
+  return m;
+}
+
 Model make_model(const ModelParams& p) {
   require_finite_positive(p.dt, "dt", "give the time step in seconds, e.g. 1e-4");
   if (p.dt < limits::min_dt)
@@ -121,17 +145,7 @@ Model make_model(const ModelParams& p) {
                                 "[0, 0, -9.81]",
                                 norm(p.gravity), limits::max_gravity));
   const AdhesionParams& a = p.adhesion;
-  require_finite_positive(a.A, "adhesion.A", "give the bond-forming distance in metres, a little under h");
-  require_finite_positive(a.B, "adhesion.B", "give the bond-breaking distance in metres, a little over h");
-  if (!(a.A < p.h && p.h < a.B))
-    fail("adhesion.A/adhesion.B",
-         fmt::format("need A < h < B (docs/model.md, \"Adhesion hysteresis\"), got A = {}, h = {}, B = {}; e.g. A = 0.6 h, "
-                     "B = 1.5 h",
-                     a.A, p.h, a.B));
-  require_finite_positive(a.eps, "adhesion.eps", "the paper uses eps = 3");
-  require_finite_positive(a.zeta, "adhesion.zeta", "the paper uses zeta = 2");
-  if (!(a.eps > a.zeta))
-    fail("adhesion.eps", fmt::format("must exceed adhesion.zeta (got eps = {}, zeta = {}); the paper uses 3 and 2", a.eps, a.zeta));
+  check_adhesion(a, p.h);
   if (p.max_bonds_per_particle < 1 || p.max_bonds_per_particle > 1024)
     fail("max_bonds_per_particle", fmt::format("must be in [1, 1024], got {}", p.max_bonds_per_particle));
   require_finite_positive(p.cfl_lambda, "cfl_lambda", "about 0.4 is usual");

@@ -62,12 +62,11 @@ void Simulation::switch_instrument(const std::string& name) {
   dentsph::switch_instrument(scene_, edit(), name);
 }
 
-void Simulation::set_paste(const Model& model, const Material& paste) {
-  Model next = model;
-  next.materials = model_.materials;  // the run's table (`model` gives the adhesion kernel)
+void Simulation::set_paste(const AdhesionParams& adhesion, const Material& paste) {
+  Model next = with_adhesion(model_, adhesion);
   if (!next.materials.paste) next.materials.paste = next.materials.find(scene_paste(scene_).material);
   StabilityLimits l = stability_limits(next, synced(), &paste);
-  const std::string excess = time_step_excess(model.dt, l);
+  const std::string excess = time_step_excess(next.dt, l);
   if (!excess.empty())
     throw UnstableTimeStep(fmt::format("refused: {} with this paste; lower its stiffness (Kp) or viscosity (mu)", excess));
   State& st = edit();

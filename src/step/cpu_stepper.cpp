@@ -49,7 +49,7 @@ class CpuStepper final : public Stepper {
   std::size_t solver_bytes() const override { return solver_->bytes(); }
 
  private:
-  Model model_;
+  const Model& model_;  // the caller's (a Simulation's): it outlives the stepper
   std::unique_ptr<StepSolver> solver_;
   int threads_;
   std::optional<ThreadGovernor> governor_;

@@ -177,7 +177,7 @@ TEST(CureInARun, APasteEditIsKeptByTheCure) {
   Material edited = kPaste;
   edited.mu = 0.5 * kPaste.mu;
   edited.Ka = 2 * kPaste.Ka;
-  sim.set_paste(sc.model, edited);
+  sim.set_paste(sc.model.adhesion, edited);
   while (sim.state().time + 0.5 * sc.model.dt < sc.duration) {
     sim.apply_due_events();
     ASSERT_TRUE(sim.step(sim.keyframe_pose()));

@@ -174,7 +174,7 @@ TEST(MaterialTable, PasteEditsApplyToPasteParticlesOnly) {
   for (int n = 0; n < 5; ++n) sim.step(sim.keyframe_pose());
   const State before = sim.synced();
   const Material edited{0.4, 50, 1000, 80};
-  sim.set_paste(sc.model, edited);
+  sim.set_paste(sc.model.adhesion, edited);
   for (int n = 0; n < 5; ++n) sim.step(sim.keyframe_pose());
   const State& st = sim.synced();
   const MaterialTable& t = sim.model().materials;
@@ -206,6 +206,34 @@ TEST(MaterialTable, PasteEditsApplyToPasteParticlesOnly) {
     if (after.role[i] == Role::material) {
       ASSERT_EQ(after.mu[i], 0.4);
     }
+}
+
+// A paste edit is made on the Simulation's own Model, the one its stepper reads: the adhesion
+// kernel and the paste change, and the rest of the run's Model stays (dt, the other materials, and
+// the wall field that keeps the iisph paste out of the tooth). Before, the viewer built a Model
+// from the scene's parameters and the run took that one: an edit in the viewer took the dental
+// scene's wall field away. An impossible kernel is refused and changes nothing.
+TEST(MaterialTable, APasteEditKeepsTheRunsModel) {
+  const Scene sc = default_dental_procedure();
+  ASSERT_TRUE(sc.model.walls) << "the iisph dental scene's wall field";
+  Simulation sim(sc, {Backend::cpu, 1, false});
+  AdhesionParams adhesion = sc.model.adhesion;
+  adhesion.eps = 4;
+  Material paste = scene_paste(sc).material;
+  paste.mu *= 2;
+  sim.set_paste(adhesion, paste);
+  const Model& m = sim.model();
+  EXPECT_EQ(m.walls, sc.model.walls);
+  EXPECT_EQ(m.dt, sc.model.dt);
+  EXPECT_EQ(m.materials.size(), sc.model.materials.size());
+  EXPECT_EQ(m.adhesion.eps, 4);
+  EXPECT_NE(m.adhesion.Cd, sc.model.adhesion.Cd) << "the kernel's constants derived again";
+  EXPECT_EQ(m.materials[*m.materials.paste].mu, paste.mu);
+  AdhesionParams impossible = adhesion;
+  impossible.eps = 1;  // under zeta
+  EXPECT_THROW(sim.set_paste(impossible, paste), std::invalid_argument);
+  EXPECT_EQ(sim.model().adhesion.eps, 4);
+  EXPECT_TRUE(sim.step(sim.keyframe_pose()));
 }
 
 nlohmann::json scene_json() {
