@@ -3,7 +3,10 @@
 #include "material_test.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <iterator>
+#include <stdexcept>
+#include <vector>
 #include <thread>
 
 #include <fmt/format.h>
@@ -68,6 +71,14 @@ void MaterialTestCommand::add_handling(CLI::App& parent, const std::string& desc
                      fmt::format("The probe's surface: {} (non-stick)", fmt::join(instrument_surface_names(), " or ")))
         ->check(CLI::IsMember(instrument_surface_names()))
         ->capture_default_str();
+  if (h.name == "rheometer")
+    h.command
+        ->add_option("--shear-rates", h.shear_rates,
+                     fmt::format("The rates of the flow curve, 1/s at the rim, ascending, at least two (each a steady run; "
+                                 "default {}: fewer take less time)",
+                                 fmt::join(RheometerOptions{}.shear_rates, ",")))
+        ->delimiter(',')
+        ->check(CLI::Range(0.01, 1000.0));
   h.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   h.command->add_option("--threads", h.threads, "Threads for the parallel stages")
       ->check(CLI::Range(1, 1024))
@@ -80,7 +91,20 @@ int MaterialTestCommand::run_handling(const Handling& h) const {
   run.threads = h.threads;
   run.instrument = h.instrument;
   run.progress = [](const std::string& line) { fmt::print("{}\n", line); };
-  const HandlingResult r = run_handling_test(h.name, paste_preset(h.material, h.temperature_c), run);
+  const PastePreset preset = paste_preset(h.material, h.temperature_c);
+  HandlingResult r;
+  if (!h.shear_rates.empty()) {
+    RheometerOptions o;
+    o.run = run;
+    o.shear_rates.assign(h.shear_rates.begin(), h.shear_rates.end());
+    if (o.shear_rates.size() < 2 ||
+        std::adjacent_find(o.shear_rates.begin(), o.shear_rates.end(), std::greater_equal<>()) != o.shear_rates.end())
+      throw std::invalid_argument(fmt::format("--shear-rates {}: give at least two rates, ascending (e.g. 5,10,20)",
+                                              fmt::join(h.shear_rates, ",")));
+    r = rheometer_test(preset, o);
+  } else {
+    r = run_handling_test(h.name, preset, run);
+  }
   fmt::print("{}", handling_report(r));
   if (!h.out.empty()) {
     write_handling_outputs(h.out, r);

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -32,6 +33,7 @@ class MaterialTestCommand {
     std::string out{};
     std::string instrument = "steel";
     int threads = 1;
+    std::vector<double> shear_rates{};  // rheometer: 1/s at the rim (empty: RheometerOptions')
   };
   void add_handling(CLI::App& parent, const std::string& description, Handling& h);
   int run_handling(const Handling& h) const;

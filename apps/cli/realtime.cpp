@@ -78,9 +78,8 @@ RealtimeOptions RealtimeCommand::options(const Scene& scene, double duration_s, 
   o.snapshot_rate_hz = snapshot_rate_;
   // Without --threads the simulation may use every core: its thread governor (ThreadGovernor, the
   // Simulation's default) times the steps and falls back to fewer threads when the haptic loop, the
-  // consumer or another program takes a core (measured on 2 cores, idle, the built-in procedure
-  // for 5 s, three alternated runs: the iisph solver at 0.53 x real time with one thread, 0.66
-  // with two; the paper's step 0.24 and 0.30).
+  // consumer or another program takes a core (one thread against two under the runtime, measured:
+  // bench/results/realtime-solvers-amd-epyc-2core.txt).
   o.threads = threads_option_ && threads_option_->count() > 0 ? threads
                                                               : std::max(1, int(std::thread::hardware_concurrency()));
   o.allow_unstable = allow_unstable;

@@ -391,7 +391,8 @@ TEST(ReportBrowser, StoreFindsAStudentsSessionsWithoutFolders) {
 TEST(ReportBrowser, AHandlingTestsPlotShowsItsCurveLawAndPublishedRange) {
   NEED_CHROMIUM();
   const fs::path out = work() / "rheometer";
-  const Result r = dentsph("material-test rheometer --material universal --threads 2 --out " + out.string());
+  const Result r = dentsph("material-test rheometer --material universal --shear-rates 5,10,20,50 --threads 2 --out " +
+                           out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   const Png png = screenshot(out / "flow_curve.svg", work() / "flow_curve.png", 640, 420);
   ASSERT_EQ(png.w, 640);

@@ -437,7 +437,9 @@ TEST(Cli, AProcedureFilesMaterialFillsTheRun) {
 // a file are refused.
 TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
   const fs::path out = dir() / "rheometer";
-  const Result r = dentsph_cli("material-test rheometer --material flowable --out " + out.string() + " --threads 2");
+  // Three rates of the flow curve (--shear-rates), in half the time of the command's seven.
+  const Result r = dentsph_cli("material-test rheometer --material flowable --shear-rates 10,20,50 --out " + out.string() +
+                               " --threads 2");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("viscosity at 10 /s"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(published 1310 to 2200 Pa s: in range)"), std::string::npos) << r.output;
@@ -474,6 +476,9 @@ TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
 
   expect_refused("material-test slump --material putty", {"--material", "putty"});
   expect_refused("material-test rheometer --temperature 80", {"--temperature"});
+  expect_refused("material-test rheometer --shear-rates 10,5", {"--shear-rates 10,5", "ascending"});
+  expect_refused("material-test rheometer --shear-rates 10", {"--shear-rates 10", "at least two"});
+  expect_refused("material-test rheometer --shear-rates 0,10", {"--shear-rates"});
   expect_refused("material-test tack --instrument teflon", {"--instrument", "teflon"});
   write(dir() / "a_file", "x");
   expect_refused("material-test slump --out " + (dir() / "a_file").string(), {"--out", "a_file"});
