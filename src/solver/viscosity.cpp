@@ -101,7 +101,7 @@ class ViscositySolve {
       ++it;
       rz_end = rz_next.x + rz_next.y + rz_next.z;
       if (it == iterations || (tolerance > 0 && relative(rz_end) <= tolerance)) break;  // the last direction would not be used
-      if (tolerance > 0 && past(deadline)) {  // a fixed count is its own budget
+      if (tolerance > 0 && relative(rz_end) <= kDeadlineErrorFactor * tolerance && past(deadline)) {  // a fixed count is its own budget
         s_.diagnostics.on_deadline = true;
         break;
       }

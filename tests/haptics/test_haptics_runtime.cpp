@@ -405,6 +405,36 @@ TEST(HapticRuntime, IisphPassesTheToolSwitch) {
   expect_safe(r, o.profile);
 }
 
+// A step's solves stop at the step's deadline (RealtimeOptions::solve_share; `run --realtime
+// --solve-deadline`) and the summary counts such steps: a share of 1e-6 of dt cuts every solve that
+// needs more than its least iterations, as the built-in procedure's do once its instrument presses
+// the paste (from 0.06 s). The run ends once the simulation is at 0.4 s, however slowly the host
+// steps it.
+TEST(HapticRuntime, ASolveDeadlineIsCounted) {
+  const Scene scene = default_dental_procedure();
+  RealtimeOptions o;
+  o.profile = device_profile("falcon");
+  o.threads = 1;
+  o.duration_s = 120;
+  o.record_capacity_s = 120;
+  o.solve_share = 1e-6;
+  o.workspace.origin = scene.tool.keyframes.front().pose.position;
+  std::atomic<bool> stop{false};
+  o.stop = &stop;
+  o.between_steps = [&](Simulation& sim, std::vector<EventSample>&) {
+    if (sim.state().time >= 0.4) stop.store(true);
+  };
+  auto device = make_scripted_device(scene, o.workspace, o.duration_s);
+  const RealtimeResult r = run_realtime(scene, *device, o);
+  EXPECT_EQ(r.run.status, "completed") << r.run.message;
+  EXPECT_GE(r.run.sim_time_s, 0.4);
+  const SolverStatistics& st = r.run.solver_statistics;
+  std::printf("%llu of %llu steps cut at the deadline, largest error %.3g\n", (unsigned long long)st.on_deadline_steps,
+              (unsigned long long)r.run.steps, st.on_deadline_residual_max);
+  EXPECT_GT(st.on_deadline_steps, 0u);
+  EXPECT_LE(st.on_deadline_steps, r.run.steps);
+}
+
 TEST(HapticRuntime, ReplayReproducesTheRecordedSession) {
   const Scene scene = press_scene();
   RealtimeOptions o = options(ForceMode::direct);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <set>
@@ -13,6 +14,7 @@
 
 #include "dentsph/solver.hpp"
 #include "dentsph/step.hpp"
+#include "solver/iisph.hpp"
 #include "support/builders.hpp"
 
 namespace dentsph {
@@ -345,12 +347,21 @@ TEST(Solvers, ASolveStopsAtTheStepsDeadline) {
     const std::unique_ptr<StepSolver> a = make_solver(Solver::iisph), c = make_solver(Solver::iisph);
     a->step(late.model, late.state, passed);
     c->step(free.model, free.state, {});
-    EXPECT_TRUE(late.state.diagnostics.on_deadline);
-    EXPECT_EQ(late.state.diagnostics.pressure_iterations, 2);
-    EXPECT_EQ(late.state.diagnostics.viscosity_iterations, 1);
-    EXPECT_FALSE(free.state.diagnostics.on_deadline);
-    EXPECT_GT(free.state.diagnostics.pressure_iterations, 2);
-    EXPECT_GT(free.state.diagnostics.viscosity_iterations, 1);
+    // Cut short, but only once within kDeadlineErrorFactor of the targets (before, a cut step was
+    // left wherever its least iterations left it: errors of 6,500% were seen).
+    const StepDiagnostics &cut = late.state.diagnostics, &whole = free.state.diagnostics;
+    std::printf("pressure: %d iterations to %.3g cut, %d to %.3g whole; viscosity: %d to %.3g cut, %d to %.3g whole\n",
+                cut.pressure_iterations, cut.pressure_residual, whole.pressure_iterations, whole.pressure_residual,
+                cut.viscosity_iterations, cut.viscosity_residual, whole.viscosity_iterations, whole.viscosity_residual);
+    EXPECT_TRUE(cut.on_deadline);
+    EXPECT_LT(cut.pressure_iterations, whole.pressure_iterations);
+    EXPECT_LE(cut.pressure_residual, iisph::kDeadlineErrorFactor * b.model.iisph.density_error);
+    if (solve == PressureSolve::cg) {
+      EXPECT_LE(cut.pressure_max_error, iisph::kDeadlineErrorFactor * b.model.iisph.max_density_error);
+    }
+    EXPECT_LT(cut.viscosity_iterations, whole.viscosity_iterations);
+    EXPECT_LE(cut.viscosity_residual, iisph::kDeadlineErrorFactor * b.model.iisph.viscosity_tolerance);
+    EXPECT_FALSE(whole.on_deadline);
     SolverStatistics stats;
     a->record(stats, late.state.diagnostics);
     c->record(stats, free.state.diagnostics);
