@@ -46,6 +46,7 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"closed_by_user", r.closed_by_user},
             {"timed_out", r.timed_out},
             {"sim", {{"steps", r.sim_steps}, {"steps_per_second", r.sim_steps_per_second}, {"time_s", r.last.time}}},
+            {"surfaces_built", r.surfaces_built},
             {"backend", r.last.backend},
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};

@@ -36,14 +36,26 @@ void PasteSurfaceView::update(const Snapshot& snap, bool on) {
     if (in_frame_) {
       mesh_ = particle_surface(paste, spacing_);
       mesh_renderer_.upload(mesh_.vertices, mesh_.triangles);
-    } else {
+      ++built_in_frame_;
+    } else if (fresh || moved(paste)) {
       if (!worker_) worker_ = std::make_unique<SurfaceWorker>(spacing_);
       const std::uint64_t number = worker_->submit(paste);
       if (fresh) oldest_ = number;
+      submitted_ = paste;
     }
     key_ = key;
   }
   if (worker_ && worker_->take(mesh_, oldest_)) mesh_renderer_.upload(mesh_.vertices, mesh_.triangles);
+}
+
+std::uint64_t PasteSurfaceView::built() const { return built_in_frame_ + (worker_ ? worker_->built() : 0); }
+
+bool PasteSurfaceView::moved(const std::vector<Vec3>& paste) const {
+  if (paste.size() != submitted_.size()) return true;
+  const real tolerance = kStillFraction * spacing_ / SurfaceParams{}.voxels_per_spacing;
+  for (std::size_t i = 0; i < paste.size(); ++i)
+    if (norm2(paste[i] - submitted_[i]) > tolerance * tolerance) return true;
+  return false;
 }
 
 }  // namespace dentsph::viewer

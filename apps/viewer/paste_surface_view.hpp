@@ -22,11 +22,22 @@ class PasteSurfaceView {
   PasteSurfaceView(const Scene& scene, real spacing, bool in_frame);
 
   // Called every frame with the newest snapshot: while `on`, submits its paste when it is new (by
-  // step and particle count) and uploads the newest surface finished.
+  // step and particle count) and has moved since the paste last submitted (moved()), and uploads
+  // the newest surface finished. A screenshot's surface (in_frame) is built from its own paste.
   void update(const Snapshot& snap, bool on);
   void draw(const ViewUniforms& u) { mesh_renderer_.draw(u); }
+  // The surfaces built so far (by the worker, or in the frame).
+  std::uint64_t built() const;
+
+  // A paste particle moving less than this share of a voxel changes its surface by less than that:
+  // paste at rest (settled, or curing) is not built again frame after frame.
+  static constexpr real kStillFraction = 0.1;
 
  private:
+  // Whether `paste` differs from the paste last submitted: another count, or a particle more than
+  // kStillFraction of a voxel from where it was (in the same order: a State reordered since
+  // counts as moved, and is built again).
+  bool moved(const std::vector<Vec3>& paste) const;
   const Scene& scene_;
   const real spacing_;
   const bool in_frame_;
@@ -38,6 +49,8 @@ class PasteSurfaceView {
   std::uint64_t oldest_ = 0;  // the worker's surfaces from before this one are of another paste
   bool was_on_ = false;
   std::vector<Vec3> points_;
+  std::vector<Vec3> submitted_;  // the paste of the surface last submitted to the worker
+  std::uint64_t built_in_frame_ = 0;
   SurfaceMesh mesh_;
 };
 

@@ -63,7 +63,13 @@ void SurfaceWorker::run() {
     done_ = std::move(mesh);
     done_number_ = number;
     has_done_ = true;
+    ++built_;
   }
+}
+
+std::uint64_t SurfaceWorker::built() {
+  std::lock_guard<std::mutex> lock(m_);
+  return built_;
 }
 
 }  // namespace dentsph::viewer

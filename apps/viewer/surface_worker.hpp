@@ -28,6 +28,8 @@ class SurfaceWorker {
   // Moves the newest finished surface into `mesh` when it was submitted as number `oldest` or later
   // (a surface of paste from before a reset is not shown); false otherwise.
   bool take(SurfaceMesh& mesh, std::uint64_t oldest = 0);
+  // The surfaces built so far (a paste replaced before its build started is not).
+  std::uint64_t built();
 
  private:
   void run();
@@ -39,6 +41,7 @@ class SurfaceWorker {
   std::uint64_t submitted_ = 0, pending_number_ = 0, done_number_ = 0;
   SurfaceMesh done_;
   bool has_done_ = false;
+  std::uint64_t built_ = 0;
   tbb::task_arena arena_{1};
   std::thread thread_;  // last: started once the rest is ready
 };

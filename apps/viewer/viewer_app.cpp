@@ -384,6 +384,7 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   session.latest(result.last);
   result.sim_steps = result.last.steps;
   result.sim_steps_per_second = result.last.steps_per_second;
+  result.surfaces_built = paste_surface.built();
   timer.finish(result);
   return result;
 }

@@ -35,6 +35,7 @@ struct ViewerResult {
   double frame_p50_ms = 0, frame_p99_ms = 0;
   double sim_steps_per_second = 0;         // the simulation's last measured rate
   std::uint64_t sim_steps = 0;
+  std::uint64_t surfaces_built = 0;        // the paste's surfaces built for the surface view
   bool closed_by_user = false;             // window closed (or SIGINT / SIGTERM) before the end
   bool timed_out = false;
   Snapshot last;                           // the simulation when the loop ended

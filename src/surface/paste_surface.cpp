@@ -57,8 +57,11 @@ SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const 
   // In units of the spacing, so that the level set's numbers are the same at any scale.
   std::vector<Vec3> scaled(centres.size());
   for (std::size_t i = 0; i < centres.size(); ++i) scaled[i] = centres[i] / spacing;
-  // The narrow band reaches past a sphere's radius so that the spheres' union is exact in it.
-  const float half_width = float(std::max<real>(3, (p.radius_per_spacing + p.inset_per_spacing) * p.voxels_per_spacing + 1));
+  // The narrow band: OpenVDB's usual three voxels each side of the spheres' surface, which holds the
+  // mesh's level (inset_per_spacing inside it, under a voxel at the defaults) and the mean filter's
+  // stencil. (It reached past a sphere's radius, 4.45 voxels at the defaults; the rasterising, most
+  // of a surface's cost, covers the band around every sphere.)
+  const float half_width = float(std::max<real>(3, p.inset_per_spacing * p.voxels_per_spacing + 2));
   openvdb::FloatGrid::Ptr grid = openvdb::createLevelSet<openvdb::FloatGrid>(1 / p.voxels_per_spacing, half_width);
   openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
   raster.setRmin(0.5);  // voxels: every sphere here is larger
