@@ -50,12 +50,15 @@ void PasteSurfaceView::update(const Snapshot& snap, bool on) {
 
 std::uint64_t PasteSurfaceView::built() const { return built_in_frame_ + (worker_ ? worker_->built() : 0); }
 
-bool PasteSurfaceView::moved(const std::vector<Vec3>& paste) const {
-  if (paste.size() != submitted_.size()) return true;
-  const real tolerance = kStillFraction * spacing_ / SurfaceParams{}.voxels_per_spacing;
-  for (std::size_t i = 0; i < paste.size(); ++i)
-    if (norm2(paste[i] - submitted_[i]) > tolerance * tolerance) return true;
+bool paste_moved(const std::vector<Vec3>& now, const std::vector<Vec3>& built, real tolerance) {
+  if (now.size() != built.size()) return true;
+  for (std::size_t i = 0; i < now.size(); ++i)
+    if (!(norm2(now[i] - built[i]) <= tolerance * tolerance)) return true;
   return false;
+}
+
+bool PasteSurfaceView::moved(const std::vector<Vec3>& paste) const {
+  return paste_moved(paste, submitted_, kStillFraction * spacing_ / SurfaceParams{}.voxels_per_spacing);
 }
 
 }  // namespace dentsph::viewer

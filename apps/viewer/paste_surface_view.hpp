@@ -16,6 +16,11 @@
 
 namespace dentsph::viewer {
 
+// Whether the paste `now` differs from the paste `built` a surface was made of: another count, or a
+// particle farther than `tolerance` (m) from where it was (in the same order: a State reordered
+// since counts as moved).
+bool paste_moved(const std::vector<Vec3>& now, const std::vector<Vec3>& built, real tolerance);
+
 class PasteSurfaceView {
  public:
   // `spacing`: the paste's particle spacing (m); `in_frame`: build each surface in the frame.
@@ -34,9 +39,7 @@ class PasteSurfaceView {
   static constexpr real kStillFraction = 0.1;
 
  private:
-  // Whether `paste` differs from the paste last submitted: another count, or a particle more than
-  // kStillFraction of a voxel from where it was (in the same order: a State reordered since
-  // counts as moved, and is built again).
+  // Whether `paste` differs from the paste last submitted (paste_moved, by kStillFraction of a voxel).
   bool moved(const std::vector<Vec3>& paste) const;
   const Scene& scene_;
   const real spacing_;

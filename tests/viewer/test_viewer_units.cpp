@@ -14,6 +14,7 @@
 #include "dentsph/haptics/replay.hpp"
 #include "dentsph/scene.hpp"
 #include "input_script.hpp"
+#include "paste_surface_view.hpp"
 #include "sim_session.hpp"
 #include "support/small_scene.hpp"
 
@@ -27,6 +28,32 @@ std::string error_of(const std::string& json) {
     return e.what();
   }
   return "";
+}
+
+// The surface view builds the paste's surface again only where the paste has moved since the last
+// build: a particle farther than the tolerance (a tenth of a voxel in the view), or paste added or
+// gone; paste at rest, whose snapshots differ by less, is not built again frame after frame.
+TEST(PasteSurfaceView, ThePasteIsBuiltAgainOnlyWhereItMoved) {
+  const real tolerance = 1e-5;
+  const std::vector<Vec3> built{{0, 0, 0}, {1e-3, 0, 0}, {2e-3, 0, 0}};
+  std::vector<Vec3> now = built;
+  EXPECT_FALSE(paste_moved(now, built, tolerance)) << "the same paste";
+  now[1].z += 0.9 * tolerance;
+  EXPECT_FALSE(paste_moved(now, built, tolerance)) << "a particle crept under the tolerance";
+  now[1].z += 0.2 * tolerance;
+  EXPECT_TRUE(paste_moved(now, built, tolerance)) << "one particle over it";
+  now = built;
+  now.push_back({3e-3, 0, 0});
+  EXPECT_TRUE(paste_moved(now, built, tolerance)) << "paste added";
+  now.pop_back();
+  now.pop_back();
+  EXPECT_TRUE(paste_moved(now, built, tolerance)) << "paste gone";
+  now = built;
+  now[0].x = NAN;
+  EXPECT_TRUE(paste_moved(now, built, tolerance)) << "a position that is not finite";
+  std::swap(now[0], now[2]);
+  now[2] = built[0];
+  EXPECT_TRUE(paste_moved(now, built, tolerance)) << "the same particles in another order";
 }
 
 TEST(ColourMap, EndsClampsAndFlagsNaN) {
