@@ -6,7 +6,8 @@
 # run per cavity says little; the ensemble's means and spreads compare solvers. Prints one line per
 # run and, per cavity and solver, the mean and range of the fill, the mean void volume, and the
 # particles leaked into the tooth and lost, summed.
-# Usage: bench/fill_ensemble.sh [BUILD_DIR] [SOLVER...]   (default: build/test paper iisph)
+# Usage: bench/fill_ensemble.sh [BUILD_DIR] [SOLVER...]   (default: build/test paper iisph; iisph+cg:
+#        the iisph solver with its pressure by conjugate gradients, --pressure-solve cg)
 #        CAVITIES="crown 36II" RUNS=3 bench/fill_ensemble.sh ...   (fewer cavities or offsets)
 #        OFFSETS=2 bench/fill_ensemble.sh ...   (the second family of nine offsets, 0.01 to 0.04 mm)
 # Runs two at a time on one thread each; ../shared/data holds the scans. Measured on two idle
@@ -48,8 +49,9 @@ run_one() {  # SOLVER CAVITY K
     46I) args=(--mesh "$data/molar_FDI46_lower_right_first.stl") ;;
     46II) args=(--mesh "$data/molar_FDI46_lower_right_first.stl" --cavity class2) ;;
   esac
-  local out="$tmp/$1-$2-$3"
-  "$cli" run "${args[@]}" --procedure "$tmp/p$3.json" --solver "$1" --threads 1 --quiet --out "$out" > /dev/null 2>&1
+  local out="$tmp/$1-$2-$3" solver="${1%%+*}"
+  [ "$1" != "$solver" ] && args+=(--pressure-solve "${1#*+}")
+  "$cli" run "${args[@]}" --procedure "$tmp/p$3.json" --solver "$solver" --threads 1 --quiet --out "$out" > /dev/null 2>&1
   python3 -c "
 import json
 a = json.load(open('$out/summary.json'))['assessment']
