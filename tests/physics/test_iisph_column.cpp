@@ -212,8 +212,9 @@ TEST(DeepColumn, ConjugateGradientsNeedFewerIterationsThanJacobiWhileItSettles) 
 // step (a relaxed packing: the liquid's rest, not its dynamics), then free at that step to 1.25 s,
 // and from there at that step and at a quarter of it to 1.5 s. Measured over the last 0.25 s: dp/dd
 // 1.0139 rho g at both steps, 0.66 mm/s rms at both, the fastest particle at 7.2 and 7.1 mm/s.
-// Departure: the "every particle under 1 mm/s" is not reached: a few particles by the floor
-// keep moving at up to 5 to 7 mm/s (1.5 to 4.5 mm/s after 3 s with targets ten times tighter).
+// Departure: the "every particle under 1 mm/s" is not reached: a few particles of the free
+// surface's layer keep sliding sideways at up to 5 to 7 mm/s (1.5 to 4.5 mm/s after 3 s with
+// targets ten times tighter); the model has no surface tension to hold them.
 TEST(DeepColumn, AtWatersViscosityOneKernelForTheDensityKeepsItAtRest) {
   const real dt = velocity_limited_step();
   Column c = column(dt, PressureSolve::cg, 200, /*cubic=*/true);
