@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <string>
 #include <thread>
@@ -113,10 +114,18 @@ inline RealtimeResult run_while(const Scene& scene, Device& device, RealtimeOpti
   if (o.duration_s <= 0) o.duration_s = 60;
   o.record_capacity_s = std::max(o.record_capacity_s, o.duration_s);
   RealtimeResult r;
-  std::thread runtime([&] { r = run_realtime(scene, device, o); });
+  std::exception_ptr failed;  // what the runtime threw (a refused option, an unstable step), thrown here
+  std::thread runtime([&] {
+    try {
+      r = run_realtime(scene, device, o);
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  });
   drive(live);
   stop.store(true);
   runtime.join();
+  if (failed) std::rethrow_exception(failed);
   return r;
 }
 
