@@ -3,7 +3,6 @@
 #include "material_test.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <iterator>
 #include <stdexcept>
 #include <vector>
@@ -97,10 +96,11 @@ int MaterialTestCommand::run_handling(const Handling& h) const {
     RheometerOptions o;
     o.run = run;
     o.shear_rates.assign(h.shear_rates.begin(), h.shear_rates.end());
-    if (o.shear_rates.size() < 2 ||
-        std::adjacent_find(o.shear_rates.begin(), o.shear_rates.end(), std::greater_equal<>()) != o.shear_rates.end())
-      throw std::invalid_argument(fmt::format("--shear-rates {}: give at least two rates, ascending (e.g. 5,10,20)",
-                                              fmt::join(h.shear_rates, ",")));
+    try {
+      check_rheometer_options(o);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("--shear-rates {}: {}", fmt::join(h.shear_rates, ","), e.what()));
+    }
     r = rheometer_test(preset, o);
   } else {
     r = run_handling_test(h.name, preset, run);

@@ -76,6 +76,9 @@ struct RheometerOptions {
   int radius_spacings = 14;    // the disc's radius R
   int gap_layers = 6;          // the paste's layers; the gap H between the plates' first layers is one more
 };
+// Throws std::invalid_argument for options rheometer_test cannot run: fewer than two shear rates,
+// rates not positive and ascending, an impossible rig (rheometer_test checks them so first).
+void check_rheometer_options(const RheometerOptions& options);
 HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions& options = {});
 
 // The slump test of Lee et al. (Dent Mater 2010): a fixed volume of paste (here a cylinder as tall

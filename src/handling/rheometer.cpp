@@ -81,16 +81,6 @@ real steady_torque(const Geometry& g, const Material& paste, real rate, const Rh
   return sum / time;
 }
 
-void check(const RheometerOptions& o) {
-  if (o.shear_rates.size() < 2)
-    throw std::invalid_argument("rheometer: shear_rates needs at least two rates (the torque's slope); give e.g. 1, 10, 100");
-  for (std::size_t i = 0; i < o.shear_rates.size(); ++i)
-    if (!(o.shear_rates[i] > 0) || (i > 0 && !(o.shear_rates[i] > o.shear_rates[i - 1])))
-      throw std::invalid_argument("rheometer: shear_rates must be positive and ascending");
-  if (!(o.spacing > 0) || o.radius_spacings < 4 || o.gap_layers < 2)
-    throw std::invalid_argument("rheometer: the spacing must be > 0, the disc at least 4 spacings wide and 2 layers deep");
-}
-
 // log-log interpolation of y(x) at x0 (x ascending, at least two points): the nearest segment's line.
 real loglog_at(const std::vector<real>& x, const std::vector<real>& y, real x0) {
   std::size_t i = 0;
@@ -101,8 +91,18 @@ real loglog_at(const std::vector<real>& x, const std::vector<real>& y, real x0) 
 
 }  // namespace
 
+void check_rheometer_options(const RheometerOptions& o) {
+  if (o.shear_rates.size() < 2)
+    throw std::invalid_argument("rheometer: shear_rates needs at least two rates (the torque's slope); give e.g. 1, 10, 100");
+  for (std::size_t i = 0; i < o.shear_rates.size(); ++i)
+    if (!(o.shear_rates[i] > 0) || (i > 0 && !(o.shear_rates[i] > o.shear_rates[i - 1])))
+      throw std::invalid_argument("rheometer: shear_rates must be positive and ascending");
+  if (!(o.spacing > 0) || o.radius_spacings < 4 || o.gap_layers < 2)
+    throw std::invalid_argument("rheometer: the spacing must be > 0, the disc at least 4 spacings wide and 2 layers deep");
+}
+
 HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions& o) {
-  check(o);
+  check_rheometer_options(o);
   Geometry g;
   g.s = o.spacing;
   g.nr = o.radius_spacings;

@@ -115,6 +115,12 @@ inline void solve_pressure(const Model& model, State& state, IisphScratch& x, in
 inline bool past(Deadline deadline) {
   return deadline != Deadline::max() && std::chrono::steady_clock::now() > deadline;
 }
+// Whether a solve whose error is `error` against its target `target` stops at `deadline` now: the
+// deadline has passed and the error is within kDeadlineErrorFactor of the target (every solve of the
+// step asks this, after its least iterations).
+inline bool stops_at_deadline(real error, real target, Deadline deadline) {
+  return error <= kDeadlineErrorFactor * target && past(deadline);
+}
 // finish.cpp: v = v** + dt a_p, r += dt v; the tool to its pose; outputs, diagnostics, wrench.
 void finish(const Model& model, State& state, const IisphScratch& x, int threads);
 

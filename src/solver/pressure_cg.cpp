@@ -65,7 +65,8 @@ class PressureCg {
     int it = 0;
     while (it < ip.max_iterations) {
       if (it >= ip.min_iterations && converged(st)) break;
-      if (it >= ip.min_iterations && converged(st, kDeadlineErrorFactor) && past(deadline_)) {
+      if (it >= ip.min_iterations && stops_at_deadline(mean(st.sum[kError]), ip.density_error, deadline_) &&
+          st.max <= kDeadlineErrorFactor * ip.max_density_error) {
         s_.diagnostics.on_deadline = true;
         break;
       }
@@ -101,9 +102,8 @@ class PressureCg {
   }
 
  private:
-  // Whether the mean and the largest error are within `factor` times their targets.
-  bool converged(const PressureSums& st, real factor = 1) const {
-    return mean(st.sum[kError]) <= factor * model_.iisph.density_error && st.max <= factor * model_.iisph.max_density_error;
+  bool converged(const PressureSums& st) const {
+    return mean(st.sum[kError]) <= model_.iisph.density_error && st.max <= model_.iisph.max_density_error;
   }
   real mean(real sum) const { return n_material_ > 0 ? sum / real(n_material_) : 0; }
   bool material(std::uint32_t i) const { return s_.role[i] == Role::material; }

@@ -78,7 +78,7 @@ void solve_pressure_jacobi(const Model& model, State& s, IisphScratch& x, int th
     mean_error = n_material > 0 ? sums.x / real(n_material) : 0;
     mean_compression = n_material > 0 ? sums.y / real(n_material) : 0;
     if (it >= ip.min_iterations && mean_error <= ip.density_error) break;
-    if (it >= ip.min_iterations && mean_error <= kDeadlineErrorFactor * ip.density_error && past(deadline)) {
+    if (it >= ip.min_iterations && stops_at_deadline(mean_error, ip.density_error, deadline)) {
       s.diagnostics.on_deadline = true;
       break;
     }

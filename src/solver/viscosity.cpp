@@ -101,7 +101,7 @@ class ViscositySolve {
       ++it;
       rz_end = rz_next.x + rz_next.y + rz_next.z;
       if (it == iterations || (tolerance > 0 && relative(rz_end) <= tolerance)) break;  // the last direction would not be used
-      if (tolerance > 0 && relative(rz_end) <= kDeadlineErrorFactor * tolerance && past(deadline)) {  // a fixed count is its own budget
+      if (tolerance > 0 && stops_at_deadline(relative(rz_end), tolerance, deadline)) {  // a fixed count is its own budget
         s_.diagnostics.on_deadline = true;
         break;
       }
@@ -231,20 +231,20 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
     change = update_viscosity(model, s, x, threads, solves == 0 ? s.vel.data() : x.v_a.data(), solves == 0);
     if (solves > 0 && change <= ip.rheology_tolerance) break;
     if (solves == most) break;  // the weights have the last solve's viscosities, the velocities the one before
+    if (solves > 0 && stops_at_deadline(change, ip.rheology_tolerance, deadline)) {
+      s.diagnostics.on_deadline = true;
+      break;
+    }
     const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
     residual = r;
     iterations += it;
     ++solves;
-    if (past(deadline)) {
-      s.diagnostics.on_deadline = true;
-      break;
-    }
   }
   if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, residual, iterations, deadline);
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
   s.diagnostics.rheology_iterations = solves;
-  s.diagnostics.rheology_change = std::isfinite(change) ? change : 0;  // infinite: cut by the deadline before an update
+  s.diagnostics.rheology_change = std::isfinite(change) ? change : 0;
 }
 
 }  // namespace dentsph::iisph

@@ -102,25 +102,13 @@ struct Candidate {
   Vec3 normal;  // the distance's gradient at p
 };
 
-// A world box as the tooth frame's axis-aligned box around it.
-Bounds frame_bounds(const ToothFrame& f, const Bounds& world) {
-  Bounds local{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 c = f.to_local({k & 1 ? world.max.x : world.min.x, k & 2 ? world.max.y : world.min.y,
-                               k & 4 ? world.max.z : world.min.z});
-    local.min = vmin(local.min, c);
-    local.max = vmax(local.max, c);
-  }
-  return local;
-}
-
 // The coarse cells over the removed tooth's box (grown by the band and the layers) that can hold
 // layer points: their centre within half a diagonal of the layers' level range and of the band.
 std::vector<Coarse> cells_near_layers(const PreparedTooth& tooth, const BoundaryParams& params, real margin,
                                       const LevelSets& src) {
   const real s = params.spacing;
   const ToothFrame& f = tooth.frame();
-  const Bounds local = frame_bounds(f, tooth.cavity_bounds());
+  const Bounds local = tooth::box_of_corners(tooth.cavity_bounds(), [&f](const Vec3& p) { return f.to_local(p); });
   const real grow = margin + (params.layers + 1) * s;
   const auto lo = [&](real v) { return std::int64_t(std::floor((v - grow) / s)); };
   const auto hi = [&](real v) { return std::int64_t(std::ceil((v + grow) / s)); };

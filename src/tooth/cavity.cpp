@@ -334,18 +334,6 @@ VolumeIntegrator removed_tooth(const CavityShape& shape, const MeshDistance& too
   return vi;
 }
 
-// A box in the frame as the world's axis-aligned box around it.
-Bounds world_bounds(const ToothFrame& f, const Bounds& local) {
-  Bounds w{{inf, inf, inf}, {-inf, -inf, -inf}};
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 c = f.to_world({k & 1 ? local.max.x : local.min.x, k & 2 ? local.max.y : local.min.y,
-                               k & 4 ? local.max.z : local.min.z});
-    w.min = vmin(w.min, c);
-    w.max = vmax(w.max, c);
-  }
-  return w;
-}
-
 }  // namespace
 
 std::string CavityReport::summary() const {
@@ -368,7 +356,7 @@ PreparedTooth carve_cavity(const MeshDistance& tooth, const ToothFrame& given,
   impl->report.cavity_volume = removed.volume;
   impl->report.occlusal_point = f.origin;
   impl->cavity_local = removed.hit;
-  impl->cavity_world = world_bounds(f, removed.hit);
+  impl->cavity_world = tooth::box_of_corners(removed.hit, [&f](const Vec3& p) { return f.to_world(p); });
   return PreparedTooth(std::move(impl));
 }
 

@@ -8,9 +8,24 @@
 #include <cstdint>
 #include <optional>
 
+#include "dentsph/tooth.hpp"
 #include "dentsph/vec3.hpp"
 
 namespace dentsph::tooth {
+
+// The axis-aligned box around the eight corners of `b` mapped by `map` (a frame's to_world or
+// to_local: a box of one frame as a box of the other).
+template <class Map>
+Bounds box_of_corners(const Bounds& b, Map map) {
+  constexpr real inf = 1e300;
+  Bounds out{{inf, inf, inf}, {-inf, -inf, -inf}};
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 c = map(Vec3{k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y, k & 4 ? b.max.z : b.min.z});
+    out.min = vmin(out.min, c);
+    out.max = vmax(out.max, c);
+  }
+  return out;
+}
 
 inline Vec3 normalized(const Vec3& v) {
   const real n = norm(v);

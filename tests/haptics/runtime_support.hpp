@@ -20,6 +20,7 @@
 #include "client_process.hpp"
 #include "dentsph/haptics.hpp"
 #include "dentsph/haptics/protocol.hpp"
+#include "dentsph/simulation.hpp"
 #include "press_scene.hpp"
 
 // Built with ThreadSanitizer (clang's __has_feature, gcc's __SANITIZE_THREAD__): the simulation
@@ -137,16 +138,31 @@ inline bool haptic_ticks_pass(const HapticLive& live, std::uint64_t n = 1) {
   return wait_until([&] { return live.ticks.load(std::memory_order_relaxed) >= from + n; });
 }
 
+// `scene` under the runtime with its scripted hand (the device's origin at the tool's first keyframe)
+// until the simulation reaches `simulated_s`, however slowly the host steps it (the hand holds its
+// last pose meanwhile; 120 s of wall time is a guard).
+inline RealtimeResult run_until_simulated(const Scene& scene, RealtimeOptions o, real simulated_s) {
+  o.duration_s = 120;
+  o.record_capacity_s = 120;
+  o.workspace.origin = scene.tool.keyframes.front().pose.position;
+  std::atomic<bool> stop{false};
+  o.stop = &stop;
+  o.between_steps = [&](Simulation& sim, std::vector<EventSample>&) {
+    if (sim.state().time >= simulated_s) stop.store(true);
+  };
+  auto device = make_scripted_device(scene, o.workspace, o.duration_s);
+  return run_realtime(scene, *device, o);
+}
+
 // The press scene under the runtime with a UDP device, the reference client (given arguments)
 // playing it from a separate process; the runtime's result and the client's report. The client
 // starts once the haptic loop runs, and the runtime stops once the client has finished, so that a
 // slow start on either side changes nothing (`o.duration_s` is only a guard).
-inline std::pair<RealtimeResult, nlohmann::json> run_with_client(RealtimeOptions o, std::vector<std::string> args,
+inline std::pair<RealtimeResult, nlohmann::json> run_with_client(const RealtimeOptions& o, std::vector<std::string> args,
                                                                  const std::string& tag) {
   const Scene scene = press_scene();
   std::uint16_t port = 0;
   auto device = make_udp_device({"127.0.0.1", 0}, &port);
-  o.duration_s = 60;
   nlohmann::json c;
   RealtimeResult r = run_while(scene, *device, o, [&](const HapticLive& live) {
     if (!haptic_ticks_pass(live)) return;

@@ -51,12 +51,12 @@ struct Box {
   State state;
 };
 
-Box settling_box(Solver solver) {
+Box settling_box(Solver solver, const Material& paste = {0.5, 60, 1000, 0}) {
   const real s = kSpacing;
   ModelParams p = testing::params_for_spacing(s, {-0.05, -0.05, -0.05}, {0.12, 0.12, 0.12}, 2e-4, {0, 0, -9.81});
   p.solver = solver;
   Box b{make_model(p), {}};
-  const Material paste{0.5, 60, 1000, 0}, wall{0.5, 60, 1000, 0};
+  const Material wall{0.5, 60, 1000, 0};
   const real m = lattice_particle_mass(1000, s, b.model.kernel);
   std::vector<ParticleInit> ps;
   for (Vec3 x : testing::lattice({0, 0, 0}, s, 6, 6, 4)) ps.push_back(testing::particle(Role::material, x, m, paste));
@@ -368,6 +368,30 @@ TEST(Solvers, ASolveStopsAtTheStepsDeadline) {
     EXPECT_EQ(stats.on_deadline_steps, 1u);
     EXPECT_GT(stats.on_deadline_residual_max, 1e-8);
   }
+}
+
+// A shear-thinning paste's Picard iterations are cut at the deadline by the same floor as the
+// solves: only once the viscosities changed by at most kDeadlineErrorFactor times
+// iisph.rheology_tolerance; before that they go on to iisph.rheology_iterations. (Before the floor
+// they stopped after the first solve however far the viscosities were from their law.)
+TEST(Solvers, APicardIterationIsCutAtTheDeadlineOnlyWithinTenTimesItsTolerance) {
+  Material thinning{0.5, 60, 1000, 0};
+  thinning.flow_index = 0.5;
+  Box b = settling_box(Solver::iisph, thinning);
+  b.model.dt = 1e-3;
+  b.model.iisph.rheology_tolerance = 1e-9;  // never reached: a cut could only be the deadline's
+  b.model.iisph.rheology_iterations = 3;
+  b.model.iisph.viscosity_tolerance = 1e-6;
+  const std::unique_ptr<StepSolver> warm = make_solver(Solver::iisph);
+  for (int k = 0; k < 10; ++k) warm->step(b.model, b.state, {});
+  StepOptions passed;
+  passed.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  const std::unique_ptr<StepSolver> a = make_solver(Solver::iisph);
+  a->step(b.model, b.state, passed);
+  const StepDiagnostics& d = b.state.diagnostics;
+  std::printf("Picard iterations %d, the viscosities' last change %.3g\n", d.rheology_iterations, d.rheology_change);
+  ASSERT_GT(d.rheology_change, iisph::kDeadlineErrorFactor * b.model.iisph.rheology_tolerance);
+  EXPECT_EQ(d.rheology_iterations, b.model.iisph.rheology_iterations) << "not cut while the viscosities still change";
 }
 
 }  // namespace
