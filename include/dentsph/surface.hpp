@@ -2,9 +2,9 @@
 // OpenVDB into a narrow-band level set, each a sphere of radius_per_spacing times the spacing (0.9:
 // the spheres of a lattice cover its cells' centres, 0.87 spacings from their corners, so the
 // union has no gaps), smoothed by a mean filter, and meshed (openvdb::tools::volumeToMesh)
-// inset_per_spacing inside the union's surface. The inset is fitted: 0.25 spacings puts a lattice
+// inset_per_spacing inside the union's surface. The inset is fitted: 0.235 spacings puts a lattice
 // block's faces half a spacing outside its outer particles and its enclosed volume at the
-// particles' n s^3 (measured 0.4% over at a voxel of a third of a spacing;
+// particles' n s^3 (measured 0.01% under at a voxel of a third of a spacing;
 // tests/unit/test_surface.cpp).
 #pragma once
 
@@ -29,7 +29,7 @@ struct SurfaceMesh {
 struct SurfaceParams {
   real voxels_per_spacing = 3;     // the voxel is the spacing over this (3: a third of a spacing)
   real radius_per_spacing = 0.9;   // each particle's sphere
-  real inset_per_spacing = 0.25;   // the mesh this far inside the spheres' union (fitted above)
+  real inset_per_spacing = 0.235;   // the mesh this far inside the spheres' union (fitted above)
   int smoothing = 1;               // mean-filter passes over the level set
 };
 

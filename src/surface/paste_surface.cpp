@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/Filter.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -38,7 +38,7 @@ void check(std::span<const Vec3> centres, real spacing, const SurfaceParams& p) 
   if (!(p.radius_per_spacing >= 0.5 && p.radius_per_spacing <= 2))
     bad(fmt::format("radius_per_spacing {}: give 0.5 to 2 (0.9 by default)", p.radius_per_spacing));
   if (!(p.inset_per_spacing >= 0 && p.inset_per_spacing <= 0.5 * p.radius_per_spacing))
-    bad(fmt::format("inset_per_spacing {}: give 0 to half the radius, {} (0.25: fitted to a lattice block's volume)",
+    bad(fmt::format("inset_per_spacing {}: give 0 to half the radius, {} (0.235: fitted to a lattice block's volume)",
                     p.inset_per_spacing, 0.5 * p.radius_per_spacing));
   if (p.smoothing < 0 || p.smoothing > 10) bad(fmt::format("smoothing {}: give 0 to 10 mean-filter passes", p.smoothing));
   for (std::size_t i = 0; i < centres.size(); ++i)
@@ -57,28 +57,28 @@ SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const 
   // In units of the spacing, so that the level set's numbers are the same at any scale.
   std::vector<Vec3> scaled(centres.size());
   for (std::size_t i = 0; i < centres.size(); ++i) scaled[i] = centres[i] / spacing;
-  // The narrow band: OpenVDB's usual three voxels each side of the spheres' surface, which holds the
-  // mesh's level (inset_per_spacing inside it, under a voxel at the defaults) and the mean filter's
-  // stencil. (It reached past a sphere's radius, 4.45 voxels at the defaults; the rasterising, most
-  // of a surface's cost, covers the band around every sphere.)
-  const float half_width = float(std::max<real>(3, p.inset_per_spacing * p.voxels_per_spacing + 2));
+  // The surface lies inset_per_spacing inside the union of spheres of radius_per_spacing: it is the
+  // union of spheres of the radius less the inset (a union's distance is its nearest centre's less
+  // the radius), rasterised as such and meshed at zero. The narrow band: two voxels each side of it,
+  // the mean filter's stencil and the mesher's one voxel. (Rasterising the full spheres in a band of
+  // three voxels and meshing the inset level visited three times the voxels a sphere.)
+  const float half_width = 2;
   openvdb::FloatGrid::Ptr grid = openvdb::createLevelSet<openvdb::FloatGrid>(1 / p.voxels_per_spacing, half_width);
   openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
   raster.setRmin(0.5);  // voxels: every sphere here is larger
-  raster.rasterizeSpheres(Spheres{scaled, p.radius_per_spacing});
+  raster.rasterizeSpheres(Spheres{scaled, p.radius_per_spacing - p.inset_per_spacing});
   raster.finalize(/*prune=*/true);
   if (p.smoothing > 0) {
-    openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
-    // First-order schemes: the mean filter needs no more, and they cost a quarter of the defaults'.
-    filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
-    filter.setTemporalScheme(openvdb::math::TVD_RK1);
-    filter.setNormCount(1);
-    filter.mean(p.smoothing);
+    // A mean filter of the distances (a 3-voxel box, `smoothing` passes). Its zero level is what is
+    // meshed, so the distances need not be made distances again after it (LevelSetFilter::mean does,
+    // at twice the cost).
+    openvdb::tools::Filter<openvdb::FloatGrid> filter(*grid);
+    filter.mean(/*width=*/1, p.smoothing);
   }
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> tris;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*grid, points, tris, quads, /*isovalue=*/-p.inset_per_spacing, /*adaptivity=*/0.0);
+  openvdb::tools::volumeToMesh(*grid, points, tris, quads, /*isovalue=*/0.0, /*adaptivity=*/0.0);
   mesh.vertices.reserve(points.size());
   for (const openvdb::Vec3s& q : points) mesh.vertices.push_back(Vec3{q[0], q[1], q[2]} * spacing);
   // volumeToMesh winds its polygons clockwise seen from outside: reversed here.
