@@ -47,6 +47,8 @@ void write_summary(const std::string& file, const dentsph::viewer::ViewerResult&
             {"timed_out", r.timed_out},
             {"sim", {{"steps", r.sim_steps}, {"steps_per_second", r.sim_steps_per_second}, {"time_s", r.last.time}}},
             {"surfaces_built", r.surfaces_built},
+            {"surface_frames_due", r.surface_frames_due},
+            {"surface_frames_late", r.surface_frames_late},
             {"backend", r.last.backend},
             {"particles", {{"material", material}, {"total", r.last.role.size()}}},
             {"tool", r.last.tool_name}};

@@ -22,7 +22,10 @@ PasteSurfaceView::PasteSurfaceView(const Scene& scene, real spacing, bool in_fra
 void PasteSurfaceView::update(const Snapshot& snap, bool on) {
   const bool was_on = was_on_;
   was_on_ = on;
-  if (!on) return;
+  if (!on) {
+    due_ = 0;
+    return;
+  }
   points_.resize(snap.role.size());
   for (std::size_t i = 0; i < snap.role.size(); ++i) points_[i] = {snap.xyz[3 * i], snap.xyz[3 * i + 1], snap.xyz[3 * i + 2]};
   // The paste within the scene's domain (a diverged step's flung or non-finite paste has none).
@@ -32,6 +35,8 @@ void PasteSurfaceView::update(const Snapshot& snap, bool on) {
   // is of another paste: nothing is drawn until this paste's is.
   const bool fresh = !was_on || key.first < key_.first;
   if (fresh) mesh_renderer_.upload({}, {});
+  // This frame is due the surface of the paste the frame before submitted (0: none).
+  const std::uint64_t due = std::exchange(due_, 0);
   if (key != key_ || fresh) {
     if (in_frame_) {
       mesh_ = particle_surface(paste, spacing_);
@@ -42,8 +47,13 @@ void PasteSurfaceView::update(const Snapshot& snap, bool on) {
       const std::uint64_t number = worker_->submit(paste);
       if (fresh) oldest_ = number;
       submitted_ = paste;
+      due_ = number;
     }
     key_ = key;
+  }
+  if (worker_ && due != 0 && !fresh) {
+    ++frames_due_;
+    if (!worker_->wait_for(due, kMaxWait)) ++frames_late_;
   }
   if (worker_ && worker_->take(mesh_, oldest_)) mesh_renderer_.upload(mesh_.vertices, mesh_.triangles);
 }

@@ -3,6 +3,7 @@
 // the picture shows the paste it was asked of (docs/viewer.md).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -28,11 +29,22 @@ class PasteSurfaceView {
 
   // Called every frame with the newest snapshot: while `on`, submits its paste when it is new (by
   // step and particle count) and has moved since the paste last submitted (moved()), and uploads
-  // the newest surface finished. A screenshot's surface (in_frame) is built from its own paste.
+  // the newest surface finished. The frames keep pace with the surface: a frame after one that
+  // submitted a paste waits for that paste's surface (built while the frame before was drawn), at
+  // most kMaxWait, so that while the paste moves every frame draws a surface one frame old. A
+  // screenshot's surface (in_frame) is built from its own paste.
   void update(const Snapshot& snap, bool on);
   void draw(const ViewUniforms& u) { mesh_renderer_.draw(u); }
   // The surfaces built so far (by the worker, or in the frame).
   std::uint64_t built() const;
+  // The frames that were due the surface of the frame before's paste, and those of them that drew
+  // an older one (it was not finished within kMaxWait).
+  std::uint64_t frames_due() const { return frames_due_; }
+  std::uint64_t frames_late() const { return frames_late_; }
+
+  // The longest a frame waits for its surface: a paste too large to be built at the graphics rate
+  // slows the frames to no fewer than 10 a second, and then they draw the newest surface finished.
+  static constexpr std::chrono::milliseconds kMaxWait{100};
 
   // A paste particle moving less than this share of a voxel changes its surface by less than that:
   // paste at rest (settled, or curing) is not built again frame after frame.
@@ -54,6 +66,8 @@ class PasteSurfaceView {
   std::vector<Vec3> points_;
   std::vector<Vec3> submitted_;  // the paste of the surface last submitted to the worker
   std::uint64_t built_in_frame_ = 0;
+  std::uint64_t due_ = 0;  // the worker's paste the next frame is due the surface of (0: none)
+  std::uint64_t frames_due_ = 0, frames_late_ = 0;
   SurfaceMesh mesh_;
 };
 

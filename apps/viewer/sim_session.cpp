@@ -7,6 +7,10 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <pthread.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "dentsph/dispense.hpp"
 #include "dentsph/haptics/replay.hpp"
@@ -71,6 +75,14 @@ void SimSession::use_device(std::unique_ptr<Device> device, RealtimeOptions opti
 void SimSession::start() {
   if (running_.exchange(true)) return;
   thread_ = std::thread([this] {
+    pthread_setname_np(pthread_self(), "viewer-sim");  // as top -H and perf show it
+    // The session's own loop steps as fast as it can: the frames and the paste's surface come
+    // first (its threads, made by this one, inherit the nice value). The haptic runtime keeps its
+    // pace and its priority.
+    if (!device_) {
+      const id_t self = id_t(syscall(SYS_gettid));
+      (void)setpriority(PRIO_PROCESS, self, std::min(19, getpriority(PRIO_PROCESS, self) + kFreeRunningNice));
+    }
     if (device_) run_device();
     else run();
   });

@@ -115,8 +115,14 @@ class SimSession {
   // the session's backend. The device drives the tool; pause, reset and paste edits are refused
   // then.
   void use_device(std::unique_ptr<Device> device, RealtimeOptions options);
+  // Starts the session's thread: the session's own loop kFreeRunningNice above the viewer's nice
+  // value (Linux's nice values are a thread's), or the haptic runtime at the viewer's own.
   void start();
   void stop();  // joins the thread; idempotent
+  // How much nicer the session's own loop is than the frames: on two cores it yields to the frames and the
+  // surface worker (docs/viewer.md, "The surface's cost"), which stepping as fast as it can would
+  // otherwise starve.
+  static constexpr int kFreeRunningNice = 5;
   // The runtime's result once stopped (use_device sessions).
   const std::optional<RealtimeResult>& realtime_result() const { return realtime_result_; }
   // The session's own loop (no device): the simulated time and tool force after each step since the

@@ -3,6 +3,8 @@
 #include <exception>
 #include <utility>
 
+#include <pthread.h>
+
 #include <tbb/task_arena.h>
 
 namespace dentsph::viewer {
@@ -39,6 +41,7 @@ bool SurfaceWorker::take(SurfaceMesh& mesh, std::uint64_t oldest) {
 }
 
 void SurfaceWorker::run() {
+  pthread_setname_np(pthread_self(), "viewer-surface");  // as top -H and perf show it
   std::vector<Vec3> points;
   for (;;) {
     std::uint64_t number = 0;
@@ -59,12 +62,20 @@ void SurfaceWorker::run() {
         mesh = {};  // a paste position that is not finite (a diverged step): no surface this time
       }
     });
-    std::lock_guard<std::mutex> lock(m_);
-    done_ = std::move(mesh);
-    done_number_ = number;
-    has_done_ = true;
-    ++built_;
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      done_ = std::move(mesh);
+      done_number_ = number;
+      has_done_ = true;
+      ++built_;
+    }
+    done_cv_.notify_all();
   }
+}
+
+bool SurfaceWorker::wait_for(std::uint64_t number, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(m_);
+  return done_cv_.wait_for(lock, timeout, [&] { return done_number_ >= number; });
 }
 
 std::uint64_t SurfaceWorker::built() {

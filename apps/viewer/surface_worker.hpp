@@ -3,6 +3,7 @@
 // longer than a frame to build never holds a frame back (docs/viewer.md).
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -28,6 +29,9 @@ class SurfaceWorker {
   // Moves the newest finished surface into `mesh` when it was submitted as number `oldest` or later
   // (a surface of paste from before a reset is not shown); false otherwise.
   bool take(SurfaceMesh& mesh, std::uint64_t oldest = 0);
+  // Waits until the surface of paste number `number` (or a newer one) is finished, at most
+  // `timeout`; whether it was.
+  bool wait_for(std::uint64_t number, std::chrono::milliseconds timeout);
   // The surfaces built so far (a paste replaced before its build started is not).
   std::uint64_t built();
 
@@ -35,7 +39,8 @@ class SurfaceWorker {
   void run();
   const real spacing_;
   std::mutex m_;
-  std::condition_variable cv_;
+  std::condition_variable cv_;       // a paste to build, or stop
+  std::condition_variable done_cv_;  // a surface finished
   std::vector<Vec3> pending_;
   bool has_pending_ = false, stop_ = false;
   std::uint64_t submitted_ = 0, pending_number_ = 0, done_number_ = 0;

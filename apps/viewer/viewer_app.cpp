@@ -385,6 +385,8 @@ ViewerResult run_viewer(SimSession& session, const ViewerOptions& opt) {
   result.sim_steps = result.last.steps;
   result.sim_steps_per_second = result.last.steps_per_second;
   result.surfaces_built = paste_surface.built();
+  result.surface_frames_due = paste_surface.frames_due();
+  result.surface_frames_late = paste_surface.frames_late();
   timer.finish(result);
   return result;
 }

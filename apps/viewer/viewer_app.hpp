@@ -36,6 +36,9 @@ struct ViewerResult {
   double sim_steps_per_second = 0;         // the simulation's last measured rate
   std::uint64_t sim_steps = 0;
   std::uint64_t surfaces_built = 0;        // the paste's surfaces built for the surface view
+  // The surface view's frames due the surface of the frame before's paste (it moved), and those of
+  // them that drew an older one (PasteSurfaceView::frames_due, frames_late).
+  std::uint64_t surface_frames_due = 0, surface_frames_late = 0;
   bool closed_by_user = false;             // window closed (or SIGINT / SIGTERM) before the end
   bool timed_out = false;
   Snapshot last;                           // the simulation when the loop ended

@@ -131,6 +131,25 @@ TEST(ViewerGui, ThePasteAsItsSurface) {
   EXPECT_GT(double(differ) / double(is.rgb.size() / 3), 0.2 * with_spheres) << "the paste is drawn otherwise";
 }
 
+// The surface view keeps pace with the frames (PasteSurfaceView::update): while the paste moves
+// (the built-in scene's paste settles from its start), a frame waits for the surface of the paste
+// the frame before submitted, so the frames drew a new surface each; one that waited past
+// PasteSurfaceView::kMaxWait is counted late (a loaded machine), and only then may a paste go
+// unbuilt.
+TEST(ViewerGui, TheSurfaceKeepsPaceWithTheFrames) {
+  REQUIRE_XVFB();
+  const fs::path sum = temp("surface_pace.json");
+  const Result r = run_viewer(fmt::format("--frames 40 --surface --summary '{}'", sum.string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(sum));
+  const auto due = j.at("surface_frames_due").get<std::uint64_t>(), late = j.at("surface_frames_late").get<std::uint64_t>(),
+             built = j.at("surfaces_built").get<std::uint64_t>();
+  EXPECT_GT(due, 10u) << "the settling paste moved in most of the 40 frames";
+  EXPECT_LT(due, 40u) << "the first frame has no surface before it";
+  EXPECT_LE(late, due);
+  EXPECT_GE(built + late, due) << "every frame on time drew a surface built for it";
+}
+
 TEST(ViewerGui, ScriptedInputChangesThePictureAndTheMetrics) {
   REQUIRE_XVFB();
   const fs::path idle = temp("idle.json"), busy = temp("busy.json");

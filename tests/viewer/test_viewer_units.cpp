@@ -2,11 +2,16 @@
 // scripts, and the simulation session's commands (exact steps, edits, refusals).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <thread>
 
 #include <nlohmann/json.hpp>
+#include <sys/resource.h>
 
 #include "camera.hpp"
 #include "colour_map.hpp"
@@ -16,6 +21,7 @@
 #include "input_script.hpp"
 #include "paste_surface_view.hpp"
 #include "sim_session.hpp"
+#include "surface_worker.hpp"
 #include "support/small_scene.hpp"
 
 namespace dentsph::viewer {
@@ -54,6 +60,33 @@ TEST(PasteSurfaceView, ThePasteIsBuiltAgainOnlyWhereItMoved) {
   std::swap(now[0], now[2]);
   now[2] = built[0];
   EXPECT_TRUE(paste_moved(now, built, tolerance)) << "the same particles in another order";
+}
+
+// The frames keep pace with the surface (PasteSurfaceView::update): a frame waits for the surface
+// of the paste the frame before submitted. The worker says when that surface, or a newer one, is
+// finished, and not before; a paste replaced before its build started stands for the older one.
+TEST(SurfaceWorker, AFrameWaitsForTheSurfaceOfThePasteItIsDue) {
+  const real s = 1e-4;
+  std::vector<Vec3> block, moved;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k) block.push_back(Vec3{real(i), real(j), real(k)} * s);
+  for (const Vec3& p : block) moved.push_back(p + Vec3{10 * s, 0, 0});
+  SurfaceWorker worker(s);
+  EXPECT_FALSE(worker.wait_for(1, std::chrono::milliseconds(20))) << "nothing submitted: nothing finished";
+  const std::uint64_t first = worker.submit(block), second = worker.submit(moved);
+  EXPECT_EQ(second, first + 1);
+  ASSERT_TRUE(worker.wait_for(second, std::chrono::seconds(30)));
+  EXPECT_TRUE(worker.wait_for(first, std::chrono::milliseconds(0))) << "a newer surface stands for the older paste";
+  SurfaceMesh mesh;
+  ASSERT_TRUE(worker.take(mesh, second));
+  ASSERT_FALSE(mesh.empty());
+  real lowest_x = 1;
+  for (const Vec3& v : mesh.vertices) lowest_x = std::min(lowest_x, v.x);
+  EXPECT_GT(lowest_x, 9 * s) << "the newest paste's surface, the block moved by 10 spacings";
+  EXPECT_FALSE(worker.wait_for(second + 1, std::chrono::milliseconds(20))) << "the next paste is not submitted";
+  EXPECT_GE(worker.built(), 1u);
+  EXPECT_LE(worker.built(), 2u);
 }
 
 TEST(ColourMap, EndsClampsAndFlagsNaN) {
@@ -222,6 +255,30 @@ TEST(SimSession, ScheduledCommandsApplyAtTheirStepsSoRunsRepeat) {
   EXPECT_GT(count(a, Role::material), 48u);  // the increment arrived
   EXPECT_EQ(a.xyz, b.xyz);                   // the same simulation, whatever the timing
   EXPECT_NEAR(a.tool_pose.position.z, 0.06 - 55 * 1e-4 * 0.02, 1e-9);  // followed at 0.02 m/s for 55 steps
+}
+
+// The session's own loop yields to the frames: its thread (named viewer-sim) runs
+// SimSession::kFreeRunningNice above the nice value of the thread that started it, which keeps its own.
+TEST(SimSession, ItsOwnLoopRunsBelowTheFrames) {
+  const int own = getpriority(PRIO_PROCESS, 0);
+  SimSession session(small_scene(), SessionOptions{});
+  session.start();
+  (void)wait_for(session, [](const Snapshot& x) { return x.steps >= 5; });
+  int found = 0, nice = 0;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream comm(task.path() / "comm");
+    std::string name;
+    std::getline(comm, name);
+    if (name != "viewer-sim") continue;
+    ++found;
+    errno = 0;
+    nice = getpriority(PRIO_PROCESS, id_t(std::stoi(task.path().filename().string())));
+    EXPECT_EQ(errno, 0);
+  }
+  session.stop();
+  ASSERT_EQ(found, 1) << "one thread named viewer-sim";
+  EXPECT_EQ(nice, std::min(19, own + SimSession::kFreeRunningNice));
+  EXPECT_EQ(getpriority(PRIO_PROCESS, 0), own) << "the caller's thread (the frames') keeps its own";
 }
 
 // The mouse's instrument stops on the tooth: its target 2 mm below the empty cavity's floor, the
