@@ -40,7 +40,7 @@ void BM_ReportFinishRun(benchmark::State& bs) {
   const Scene filled = default_dental_scene();
   const State state = make_state(filled);
   const report::ProcedureLog log(state);
-  for (auto _ : bs) report::finish_run(dir, scene, state, log);
+  for (auto _ : bs) report::finish_run(dir, scene, state.pos, state.role, log);
 }
 BENCHMARK(BM_ReportFinishRun)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 
