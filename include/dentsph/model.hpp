@@ -139,6 +139,13 @@ struct IisphParams {
   // pressure and viscosity a step, so that the viscosity solved after the pressure does not leave the
   // paste compressed. At most 1; the presets' 0.5.
   real viscous_pressure = 0;
+  // The paste's surface tension, N/m (docs/model.md, "Surface tension and wetting"; 0: none, the
+  // solver as it was): Akinci, Akinci & Teschner 2013's cohesion and curvature between paste
+  // particles, their coefficient the tension's by kSurfaceTensionScale (fitted to Laplace's law).
+  real surface_tension = 0;
+  // The paste's wetting of walls (the tooth, set paste): their adhesion force over the cohesion's,
+  // Akinci's beta / gamma, 0 to 2 (0: none; with surface_tension only).
+  real wetting = 0;
 };
 
 // The user's choices; make_model() checks them and derives the rest.

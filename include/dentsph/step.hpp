@@ -2,6 +2,8 @@
 // "One step") or the iisph solver's ("Solvers"); the all-pairs reference; the time-step limits.
 #pragma once
 
+#include <limits>
+
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -69,6 +71,10 @@ struct StabilityLimits {
   // The paper's acoustic and viscous limits whatever the solver, for comparison (iisph: what its
   // dt is above).
   real paper_acoustic = 0, paper_viscous = 0;
+  // With the iisph solver's surface tension sigma: its explicit forces' limit, the larger of the
+  // capillary wave's sqrt(rho0 h^3 / (2 pi sigma)) (Brackbill et al. 1992) and the viscous damping's
+  // mu h / sigma (an overdamped surface; min rho0 and mu of the material); infinite without.
+  real capillary = std::numeric_limits<real>::infinity();
 };
 // With `paste`: the limits the State would have if the particles of the Model's paste material
 // (model.materials.paste; without one, every material particle) were of that material (a paste

@@ -96,6 +96,15 @@ void check_iisph_params(const IisphParams& ip) {
     fail("iisph.rheology_iterations", fmt::format("must be in [1, 100], got {}; 3 is usual", ip.rheology_iterations));
   if (!(ip.rheology_tolerance >= 0 && ip.rheology_tolerance < 1))
     fail("iisph.rheology_tolerance", fmt::format("must be in [0, 1), got {}; 0.02 is usual", ip.rheology_tolerance));
+  if (!(ip.surface_tension >= 0 && ip.surface_tension <= 1))
+    fail("iisph.surface_tension",
+         fmt::format("must be in [0, 1] N/m, got {}; 0 for none, water's is 0.072, a resin's about 0.04 (docs/model.md)",
+                     ip.surface_tension));
+  if (!(ip.wetting >= 0 && ip.wetting <= 2))
+    fail("iisph.wetting", fmt::format("must be in [0, 2], got {}; 0 for none (docs/model.md)", ip.wetting));
+  if (ip.wetting > 0 && !(ip.surface_tension > 0))
+    fail("iisph.wetting", fmt::format("{} needs a surface tension: set iisph.surface_tension (N/m), or wetting 0",
+                                      ip.wetting));
   if (!(ip.viscous_pressure >= 0 && ip.viscous_pressure <= 1))
     fail("iisph.viscous_pressure",
          fmt::format("must be in [0, 1], got {}; 0 for none, 0.5 is the presets' (docs/model.md)", ip.viscous_pressure));

@@ -22,7 +22,7 @@ constexpr real inf = std::numeric_limits<real>::infinity();
 
 StabilityLimits stability_limits(const Model& model, const State& s, const Material* paste) {
   const real h = model.kernel.h;
-  real kp_max = 0, rho_over_mu_min = inf;
+  real kp_max = 0, rho_over_mu_min = inf, rho0_min = inf, mu_min = inf;
   // The particles `paste` would change: those of the Model's paste material the cure has left as
   // they were (or, where the Model names no paste, every material particle).
   const std::optional<MaterialIndex> paste_index = model.materials.paste;
@@ -32,11 +32,18 @@ StabilityLimits stability_limits(const Model& model, const State& s, const Mater
     const real rho0 = edited ? paste->rho0 : s.rho0[i];
     kp_max = std::max(kp_max, Kp);
     if (mu > 0) rho_over_mu_min = std::min(rho_over_mu_min, rho0 / mu);
+    if (s.role[i] == Role::material) {
+      rho0_min = std::min(rho0_min, rho0);
+      mu_min = std::min(mu_min, mu);
+    }
   }
   StabilityLimits l;
   l.paper_acoustic = kp_max > 0 ? model.cfl_lambda * h / std::sqrt(kp_max) : inf;
   l.paper_viscous = 0.125 * h * h * rho_over_mu_min;
   l.force = force_time_step_limit(model, s.diagnostics);
+  const real sigma = model.iisph.surface_tension;
+  if (sigma > 0 && rho0_min < inf)
+    l.capillary = std::max(std::sqrt(rho0_min * h * h * h / (2 * 3.14159265358979323846 * sigma)), mu_min * h / sigma);
   solver_properties(model.solver).set_limits(model, kp_max, l);
   return l;
 }

@@ -47,7 +47,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
            "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "density_kernel", "rheology_iterations",
-           "rheology_tolerance", "wall_rest_density", "viscous_pressure"});
+           "rheology_tolerance", "wall_rest_density", "viscous_pressure", "surface_tension", "wetting"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
     const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
@@ -97,6 +97,12 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   p.viscous_pressure = i->number_or("viscous_pressure", p.viscous_pressure,
                                     "the viscous pressure's step, in [0, 1]: 0.5 the presets', 0 none (docs/model.md)",
                                     Range::non_negative);
+  p.surface_tension = i->number_or("surface_tension", p.surface_tension,
+                                   "the paste's surface tension in N/m, in [0, 1]: 0 none, about 0.04 a resin's (docs/model.md)",
+                                   Range::non_negative);
+  p.wetting = i->number_or("wetting", p.wetting,
+                           "the paste's wetting of walls, its adhesion over its cohesion, in [0, 2]: 0 none (docs/model.md)",
+                           Range::non_negative);
   p.rheology_tolerance = i->number_or("rheology_tolerance", p.rheology_tolerance,
                                       "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
                                       Range::non_negative);

@@ -8,6 +8,7 @@
 //   pairs.cpp       every particle's density, and its row: the neighbours within h with their kernel
 //                   gradient and viscosity weight; bonds form below A
 //   advection.cpp   adhesion of the bonded pairs (bonds break past B), gravity: the velocity v*
+//   surface_tension.cpp  the paste's cohesion, curvature and wetting of walls (Akinci 2013), into v*
 //   pressure_jacobi.cpp    the pressure (relaxed Jacobi, p >= 0): every particle's density at the end of the
 //                   step where its equation of state puts it; v* + dt a_p
 //   pressure_cg.cpp the same equations by projected conjugate gradients (iisph.pressure_solve "cg")
@@ -62,6 +63,13 @@ void list_active_rows(State& state, IisphScratch& x);
 // advection.cpp: breaks bonds past B, adhesion, gravity: v* of material rows; the viscosity and
 // divergence terms of the boundary and tool neighbours, fixed for the step.
 void advect(const Model& model, State& state, IisphScratch& x, int threads);
+// surface_tension.cpp: with iisph.surface_tension > 0, the paste's surface tension and wetting of
+// walls (Akinci, Akinci & Teschner 2013) added to v* of material rows; nothing without.
+void surface_tension(const Model& model, State& state, IisphScratch& x, int threads);
+// Akinci's gamma_ij = kSurfaceTensionScale sigma / (rho0_i rho0_j h^2) for a surface tension sigma
+// (N/m): the scale fitted to Laplace's law, a ball of paste's pressure 2 sigma / R
+// (tests/physics/test_surface_tension.cpp; docs/model.md, "Surface tension and wetting").
+inline constexpr real kSurfaceTensionScale = 14.7;
 // Whether a material of the model is non-Newtonian (its viscosity depends on the flow: rheology.cpp).
 inline bool has_rheology(const Model& model) { return model.materials.first_non_newtonian().has_value(); }
 // rheology.cpp: each material particle's effective viscosity at the shear rate of the velocities

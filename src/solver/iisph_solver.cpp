@@ -59,10 +59,16 @@ class IisphSolver final : public StepSolver {
     return velocity_time_step_limit(model, tool_speed);
   }
 
-  std::string time_step_problem(const Model& model, const StabilityLimits&, real v) const override {
+  std::string time_step_problem(const Model& model, const StabilityLimits& l, real v) const override {
     // The velocity CFL condition, against the fastest the scene's tool moves (the material moves
     // with it or slower; a device's hand is checked as it goes, by the force limit entry).
     const real dt = model.dt, limit = velocity_time_step_limit(model, v);
+    if (dt > l.capillary)
+      return fmt::format(
+          "simulation.dt: {:.3g} s is over the surface tension's limit of {:.3g} s (iisph.surface_tension {:.3g} N/m: "
+          "the larger of sqrt(rho0 h^3 / (2 pi sigma)) and the paste's viscosity times h / sigma); set simulation.dt "
+          "to at most {:.3g}, lower iisph.surface_tension, or pass --allow-unstable to run anyway",
+          dt, l.capillary, model.iisph.surface_tension, l.capillary);
     if (!(dt > limit)) return "";
     return fmt::format(
         "simulation.dt: {:.3g} s is over the iisph solver's velocity CFL limit of {:.3g} s (cfl {:.3g} * h {:.3g} m "

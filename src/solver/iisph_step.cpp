@@ -32,6 +32,7 @@ void one_step(const Model& model, State& state, IisphScratch& x, const StepOptio
   list_active_rows(state, x);
   clock.lap(&StageTimes::density_us);
   advect(model, state, x, t);                  // bonds broken past B, adhesion, gravity: v*
+  surface_tension(model, state, x, t);         // cohesion, curvature, wetting of walls: into v*
   clock.lap(&StageTimes::forces_us);
   state.diagnostics.on_deadline = false;
   solve_pressure(model, state, x, t, opt.deadline);  // the pressure; v* + dt a_p

@@ -57,6 +57,7 @@ struct IisphScratch {
   std::vector<real> visc_diag;       // material rows: sum_j of the row's visc
   std::vector<Vec3> visc_fixed;      // material rows: sum over boundary and tool neighbours of visc v_j
   std::vector<real> div_fixed;       // material rows: sum over boundary and tool neighbours of v_j . m_j gradW_ij
+  std::vector<Vec3> normal;          // material: h sum_j V_j gradW_ij, the paste's surface normal (surface tension)
   std::vector<Vec3> v_star;          // material: velocity after gravity and adhesion, then after the pressure
   std::vector<real> source;          // target density - max(rho_adv, target)
   std::vector<Vec3> tool_force;      // N, tool particles: adhesion on them

@@ -246,6 +246,18 @@ TEST(SceneParse, ReadsTheIisphSolversSettings) {
   EXPECT_EQ(cg.model.iisph.pressure_solve, PressureSolve::cg);
   EXPECT_EQ(cg.model.iisph.max_density_error, 0.005);
   EXPECT_EQ(cg.model.iisph.viscosity_tolerance, 1e-4);
+  EXPECT_EQ(cg.model.iisph.surface_tension, 0) << "none by default";
+  j["simulation"]["iisph"] = {{"surface_tension", 0.04}, {"wetting", 1}};
+  const Scene wet = parse(j);
+  EXPECT_EQ(wet.model.iisph.surface_tension, 0.04);
+  EXPECT_EQ(wet.model.iisph.wetting, 1);
+  j["simulation"]["iisph"] = {{"wetting", 1}};
+  try {
+    (void)parse(j);
+    ADD_FAILURE() << "wetting without a surface tension was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("iisph.wetting"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SceneParse, ReadsGivenSettings) {
