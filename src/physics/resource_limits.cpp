@@ -58,10 +58,10 @@ std::uint64_t state_bytes_per_particle(int max_bonds, bool skin) {
   constexpr std::uint64_t scratch = 24 + 8 + 4 + 1;
   const std::uint64_t kept = skin ? 4 * 64 + 2 + 24 : 0;  // within-h lists, build positions
   // The iisph solver's scratch (IisphScratch), counted whichever solver the scene names, since
-  // --solver may choose it after the scene is built: a row of pairs, two counts, ten vectors, seven
-  // numbers, four indices and the tool links, and the cg pressure solve's five numbers and its
-  // blocks' sums.
-  constexpr std::uint64_t iisph = IisphScratch::kPairStride * sizeof(SolverPair) + 2 + 10 * 24 + 7 * 8 + 4 * 4 + 12 +
+  // --solver may choose it after the scene is built: a row of pairs, two counts, eleven vectors
+  // (the surface tension's normal among them), seven numbers, four indices and the tool links, and
+  // the cg pressure solve's five numbers and its blocks' sums.
+  constexpr std::uint64_t iisph = IisphScratch::kPairStride * sizeof(SolverPair) + 2 + 11 * 24 + 7 * 8 + 4 * 4 + 12 +
                                   5 * 8 + sizeof(PressureSums) / IisphScratch::kSumBlock + 1;
   return 2 * arrays + by_id + lists + grid + scratch + kept + iisph;
 }
