@@ -191,6 +191,11 @@ struct HapticReport {
   double max_force_step_N = 0;            // largest change between consecutive ticks
   std::uint64_t magnitude_limited_ticks = 0, rate_limited_ticks = 0, non_finite_rejected = 0;
   std::uint64_t non_finite_poses = 0;     // device poses refused (the previous pose is kept)
+  // Ticks whose force the passivity control damped (the device had given the hand more energy than
+  // it took: haptics/passivity_control.hpp), and the energy the forces did on the hand at the end (J;
+  // below zero: the hand's work taken in).
+  std::uint64_t passivity_damped_ticks = 0;
+  double passivity_energy_J = 0;
   std::uint64_t sessions = 0;             // device sessions started (DeviceSample::session)
   std::uint64_t contact_ticks = 0;        // ticks the instrument touched the tooth, band or set paste
   std::uint64_t contact_rebuilds = 0;     // the contact field rebuilt (paste set, instrument switched)

@@ -106,6 +106,7 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const double pose_age = sample_.valid ? double(now - sample_.stamp_ns) * 1e-9 : -1;
   if (pose_age > opt_.watchdog.pose_timeout_s) velocity_ = {};  // a quiet device is not moving
   const Vec3 x = sample_.pose.position;
+  if (sample_.valid) passivity_.observe(x);  // the work the force sent last did on the hand
 
   // ---- hard contact: the instrument held out of the tooth, the band and set paste -------------
   // Its proxy is where the instrument may be (device frame): the simulation's tool follows it
@@ -158,7 +159,9 @@ void HapticLoop::tick(std::int64_t now, double dt) {
   const Vec3 target = renderer_.render(held, held_velocity, now) + contact.force_N;
   const double gain = watchdog_.update(sim_age, pose_age, dt);
   const Vec3 before = limiter_.last();
-  const ForceLimiter::Result lim = limiter_.apply(target * gain, dt);
+  // Where the forces have given the hand more energy than it took, damping takes it back.
+  const ForceLimiter::Result lim = limiter_.apply(passivity_.correct(target * gain, velocity_, dt), dt);
+  passivity_.sent(lim.force);
   // Torque for a device that renders it: the paste's and the contact's, through the same limits
   // (torque_profile); none for a 3-DoF device.
   const Vec3 torque =
@@ -229,12 +232,15 @@ void HapticLoop::start_session(const DeviceSample& fresh, std::int64_t now) {
   contact_.reset(opt_.workspace.to_scene(fresh.pose.position));
   sim_torque_ = {};
   if (torque_limiter_) torque_limiter_->reset();
+  passivity_.reset();
   have_sim_ = false;
   session_start_ns_ = now;
 }
 
 HapticReport HapticLoop::report() const {
   HapticReport r = rep_;
+  r.passivity_damped_ticks = passivity_.damped_ticks();
+  r.passivity_energy_J = passivity_.energy_J();
   r.dispense_presses = dispense_presses_.counted();
   r.dispense_presses_refused = dispense_presses_.refused();
   r.light_presses = light_presses_.counted();

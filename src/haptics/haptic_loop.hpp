@@ -15,6 +15,7 @@
 #include "haptics/force_limiter.hpp"
 #include "haptics/press_limiter.hpp"
 #include "haptics/force_renderer.hpp"
+#include "haptics/passivity_control.hpp"
 #include "haptics/shared.hpp"
 #include "haptics/timing_stats.hpp"
 #include "haptics/watchdog.hpp"
@@ -45,6 +46,7 @@ class HapticLoop {
   ForceRenderer renderer_;
   Watchdog watchdog_;
   ForceLimiter limiter_;
+  PassivityControl passivity_;
   HardContact contact_;  // the tooth, band and set paste, at this loop's rate
   std::optional<ForceLimiter> torque_limiter_;  // a device that renders torque
   DurationHistogram periods_, force_ages_;

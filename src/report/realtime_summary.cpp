@@ -78,6 +78,7 @@ std::string realtime_json(const RealtimeResult& r) {
                              {"rate_limited_ticks", h.rate_limited_ticks},
                              {"non_finite_rejected", h.non_finite_rejected},
                              {"non_finite_poses", h.non_finite_poses}}},
+                 {"passivity", {{"damped_ticks", h.passivity_damped_ticks}, {"energy_J", h.passivity_energy_J}}},
                  {"sessions", h.sessions},
                  {"dispense_presses", h.dispense_presses},
                  {"dispense_presses_refused", h.dispense_presses_refused},

@@ -19,6 +19,7 @@
 #include "haptics/exchange.hpp"
 #include "haptics/force_interpolator.hpp"
 #include "haptics/force_limiter.hpp"
+#include "haptics/passivity_control.hpp"
 #include "haptics/force_renderer.hpp"
 #include "haptics/hand_path.hpp"
 #include "haptics/haptic_loop.hpp"
@@ -173,6 +174,89 @@ TEST(Protocol, SequencesCompareAcrossTheWrap) {
   EXPECT_TRUE(proto::sequence_newer(0, 0xffffffff));
   EXPECT_FALSE(proto::sequence_newer(0xffffffff, 0));
   EXPECT_FALSE(proto::sequence_newer(5, 5));
+}
+
+// Time-domain passivity control (haptics/passivity_control.hpp). The hand is a position source
+// moving back and forth (2 mm at 2 Hz) at 1 kHz ticks.
+namespace passivity {
+constexpr double T = 1e-3, A = 2e-3, w = 2 * std::numbers::pi * 2;
+Vec3 hand(int k) { return {A * std::sin(w * k * T), 0, 0}; }
+Vec3 hand_velocity(int k) { return {A * w * std::cos(w * k * T), 0, 0}; }
+}  // namespace passivity
+
+// A spring with enough damping for its tick (b > k T / 2: Colgate & Schenkel's condition) takes
+// energy from the hand: the control never acts and sends every force unchanged.
+TEST(PassivityControl, APassiveRenderingIsSentUnchanged) {
+  using namespace passivity;
+  haptics::PassivityControl pc;
+  const double k = 400, b = 2;
+  for (int n = 0; n < 2000; ++n) {
+    pc.observe(hand(n));
+    const Vec3 f = hand(n) * -k - hand_velocity(n) * b;
+    const Vec3 sent = pc.correct(f, hand_velocity(n), T);
+    ASSERT_EQ(sent, f) << "tick " << n;
+    pc.sent(sent);
+  }
+  EXPECT_EQ(pc.damped_ticks(), 0u);
+  EXPECT_LT(pc.energy_J(), 0) << "the hand's work taken in";
+}
+
+// A force that pushes the hand along its motion (a negative damper, as a late simulation's force
+// can be) would give it energy every cycle. The control damps the excess back each tick: the energy
+// done on the hand stays within one tick's work of zero, where without it it grows.
+TEST(PassivityControl, AnActiveRenderingIsDampedBackToPassive) {
+  using namespace passivity;
+  haptics::PassivityControl pc, raw;
+  const double c = 3;  // N s/m along the motion
+  double most = 0, tick_work = 0;
+  for (int n = 0; n < 2000; ++n) {
+    pc.observe(hand(n));
+    raw.observe(hand(n));
+    const Vec3 f = hand_velocity(n) * c;
+    pc.sent(pc.correct(f, hand_velocity(n), T));
+    raw.sent(f);
+    most = std::max(most, pc.energy_J());
+    tick_work = std::max(tick_work, c * norm2(hand_velocity(n)) * T);
+  }
+  EXPECT_GT(raw.energy_J(), 1e-3) << "J: the raw force gives the hand energy";
+  EXPECT_GT(pc.damped_ticks(), 1000u);
+  EXPECT_LE(most, 2 * tick_work) << "J: the controlled force gives back what it gave within a tick";
+  EXPECT_LT(pc.energy_J(), 0.01 * raw.energy_J());
+}
+
+// A session starts owing nothing; a hand at rest or a tick of no time is not damped (alpha would
+// be infinite), nor is a non-finite velocity used.
+TEST(PassivityControl, ASessionStartsOwingNothing) {
+  using namespace passivity;
+  haptics::PassivityControl pc;
+  pc.observe({0, 0, 0});
+  pc.sent({1, 0, 0});
+  pc.observe({1e-3, 0, 0});  // 1 mJ given to the hand
+  EXPECT_NEAR(pc.energy_J(), 1e-3, 1e-15);
+  const Vec3 f{0.5, 0, 0};
+  EXPECT_EQ(pc.correct(f, {}, T), f) << "at rest";
+  EXPECT_EQ(pc.correct(f, {0.1, 0, 0}, 0), f) << "no time";
+  EXPECT_EQ(pc.correct(f, {NAN, 0, 0}, T), f) << "not finite";
+  const Vec3 damped = pc.correct(f, {0.1, 0, 0}, T);
+  EXPECT_NEAR(damped.x, 0.5 - haptics::PassivityControl::kMaxDamping * 0.1, 1e-12)
+      << "alpha = E / (|v|^2 dt) = 1e5 N s/m, capped";
+  const Vec3 fast = pc.correct(f, {20, 0, 0}, T);
+  EXPECT_NEAR(fast.x, 0.5 - 1e-3 / (400 * T) * 20, 1e-12) << "alpha = E / (|v|^2 dt) = 2.5 N s/m";
+  // Energy given back within kTolerance of what the hand put in is left alone.
+  haptics::PassivityControl tol;
+  tol.observe({0, 0, 0});
+  tol.sent({-1, 0, 0});
+  tol.observe({1e-3, 0, 0});  // the hand put in 1 mJ
+  tol.sent({1, 0, 0});
+  tol.observe({2.004e-3, 0, 0});  // 1.004 mJ back: 4 uJ more than it put in, within 0.5% of 1 mJ
+  EXPECT_EQ(tol.correct(f, {0.1, 0, 0}, T), f);
+  tol.observe({2.008e-3, 0, 0});  // 8 uJ more: 3 uJ beyond
+  EXPECT_NEAR(tol.correct(f, {0.1, 0, 0}, T).x, 0.5 - 3e-6 / (0.01 * T) * 0.1, 1e-9);
+  pc.reset();
+  EXPECT_EQ(pc.energy_J(), 0);
+  EXPECT_EQ(pc.correct(f, {0.1, 0, 0}, T), f);
+  pc.observe({5e-3, 0, 0});  // the first position of a session does no work
+  EXPECT_EQ(pc.energy_J(), 0);
 }
 
 TEST(ForceLimiter, NeverSendsNonFiniteOrTooLargeOrTooSudden) {

@@ -147,9 +147,17 @@ RealtimeResult expect_passive_press(const Scene& scene) {
   const std::vector<double> e = energy_to_hand(r.recording.haptic);
   double in = 0, peak = 0;
   for (double v : e) in = std::min(in, v), peak = std::max(peak, v);
-  std::printf("energy: the hand put in %.4g J; the most it got back beyond that: %.4g J\n", -in, peak);
+  std::printf("energy: the hand put in %.4g J; the most it got back beyond that: %.4g J (the loop damped %llu ticks; it observed %.4g J)\n",
+              -in, peak, (unsigned long long)r.haptic.passivity_damped_ticks, r.haptic.passivity_energy_J);
   EXPECT_GT(r.haptic.max_force_N, 0.5);  // it did press
   EXPECT_LE(peak, 0.01 * -in + 1e-6);
+  // The loop's own observer (haptics/passivity_control.hpp) agrees: the hand gave energy, and the
+  // summary says what it damped.
+  EXPECT_LT(r.haptic.passivity_energy_J, 0) << "J: the hand's work taken in";
+  EXPECT_NEAR(r.haptic.passivity_energy_J, e.back(), 0.05 * -in) << "J: the observer against the recording's";
+  const nlohmann::json p = testing::realtime_sections(r)["haptic"]["passivity"];
+  EXPECT_EQ(p["damped_ticks"].get<std::uint64_t>(), r.haptic.passivity_damped_ticks);
+  EXPECT_DOUBLE_EQ(p["energy_J"].get<double>(), r.haptic.passivity_energy_J);
   return r;
 }
 
