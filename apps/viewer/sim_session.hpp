@@ -120,7 +120,7 @@ class SimSession {
   void start();
   void stop();  // joins the thread; idempotent
   // How much nicer the session's own loop is than the frames: on two cores it yields to the frames and the
-  // surface worker (docs/viewer.md, "The surface's cost"), which stepping as fast as it can would
+  // surface worker (docs/viewer.md, "The surface keeps pace with the frames"), which stepping as fast as it can would
   // otherwise starve.
   static constexpr int kFreeRunningNice = 5;
   // The runtime's result once stopped (use_device sessions).
