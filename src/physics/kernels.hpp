@@ -104,20 +104,23 @@ DENTSPH_HD inline real adhesion(real r, const AdhesionParams& a, const KernelCoe
 }
 
 // Akinci, Akinci & Teschner 2013 ("Versatile surface tension and adhesion for SPH fluids", ACM TOG
-// 32(6) 182), support h. Their cohesion spline C(r), 1/m^3: attracts beyond h / 2, repels a little
-// closer (so that cohesion alone does not cluster particles).
+// 32(6) 182), support h, each the product of its normalisation (once a step) and its shape (a pair).
+// Their cohesion spline C(r) = cohesion_scale(h) cohesion(r, h), 1/m^3: attracts beyond h / 2,
+// repels a little closer (so that cohesion alone does not cluster particles).
+DENTSPH_HD inline real cohesion_scale(real h) { return real(32) / (pi * h * h * h * h * h * h * h * h * h); }
 DENTSPH_HD inline real cohesion(real r, real h) {
   if (!(r > 0) || r > h) return 0;
   const real h3 = h * h * h;
-  const real c = real(32) / (real(3.14159265358979323846) * h3 * h3 * h3);
   const real a = (h - r) * (h - r) * (h - r) * r * r * r;
-  return 2 * r > h ? c * a : c * (2 * a - h3 * h3 / 64);
+  return 2 * r > h ? a : 2 * a - h3 * h3 / 64;
 }
-// Their adhesion spline A(r) of a fluid particle to a wall particle, 1/m^3.25: only beyond h / 2.
+// Their adhesion spline A(r) = wall_adhesion_scale(h) wall_adhesion(r, h) of a fluid particle to a
+// wall particle, 1/m^3.25: only beyond h / 2.
+DENTSPH_HD inline real wall_adhesion_scale(real h) { return real(0.007) / std::pow(h, real(3.25)); }
 DENTSPH_HD inline real wall_adhesion(real r, real h) {
   if (2 * r <= h || r > h) return 0;
   const real v = -4 * r * r / h + 6 * r - 2 * h;
-  return real(0.007) / std::pow(h, real(3.25)) * std::pow(v > 0 ? v : 0, real(0.25));
+  return std::pow(v > 0 ? v : 0, real(0.25));
 }
 
 }  // namespace dentsph::kernels

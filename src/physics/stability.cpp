@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -43,7 +44,7 @@ StabilityLimits stability_limits(const Model& model, const State& s, const Mater
   l.force = force_time_step_limit(model, s.diagnostics);
   const real sigma = model.iisph.surface_tension;
   if (sigma > 0 && rho0_min < inf)
-    l.capillary = std::max(std::sqrt(rho0_min * h * h * h / (2 * 3.14159265358979323846 * sigma)), mu_min * h / sigma);
+    l.capillary = std::max(std::sqrt(rho0_min * h * h * h / (2 * std::numbers::pi * sigma)), mu_min * h / sigma);
   solver_properties(model.solver).set_limits(model, kp_max, l);
   return l;
 }

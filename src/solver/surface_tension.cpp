@@ -15,6 +15,7 @@ void surface_tension(const Model& model, State& s, IisphScratch& x, int threads)
   const real h = model.kernel.h, dt = model.dt;
   const real scale = kSurfaceTensionScale * sigma / (h * h);  // gamma_ij = scale / (rho0_i rho0_j)
   const real wetting = model.iisph.wetting;
+  const real cohesion_scale = kernels::cohesion_scale(h), adhesion_scale = kernels::wall_adhesion_scale(h);
   const std::int64_t n = s.size();
   // Each material particle's normal n_i = h sum_j V_j gradW_ij over its material neighbours: the
   // paste's colour field's gradient, 0 inside, about 1 / (the kernel's reach) across its surface.
@@ -43,10 +44,11 @@ void surface_tension(const Model& model, State& s, IisphScratch& x, int threads)
       // Akinci's correction K_ij = 2 rho0 / (rho_i + rho_j): stronger where the paste is thin.
       const real K = (s.rho0[i] + s.rho0[j]) / (rho_i + 1 / x.inv_rho[j]);
       Vec3 fij = (x.normal[i] - x.normal[j]) * (-gamma * mi);
-      if (r > 0) fij += d * (-gamma * mi * s.mass[j] * kernels::cohesion(r, h) / r);
+      if (r > 0) fij += d * (-gamma * mi * s.mass[j] * cohesion_scale * kernels::cohesion(r, h) / r);
       f += fij * K;
     }
     if (wetting > 0) {
+      const real beta = wetting * scale / (s.rho0[i] * s.rho0[i]);
       for (std::uint32_t q = IisphScratch::kPairStride - x.n_other[i]; q < IisphScratch::kPairStride; ++q) {
         const std::uint32_t j = row[q].j;
         if (s.role[j] != Role::boundary) continue;  // a wall (the tooth, set paste), not the instrument
@@ -55,8 +57,7 @@ void surface_tension(const Model& model, State& s, IisphScratch& x, int threads)
         if (!(r > 0)) continue;
         // Psi_j = rho0_i V_j: the wall particle's volume filled with the paste.
         const real psi = s.rho0[i] * s.mass[j] * x.inv_rho[j];
-        const real beta = wetting * scale / (s.rho0[i] * s.rho0[i]);
-        f += d * (-beta * mi * psi * kernels::wall_adhesion(r, h) / r);
+        f += d * (-beta * mi * psi * adhesion_scale * kernels::wall_adhesion(r, h) / r);
       }
     }
     const Vec3 dv = f * (dt / mi);

@@ -30,6 +30,8 @@ struct Spheres {
   }
 };
 
+constexpr real kRminVoxels = 0.5;
+
 void check(std::span<const Vec3> centres, real spacing, const SurfaceParams& p) {
   auto bad = [](const std::string& what) { throw std::invalid_argument("paste surface: " + what); };
   if (!(std::isfinite(spacing) && spacing > 0)) bad(fmt::format("spacing {} m: give the particles' spacing, > 0", spacing));
@@ -40,6 +42,12 @@ void check(std::span<const Vec3> centres, real spacing, const SurfaceParams& p) 
   if (!(p.inset_per_spacing >= 0 && p.inset_per_spacing <= 0.5 * p.radius_per_spacing))
     bad(fmt::format("inset_per_spacing {}: give 0 to half the radius, {} (0.235: fitted to a lattice block's volume)",
                     p.inset_per_spacing, 0.5 * p.radius_per_spacing));
+  // The spheres rasterised (radius less inset) below half a voxel, ParticlesToLevelSet's Rmin here,
+  // would be left out without a word: an empty surface.
+  if (const real voxels = (p.radius_per_spacing - p.inset_per_spacing) * p.voxels_per_spacing; voxels < kRminVoxels)
+    bad(fmt::format("radius_per_spacing less inset_per_spacing is {} voxels: give at least {} (more voxels_per_spacing, "
+                    "or a smaller inset)",
+                    voxels, kRminVoxels));
   if (p.smoothing < 0 || p.smoothing > 10) bad(fmt::format("smoothing {}: give 0 to 10 mean-filter passes", p.smoothing));
   for (std::size_t i = 0; i < centres.size(); ++i)
     if (!is_finite(centres[i])) bad(fmt::format("particle {} is not at a finite position", i));
@@ -65,7 +73,7 @@ SurfaceMesh particle_surface(std::span<const Vec3> centres, real spacing, const 
   const float half_width = 2;
   openvdb::FloatGrid::Ptr grid = openvdb::createLevelSet<openvdb::FloatGrid>(1 / p.voxels_per_spacing, half_width);
   openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
-  raster.setRmin(0.5);  // voxels: every sphere here is larger
+  raster.setRmin(kRminVoxels);  // every sphere here is larger (check())
   raster.rasterizeSpheres(Spheres{scaled, p.radius_per_spacing - p.inset_per_spacing});
   raster.finalize(/*prune=*/true);
   if (p.smoothing > 0) {

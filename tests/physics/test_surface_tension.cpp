@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "dentsph/solver.hpp"
@@ -55,7 +56,7 @@ Ball ball(real r_spacings, real tension, real dt, real viscosity = mu) {
       }
   b.state.add_particles(b.model, ps);
   // The ball's radius: the sphere of the particles' volume.
-  b.radius = std::cbrt(3 * real(ps.size()) / (4 * 3.14159265358979323846)) * s;
+  b.radius = std::cbrt(3 * real(ps.size()) / (4 * std::numbers::pi)) * s;
   return b;
 }
 
@@ -158,7 +159,7 @@ TEST(SurfaceTension, WettingDrawsThePasteAlongAWall) {
 TEST(SurfaceTension, AStepOverTheCapillaryLimitIsRefused) {
   const Ball water = ball(4, 0.072, 5e-4, 1e-3);
   const StabilityLimits l = stability_limits(water.model, water.state);
-  EXPECT_NEAR(l.capillary, std::sqrt(rho0 * 8 * s * s * s / (2 * 3.14159265358979323846 * 0.072)), 1e-9);
+  EXPECT_NEAR(l.capillary, std::sqrt(rho0 * 8 * s * s * s / (2 * std::numbers::pi * 0.072)), 1e-9);
   const std::string problem = solver_properties(Solver::iisph).time_step_problem(water.model, l, 0);
   EXPECT_NE(problem.find("surface tension's limit"), std::string::npos) << problem;
   EXPECT_NE(problem.find("simulation.dt"), std::string::npos) << problem;

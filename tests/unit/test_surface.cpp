@@ -123,6 +123,11 @@ TEST(Surface, NoParticlesIsAnEmptySurfaceAndBadInputIsRefused) {
   p.inset_per_spacing = 0.6;
   refused(one, s, p, "inset_per_spacing 0.6: give 0 to half the radius");
   p = {};
+  p.radius_per_spacing = 0.5;
+  p.inset_per_spacing = 0.25;
+  p.voxels_per_spacing = 1;  // spheres of a quarter voxel, which OpenVDB would leave out
+  refused(one, s, p, "radius_per_spacing less inset_per_spacing is 0.25 voxels: give at least 0.5");
+  p = {};
   p.smoothing = -1;
   refused(one, s, p, "smoothing -1");
 }

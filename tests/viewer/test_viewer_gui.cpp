@@ -146,7 +146,6 @@ TEST(ViewerGui, TheSurfaceKeepsPaceWithTheFrames) {
              built = j.at("surfaces_built").get<std::uint64_t>();
   EXPECT_GT(due, 10u) << "the settling paste moved in most of the 40 frames";
   EXPECT_LT(due, 40u) << "the first frame has no surface before it";
-  EXPECT_LE(late, due);
   EXPECT_GE(built + late, due) << "every frame on time drew a surface built for it";
 }
 
