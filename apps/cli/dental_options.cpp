@@ -156,9 +156,7 @@ namespace {
 
 // The scene filled with `preset`: its force at scale 1, the preset named.
 Scene filled_with(Scene sc, const PastePreset& preset) {
-  sc.force_scale = 1;
-  sc.paste_preset = preset.name;
-  sc.paste_temperature_c = preset.temperature_c;
+  fill_scene_with(sc, preset);
   return sc;
 }
 

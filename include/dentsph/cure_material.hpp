@@ -61,6 +61,10 @@ real conversion_from_age(const CureMaterial& m, real age);
 // Attenuation coefficient (1/m) of the paste at conversion alpha.
 real paste_attenuation(const CureMaterial& m, real alpha);
 
+// The factor on the paste's viscosity at conversion `alpha`: viscosity_factor_at_gel^(alpha /
+// alpha_gel), the gel point's factor past it (uncapped: cured_parameters caps it). For a paste with a
+// flow law the factor raises its whole flow curve (docs/model.md, "Presets").
+real setting_viscosity_factor(const CureMaterial& m, real alpha);
 // The paste's parameters at conversion `alpha`, from its uncured ones: viscosity and adhesion
 // rise geometrically with alpha / alpha_gel up to their factors at the gel point (the viscosity no
 // higher than `viscosity_limit`, the largest the time step allows, and never lowered by it), the

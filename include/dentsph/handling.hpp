@@ -131,7 +131,11 @@ HandlingResult tack_test(const PastePreset& preset, const TackOptions& options =
 
 // The condensation of an amalgam: a flat plugger driven into a 1 mm increment on the floor of a
 // cavity 4 mm across, as a practitioner condenses it; the peak stress under the plugger (its force
-// over its face's area) and the peak force, for a 1.15 mm and a 1.8 mm plugger.
+// over its face's area) and the peak force, for a 1.15 mm and a 1.8 mm plugger. For a paste that
+// sets by itself (its cure preset self_setting: the amalgam), the working window too: the
+// `window_plugger` condensing the paste at each of `ages` (s after mixing) before its gel point, its
+// flow curve raised by the setting (setting_viscosity_factor), and the working time, the age at which
+// the peak stress has doubled; no window where `ages` is empty.
 struct CondensationOptions {
   HandlingRunOptions run;
   std::vector<real> plugger_diameters{1.15e-3, 1.8e-3};  // m
@@ -141,6 +145,8 @@ struct CondensationOptions {
   real depth = 0.5e-3;          // m into the increment
   real spacing = 0.1e-3;        // m
   real dt = 5e-3;               // s
+  std::vector<real> ages{0, 120, 180, 210, 240, 270, 300, 330};  // s after mixing
+  real window_plugger = 1.8e-3;  // m
 };
 HandlingResult condensation_test(const PastePreset& preset, const CondensationOptions& options = {});
 

@@ -15,6 +15,8 @@
 
 namespace dentsph {
 
+struct Scene;
+
 struct PastePreset {
   std::string name;
   real temperature_c = 23;     // C, the paste's temperature (the consistency below is at it)
@@ -70,5 +72,8 @@ std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& f
 // is non-Newtonian, with the viscous pressure (kPresetViscousPressure). The paste's contact with the instruments keeps no strength there
 // (Material::interface_strength 0; docs/model.md, "Tack").
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
+// Names `preset` as what fills `scene` (Scene::paste_preset, its temperature and its cure, which the
+// simulation cures it by) and renders its force in newtons (Scene::force_scale 1).
+void fill_scene_with(Scene& scene, const PastePreset& preset);
 
 }  // namespace dentsph

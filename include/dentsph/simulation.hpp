@@ -177,10 +177,12 @@ class Simulation {
   bool step(const Pose& tool_pose);
 
   // ---- curing (docs/architecture.md, "Curing") --------------------------------------------------
-  // Whether the run cures: the scene has cure events, or a light was turned on (set_light).
+  // Whether the run cures: the scene has cure events, its paste sets by itself, or a light was turned
+  // on (set_light).
   bool curing() const { return cure_.has_value(); }
-  // The cure's model (nullptr while the run does not cure): the scene's paste, cured as the
-  // "composite" preset.
+  // The cure's model (nullptr while the run does not cure): the scene's paste, cured as its cure
+  // preset (Scene::paste_cure: "composite", or "amalgam", which sets by itself: such a run cures
+  // from its start).
   const CureModel* cure_model() const { return cure_ ? &*cure_ : nullptr; }
   // A hand-held light (the viewer's key, the device's second button): on from now until turned off
   // (nullopt); it takes the place of the scene's cure events while on. The first light turned on

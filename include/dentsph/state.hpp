@@ -163,6 +163,10 @@ class State {
   bool rho_static_valid = false;
   BondStore bonds;
   CureState cure;  // degree of conversion, dose, increment (include/dentsph/cure_state.hpp)
+  // Pa, the iisph solver's viscous pressure of each particle (docs/model.md, "The viscous
+  // pressure"), carried from step to step: this State's own, kept with it when it is copied and
+  // re-keyed when particles are removed; empty until a step solves it (new particles start at 0).
+  std::vector<real> viscous_pressure;
 
   // ---- tool and time ------------------------------------------------------------------------
   Pose tool_pose;          // the pose the next step moves the tool to (set by the caller)

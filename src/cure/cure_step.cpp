@@ -30,8 +30,11 @@ CureModel make_cure_model(const Model& model, const CureMaterial& paste, real sp
   // filling's second increment (rho 625 of 2000, mu 1.42 Pa s, adhesion risen 5%, dt 50 us) grew
   // an oscillation 1.4x a step 5 ms after the light came on and flung 45 particles out of the
   // cavity; at half of it (0.9 Pa s, under the paste's own 1 Pa s) nothing was lost.
+  // A paste with a flow law (an SI preset) is stepped only by the iisph solver, whose viscosity is
+  // implicit (stable at any viscosity): its setting is not capped.
   const real h = model.kernel.h;
-  cm.viscosity_limit = 0.5 * 0.125 * h * h * uncured.rho0 / model.dt;
+  cm.viscosity_limit = newtonian(uncured) ? 0.5 * 0.125 * h * h * uncured.rho0 / model.dt
+                                          : std::numeric_limits<real>::infinity();
   cm.shrink_tolerance = 0.01 * spacing;
   return cm;
 }

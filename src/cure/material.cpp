@@ -80,12 +80,17 @@ real paste_attenuation(const CureMaterial& m, real alpha) {
   return m.attenuation_uncured + (m.attenuation_cured - m.attenuation_uncured) * f;
 }
 
+real setting_viscosity_factor(const CureMaterial& m, real alpha) {
+  const real to_gel = std::clamp(alpha / m.alpha_gel, real(0), real(1));
+  // Past the gel point the gel point's factor (no pow: most calls, the paste set).
+  return to_gel >= 1 ? m.viscosity_factor_at_gel : std::pow(m.viscosity_factor_at_gel, to_gel);
+}
+
 Material cured_parameters(const CureMaterial& m, const Material& uncured, real alpha, real viscosity_limit) {
   const real to_gel = std::clamp(alpha / m.alpha_gel, real(0), real(1));
   Material p = uncured;
-  // Past the gel point the factors are the gel point's (no pow: most calls, the paste set).
   const bool gelled = to_gel >= 1;
-  p.mu = uncured.mu * (gelled ? m.viscosity_factor_at_gel : std::pow(m.viscosity_factor_at_gel, to_gel));
+  p.mu = uncured.mu * setting_viscosity_factor(m, alpha);
   p.mu = std::min(p.mu, std::max(uncured.mu, viscosity_limit));
   p.Ka = uncured.Ka * (gelled ? m.adhesion_factor_at_gel : std::pow(m.adhesion_factor_at_gel, to_gel));
   p.rho0 = uncured.rho0 / (1 - m.shrinkage * std::clamp(alpha / m.alpha_max, real(0), real(1)));

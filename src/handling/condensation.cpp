@@ -1,12 +1,79 @@
 // The condensation test (include/dentsph/handling.hpp; docs/model.md, "Handling tests"): a flat
 // plugger driven into an increment of paste on the floor of a cylindrical cavity, as an amalgam is
 // condensed, on the packing test's rig (a finer spacing: the smaller plugger is 1.15 mm across).
+#include <cmath>
+
 #include <fmt/format.h>
 
+#include "dentsph/cure_material.hpp"
 #include "dentsph/handling.hpp"
 #include "handling/rig.hpp"
 
 namespace dentsph {
+
+namespace {
+
+// The paste `age` s after mixing: its whole flow curve (consistency, yield stress, cap) raised by the
+// setting's factor, as the simulation raises a setting particle's (docs/model.md, "Presets").
+PastePreset aged(const PastePreset& preset, const CureMaterial& cure, real age) {
+  const real f = setting_viscosity_factor(cure, conversion_from_age(cure, age));
+  PastePreset p = preset;
+  p.paste.mu *= f;
+  p.paste.yield_stress *= f;
+  p.paste.max_viscosity *= f;
+  return p;
+}
+
+// The working window: the window plugger condensing the paste at each age before its gel point, and
+// the age at which the peak stress has doubled (linear between the ages that straddle it).
+void working_window(const PastePreset& preset, const CondensationOptions& o, HandlingResult& r) {
+  const CureMaterial cure = cure_material_preset(preset.cure);
+  if (!cure.self_setting || o.ages.empty()) return;
+  // The gel point's age: conversion_from_age reaches alpha_gel.
+  const real gel = cure.working_time - cure.set_time_constant * std::log1p(-cure.alpha_gel / cure.alpha_max);
+  HandlingCurve curve;
+  curve.file = "condensation_window";
+  curve.title = fmt::format("Working window: {} under a {:g} mm plugger, by the time since mixing", preset.name,
+                            o.window_plugger * 1e3);
+  curve.x_label = "time since mixing (s)";
+  curve.y_label = "peak stress under the plugger (MPa)";
+  HandlingSeries series{"peak stress", {}, {}, false};
+  const std::string source = fmt::format(
+      "the paste's setting (cure preset {}: no change for {:g} s, then set with a time constant of {:g} s, its "
+      "gel point at {:.0f} s): an amalgam's working time is about 3 minutes, from which the {:g} s was set (a "
+      "calibration, not a prediction)",
+      preset.cure, cure.working_time, cure.set_time_constant, gel, cure.working_time);
+  real fresh = 0, working = -1;
+  for (real age : o.ages) {
+    if (!(age >= 0)) throw std::invalid_argument(fmt::format("condensation: an age of {} s since mixing is negative", age));
+    if (age >= gel) break;  // set: rigid, not condensed
+    const PastePreset p = aged(preset, cure, age);
+    handling::MouldRig rig = handling::mould_rig(p, o.spacing, o.cavity_diameter, o.increment, o.window_plugger, o.dt,
+                                                 instrument_interface_strength(o.run.instrument));
+    const real peak = handling::press_probe(rig, o.window_plugger, o.speed, o.depth, 0, o.dt, o.run, "condensation").peak;
+    if (o.run.progress)
+      o.run.progress(fmt::format("condensation: {} {:g} s after mixing: peak {:.3g} MPa", preset.name, age, peak));
+    if (series.x.empty()) fresh = peak;
+    if (working < 0 && !series.x.empty() && peak >= 2 * fresh && series.y.back() < 2 * fresh)
+      working = series.x.back() + (age - series.x.back()) * (2 * fresh - series.y.back()) / (peak - series.y.back());
+    series.x.push_back(age);
+    series.y.push_back(peak);
+    r.figures.push_back({fmt::format("peak stress {:g} s after mixing, {:g} mm plugger", age, o.window_plugger * 1e3),
+                         peak, "MPa", std::nullopt, source});
+  }
+  if (working >= 0)
+    r.figures.push_back({"working time: the condensing stress doubled", working, "s", std::nullopt, source});
+  else
+    r.notes.push_back(fmt::format("the peak stress did not double over the ages condensed (up to {:g} s)",
+                                  series.x.empty() ? 0 : series.x.back()));
+  r.notes.push_back(fmt::format("the working window: the paste condensed at each age as it was then (its whole flow "
+                                "curve raised by its setting); it sets rigid at its gel point, {:.0f} s after mixing",
+                                gel));
+  curve.series.push_back(std::move(series));
+  r.curves.push_back(std::move(curve));
+}
+
+}  // namespace
 
 HandlingResult condensation_test(const PastePreset& preset, const CondensationOptions& o) {
   if (o.plugger_diameters.empty() || !(o.spacing > 0) || !(o.speed > 0) || !(o.depth > 0) || !(o.dt > 0) ||
@@ -47,6 +114,7 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
   }
   curve.range_bar = std::array<real, 3>{o.depth * 1e3, 4, 9};
   r.curves.push_back(curve);
+  working_window(preset, o, r);
   r.notes.push_back(fmt::format(
       "a {:g} mm increment on the floor of a cavity {:g} mm across ({:g} mm spacing); the plugger driven {:g} mm into "
       "it at {:g} mm/s (assumed: a condensing stroke); the stress is the paste's force on the plugger over its "

@@ -1,5 +1,5 @@
 // The packing test (include/dentsph/handling.hpp; docs/model.md, "Handling tests"): a flat probe
-// (the tool: a cylinder 3 mm tall, its face two layers and its side two layers deep) is driven down
+// (the tool: a solid cylinder of particles 3 mm tall) is driven down
 // at a constant speed into paste filling a cylindrical mould level with its rim, to a depth below
 // the surface, and held there. The paste's force on the probe over the probe's face is the packing
 // stress. The mould's floor and wall are boundary particles two layers deep; gravity acts.

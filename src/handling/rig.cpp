@@ -83,7 +83,7 @@ MouldRig mould_rig(const PastePreset& preset, real s, real mould_diameter, real 
       for (int i = -reach; i <= reach; ++i) {
         const Vec3 x{i * s, j * s, face0 + (k + 0.5) * s};
         const real r = std::hypot(x.x, x.y);
-        if (r < a && (k < 2 || r >= a - 2 * s)) ps.push_back(make_particle(Role::tool, x, m, probe));
+        if (r < a) ps.push_back(make_particle(Role::tool, x, m, probe));
       }
   rig.state.add_particles(rig.model, ps);
   return rig;

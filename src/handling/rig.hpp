@@ -31,9 +31,10 @@ void rig_step(const Model& model, State& state, const HandlingRunOptions& run, c
 namespace dentsph::handling {
 
 // Paste filling a cylindrical mould level with its rim (floor and wall boundary particles two
-// layers deep), and a flat probe above it: the tool, a cylinder 3 mm tall whose face and side are
-// two layers deep, its first layer two spacings (the kernel's support) above the paste's top layer,
-// so that it starts out of reach. The packing and tack tests' rig; gravity acts.
+// layers deep), and a flat probe above it: the tool, a solid cylinder of particles 3 mm tall (a
+// shell two layers deep let a stiff paste through its face: docs/model.md, "Presets"), its first
+// layer two spacings (the kernel's support) above the paste's top layer, so that it starts out of
+// reach. The packing and tack tests' rig; gravity acts.
 struct MouldRig {
   Model model;
   State state;

@@ -152,11 +152,7 @@ Scene parse_dental_scene(const Reader& root) {
                                       preset->name),
               "set simulation.solver to \"iisph\" or leave it out, or drop \"material\" for the paper's paste");
   Scene sc = procedure_or_built_in(*tooth, procedure, params);
-  if (preset) {  // its force in newtons (a file's haptics.force_scale, read below, still wins)
-    sc.force_scale = 1;
-    sc.paste_preset = preset->name;
-    sc.paste_temperature_c = preset->temperature_c;
-  }
+  if (preset) fill_scene_with(sc, *preset);  // its force in newtons (a file's haptics.force_scale, read below, still wins)
   sc.name = name;
   sc.source = fmt::format("{} ({} on {})", root.source(), sc.source, tooth_name(spec));
   read_haptics(root, sc);

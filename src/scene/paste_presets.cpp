@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "dentsph/scene.hpp"
 #include "physics/rheology.hpp"
 
 namespace dentsph {
@@ -18,14 +19,14 @@ namespace {
 // included) with flow index n: the consistency K = (eta10 - yield_stress / 10 s) 10^(1 - n); its
 // viscosity capped at `plateau` (a low-shear Newtonian plateau), or at 1e6 Pa s where that is 0
 // (the cap of a paste that stands: docs/model.md, "Rheology").
-Material composite(real eta10, real n, real yield_stress, real plateau, real rho0) {
+Material composite(real eta10, real n, real yield_stress, real plateau, real rho0, real Kp) {
   Material m;
   m.mu = (eta10 - yield_stress / 10) * std::pow(10.0, 1 - n);
   m.flow_index = n;
   m.yield_stress = yield_stress;
   m.max_viscosity = plateau > 0 ? plateau : 1e6;
   m.rho0 = rho0;
-  m.Kp = 1e4;
+  m.Kp = Kp;
   m.Ka = 50;
   m.interface_strength = kPasteSteelStrength;
   return m;
@@ -33,11 +34,11 @@ Material composite(real eta10, real n, real yield_stress, real plateau, real rho
 
 // The presets' constants (docs/model.md, "Presets"): viscosity at 10 /s (Pa s, 23 C, its yield
 // stress's share included), flow index, yield stress (Pa), low-shear plateau (Pa s at 23 C; 0:
-// none), density (kg/m^3), cure preset, the published range of the viscosity and its source, and a
+// none), density (kg/m^3), stiffness Kp (m^2/s^2), cure preset, the published range of the viscosity and its source, and a
 // published range of its ratio to a conventional composite's not used to set it (0, 0: none).
 struct PresetRow {
   const char* name;
-  real eta10, n, yield_stress, plateau, rho0;
+  real eta10, n, yield_stress, plateau, rho0, Kp;
   const char* cure;
   real low, high;
   const char* source;
@@ -46,16 +47,16 @@ struct PresetRow {
 };
 
 constexpr PresetRow kPresets[] = {
-    {"flowable", 1700, 0.5, 0, 1700, 2000, "composite", 1310, 2200,
+    {"flowable", 1700, 0.5, 0, 1700, 2000, 1e4, "composite", 1310, 2200,
      "Loumprinis et al., Dent Mater 2021: flowables 1.31 to 2.20 kPa s at 23 C", 0.04, 0.56,
      "Lee, Son & Um (Dent Mater 2003): flowables 0.04 to 0.56 of a conventional hybrid (Z-100) at 10 rad/s; here over "
      "the universal preset's viscosity at 10 /s"},
-    {"universal", 5300, 0.5, 2e4, 0, 2100, "composite", 6750 / 2.158, 19100 / 2.158,
+    {"universal", 5300, 0.5, 2e4, 0, 2100, 1e4, "composite", 6750 / 2.158, 19100 / 2.158,
      "a packable is 2.158 times a conventional composite (Lee, Son & Um, Dent Mater 2003) and packables 6.75 to "
      "19.1 kPa s (Loumprinis et al., Dent Mater 2021)"},
-    {"packable", 11400, 0.5, 1e5, 0, 2200, "composite", 6750, 19100,
+    {"packable", 11400, 0.5, 1e5, 0, 2200, 1.5e4, "composite", 6750, 19100,
      "Loumprinis et al., Dent Mater 2021: packables 6.75 to 19.1 kPa s at 23 C"},
-    {"amalgam", 43000, 0.5, 2.3e5, 0, 11600, "amalgam", 0, 0,
+    {"amalgam", 43000, 0.5, 2.3e5, 0, 11600, 1e4, "amalgam", 0, 0,
      "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
 };
 
@@ -85,7 +86,7 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     PastePreset p;
     p.name = name;
     p.temperature_c = temperature_c;
-    p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0);
+    p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0, r.Kp);
     // The published ranges are at 23 C; warmer, the whole flow curve is lower by the same factor
     // (its consistency, yield stress and plateau).
     const real warm = paste_temperature_factor(temperature_c);
@@ -133,6 +134,13 @@ DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams
   dp.iisph.wall_rest_density = true;
   dp.iisph.viscous_pressure = kPresetViscousPressure;
   return dp;
+}
+
+void fill_scene_with(Scene& scene, const PastePreset& preset) {
+  scene.force_scale = 1;
+  scene.paste_preset = preset.name;
+  scene.paste_temperature_c = preset.temperature_c;
+  scene.paste_cure = preset.cure;
 }
 
 }  // namespace dentsph

@@ -23,7 +23,8 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   viscous_violated_ = model_.dt > limits_.viscous;
   stepper_ = new_stepper();
   lights_ = ActiveLights(scene.events);
-  if (!lights_.empty()) start_curing();
+  // A light cures the paste; an amalgam sets by itself, light or none.
+  if (!lights_.empty() || cure_material_preset(scene.paste_cure).self_setting) start_curing();
 }
 
 const State& Simulation::synced() {

@@ -21,7 +21,7 @@ bool same_pose(const Pose& a, const Pose& b) {
 
 void Simulation::start_curing() {
   if (cure_) return;
-  cure_ = make_cure_model(model_, cure_material_preset("composite"), increment_spacing(scene_),
+  cure_ = make_cure_model(model_, cure_material_preset(scene_.paste_cure), increment_spacing(scene_),
                           scene_paste(scene_).material);
 }
 

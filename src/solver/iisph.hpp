@@ -77,6 +77,10 @@ inline bool has_rheology(const Model& model) { return model.materials.first_non_
 // the boundary's and tool's terms (at state.vel) weighed with it. Returns the largest relative change of a
 // particle's viscosity (infinity the first time in a step: `first`, which also keeps the unit weights).
 real update_viscosity(const Model& model, State& state, IisphScratch& x, int threads, const Vec3* v, bool first);
+// rheology.cpp: particle i's viscosity (Pa s) at shear rate `gamma`: its material's law, or where the
+// cure changed it (kCuredMaterial) the cure's viscosity for a Newtonian paste and, for a paste with
+// a flow law, the law's whole flow curve times the factor the cure gave its consistency.
+real particle_viscosity(const Model& model, const State& state, std::uint32_t i, real gamma);
 // viscous_pressure.cpp (iisph.viscous_pressure > 0): the viscous pressure's force added to v* + dt a_p
 // before the viscosity solve (x.v_star, x.v_a), and after it its Uzawa update from the density v**
 // gives at the step's end.

@@ -63,6 +63,16 @@ inline void corrected(const real A[3][3], const real M[3][3], real L[3][3]) {
 
 }  // namespace
 
+// The setting's factor on a paste with a flow law raises its whole flow curve: a setting amalgam
+// stiffens, and keeps its yield stress, until its gel point sets it (docs/model.md, "Presets").
+real particle_viscosity(const Model& model, const State& s, std::uint32_t i, real gamma) {
+  const MaterialIndex mat = s.material[i];
+  if (!(mat & kCuredMaterial)) return rheology::effective_viscosity(model.materials[mat], gamma);
+  const Material& base = model.materials[MaterialIndex(mat & ~kCuredMaterial)];
+  if (newtonian(base) || !(base.mu > 0)) return s.mu[i];
+  return s.mu[i] / base.mu * rheology::effective_viscosity(base, gamma);
+}
+
 real update_viscosity(const Model& model, State& s, IisphScratch& x, int threads, const Vec3* v, bool first) {
   constexpr std::size_t stride = IisphScratch::kPairStride;
   const std::int64_t nm = std::int64_t(x.material.size());
@@ -105,8 +115,7 @@ real update_viscosity(const Model& model, State& s, IisphScratch& x, int threads
       weight += w;
     }
     if (weight > 0) gamma = std::max(gamma, slip / weight);
-    const MaterialIndex mat = s.material[i];
-    const real mu = (mat & kCuredMaterial) ? s.mu[i] : rheology::effective_viscosity(model.materials[mat], gamma);
+    const real mu = particle_viscosity(model, s, i, gamma);
     if (!first && x.mu_eff[i] > 0) change = std::max(change, std::abs(mu - x.mu_eff[i]) / x.mu_eff[i]);
     x.mu_eff[i] = mu;
     lo = std::min(lo, mu);

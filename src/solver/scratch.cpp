@@ -27,8 +27,6 @@ void IisphScratch::resize(const State& state, bool with_rheology, bool with_visc
   size(tool_force, n);
   size(inv_rho, n);
   size(q, n);
-  if (!with_viscous || viscous_pressure.size() > n) size(viscous_pressure, 0);
-  viscous_pressure.resize(with_viscous ? n : 0, 0);
   size(q_viscous, with_viscous ? n : 0);
   with_viscous_pressure = with_viscous;
   size(accel, n);
@@ -60,7 +58,7 @@ void IisphScratch::resize(const State& state, bool with_rheology, bool with_visc
 std::size_t IisphScratch::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(material) + b(active) + b(pairs) + b(n_material) + b(n_other) + b(grad_sum) + b(diag_x) + b(visc_diag) +
-         b(visc_fixed) + b(div_fixed) + b(normal) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) + b(viscous_pressure) + b(q_viscous) +
+         b(visc_fixed) + b(div_fixed) + b(normal) + b(v_star) + b(source) + b(tool_force) + b(inv_rho) + b(q) + b(q_viscous) +
          b(accel) + b(v_a) + b(cg_p) + b(cg_r) + b(cg_ap) + b(interface_scale) + b(visc_unit) + b(mu_eff) + b(visc_block) + b(partial) + b(pc_scale) + b(pc_y) + b(pc_g) +
          b(pc_dir) + b(pc_hp) + b(pc_partial) + b(tools) + b(tool_list) + b(tool_count) +
          b(link_start) + b(link_fill) + b(link_tool);

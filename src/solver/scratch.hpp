@@ -63,9 +63,9 @@ struct IisphScratch {
   std::vector<Vec3> tool_force;      // N, tool particles: adhesion on them
   std::vector<real> inv_rho;         // 1 / rho (this step's density)
   std::vector<real> q;               // p / rho^2
-  // The viscous pressure (viscous_pressure.cpp; empty without iisph.viscous_pressure): Pa by particle
-  // id, kept from step to step, and its p / rho^2 this step by particle (0 for walls and the tool).
-  std::vector<real> viscous_pressure, q_viscous;
+  // The viscous pressure's p / rho^2 this step by particle (viscous_pressure.cpp; 0 for walls and the
+  // tool; empty without iisph.viscous_pressure). The pressure itself is the State's.
+  std::vector<real> q_viscous;
   bool with_viscous_pressure = false;  // sized for it (a model that turns it on or off is sized again)
   std::vector<Vec3> accel;           // m/s^2, pressure acceleration of material (0 for the rest; after the
                                      // solve, the viscous pressure's: viscous_pressure.cpp)

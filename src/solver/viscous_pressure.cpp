@@ -22,8 +22,9 @@
 // symmetric pressure force of p_v on material and the instrument, joins the pressure's before the next
 // step's viscosity solve (push_viscous_pressure), so that the viscosity, solved last, damps it.
 //
-// p_v is kept by particle id (x.viscous_pressure), so that the reorder does not move it; particles
-// removed renumber the ids, and it starts again from zero (IisphScratch::resize).
+// p_v is the State's, kept by particle id (State::viscous_pressure), so that the reorder does not move
+// it: a copy of the State carries its own, and particles removed take theirs out
+// (State::remove_particles); particles added start from zero.
 #include <algorithm>
 #include <cmath>
 
@@ -35,9 +36,12 @@ namespace dentsph::iisph {
 
 void push_viscous_pressure(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t n = s.size();
+  // Sized when particles were added (between steps, as the scratch is): the new ones at zero.
+  if (s.viscous_pressure.size() != s.size()) s.viscous_pressure.resize(s.size(), 0);
+  const real* pv = s.viscous_pressure.data();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
-    x.q_viscous[i] = s.role[i] == Role::material ? x.viscous_pressure[s.id[i]] * x.inv_rho[i] * x.inv_rho[i] : 0;
+    x.q_viscous[i] = s.role[i] == Role::material ? pv[s.id[i]] * x.inv_rho[i] * x.inv_rho[i] : 0;
   // The pressure's own force and update (pressure_terms.hpp), with q = 0 for the walls and the
   // instrument: x.accel, read by nothing after the solve's, is free.
   pressure_accelerations(x, x.q_viscous.data(), threads);
@@ -53,14 +57,10 @@ void update_viscous_pressure(const Model& model, State& s, IisphScratch& x, int 
     const std::uint32_t i = x.material[m];
     const real rho_end = density_at_step_end(s, x, i, dt);  // from v**
     const real error = rho_end / s.rho0[i] - 1;
-    const MaterialIndex mat = s.material[i];
-    real mu = s.mu[i];
-    if (!(mat & kCuredMaterial)) {
-      mu = rheology::effective_viscosity(model.materials[mat], std::abs(error) / dt);
-      if (x.rheology) mu = std::min(mu, x.mu_eff[i]);
-    }
+    real mu = particle_viscosity(model, s, i, std::abs(error) / dt);
+    if (x.rheology) mu = std::min(mu, x.mu_eff[i]);
     const real bound = k * s.Kp[i] * std::max<real>(0, rho_end - s.rho0[i]);
-    real& p = x.viscous_pressure[s.id[i]];
+    real& p = s.viscous_pressure[s.id[i]];
     p = std::clamp<real>(p + alpha * mu * error / dt, 0, bound);
     most = std::max(most, p);
   }

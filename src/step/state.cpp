@@ -66,6 +66,12 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
   }
   bonds = std::move(rebuilt);
   cure.compact(new_id, kept);
+  if (!viscous_pressure.empty()) {
+    std::vector<real> kept_pressure(kept, 0);
+    for (std::uint32_t old = 0; old < n; ++old)
+      if (new_id[old] != gone) kept_pressure[new_id[old]] = viscous_pressure[old];
+    viscous_pressure = std::move(kept_pressure);
+  }
   // Compact every per-particle array in index order.
   auto compact = [&](auto& v) {
     std::size_t k = 0;
@@ -122,7 +128,7 @@ std::size_t State::bytes_per_particle() const {
   if (size() == 0) return 0;
   const std::size_t total = bytes(id) + bytes(role) + bytes(pos) + bytes(vel) + bytes(mass) + bytes(material) + bytes(mu) + bytes(Kp) +
                             bytes(rho0) + bytes(Ka) + bytes(anchor) + bytes(rho) + bytes(pressure) + bytes(volume) +
-                            bytes(force) + bytes(index_of_id) + bytes(rho_static) + bonds.bytes() + cure.bytes() * size() + bytes(grid.key) +
+                            bytes(force) + bytes(index_of_id) + bytes(rho_static) + bytes(viscous_pressure) + bonds.bytes() + cure.bytes() * size() + bytes(grid.key) +
                             bytes(grid.order) + bytes(grid.x) + bytes(grid.y) + bytes(grid.z) + bytes(grid.neighbours) + bytes(grid.neighbour_count) + bytes(grid.within) + bytes(grid.within_count) + bytes(grid.pos_at_build) + bytes(grid.pair_data) + bytes(scratch_vec) +
                             bytes(scratch_real) + bytes(scratch_u32) + bytes(scratch_role) + bytes(scratch_material);
   return total / size();

@@ -98,6 +98,31 @@ TEST(CureInARun, TheSimulationCuresWithTheSceneLight) {
   EXPECT_FALSE(sim.summary().curing);
 }
 
+// A paste cured as an amalgam (Scene::paste_cure, the `amalgam` preset's): the light does not cure
+// it, and it sets by itself, light or none, once its age passes its gel point (346 s after mixing).
+TEST(CureInARun, AnAmalgamIgnoresTheLightAndSetsByItself) {
+  Scene sc = cure_box_scene(0.1);
+  sc.paste_cure = "amalgam";
+  const CureRun r = run_cure(sc, false);
+  EXPECT_TRUE(r.summary.curing);
+  EXPECT_EQ(count_rigid(r.state), 0u) << "an amalgam is not light-cured";
+  Scene dark = sc;
+  dark.events.clear();
+  SimulationOptions o;
+  o.thread_policy = ThreadPolicy::fixed;
+  Simulation sim(dark, o);
+  ASSERT_TRUE(sim.curing()) << "it sets with no light";
+  EXPECT_EQ(sim.cure_model()->paste.name, "amalgam");
+  for (int k = 0; k < 5; ++k) sim.step(sim.keyframe_pose());
+  EXPECT_EQ(count_rigid(sim.synced()), 0u) << "within its working time";
+  State& st = sim.edit();
+  for (std::uint32_t id = 0; id < st.cure.particles(); ++id) st.cure.mixed_at[id] -= 400;  // mixed 400 s ago
+  // Over a few of the cure's passes (CureModel::transition_interval apart).
+  const int steps = int(std::ceil(3 * sim.cure_model()->transition_interval / dark.model.dt));
+  for (int k = 0; k < steps; ++k) sim.step(sim.keyframe_pose());
+  EXPECT_EQ(count_rigid(sim.synced()), 6u * 81u) << "past its gel point every paste particle has set";
+}
+
 // The rule (CureSchedule): while the light is on, nothing is due and the paste rests (under
 // 0.5 mm/s), the cure goes on in updates of 20 ms of light with 10 steps of the paste after each.
 // Over 0.5 s of light (the top 1.5 mm sets; the paste below stays paste) it agrees with the cure

@@ -89,9 +89,21 @@ real limit_step(real speed) { return IisphParams{}.cfl * 2 * s / speed; }
 
 // The liquid sheared with the plate's rim at `speed` for at least `t_min`, stepped at `dt`; the
 // profile of the last 5 steps, and the torque over them or, where `torque_from` > 0, from that time on.
-Measured shear(const Material& liquid, real speed, real dt, real t_min = 0, real torque_from = 0) {
+// `set_factor` other than 1: every particle of the liquid as the cure leaves a setting paste
+// (kCuredMaterial, its viscosity that factor times the liquid's: cured_parameters).
+Measured shear(const Material& liquid, real speed, real dt, real t_min = 0, real torque_from = 0,
+               real set_factor = 1) {
   const real omega = speed / R, mu = liquid.mu;
   Rheometer r = rheometer(liquid, dt);
+  if (set_factor != 1)
+    for (std::uint32_t i = 0; i < r.state.size(); ++i) {
+      if (r.state.role[i] != Role::material) continue;
+      Material m = liquid;
+      m.mu *= set_factor;
+      r.state.cure.set_cured(r.state.id[i], m);
+      r.state.material[i] |= kCuredMaterial;
+      r.state.mu[i] = m.mu;
+    }
   // The steady state within 2% takes about rho H^2 / mu (18 ms at 1 Pa s); at least 20 steps.
   const real t_end = std::max({20 * dt, 5 * rho0 * H * H / mu, t_min});
   Measured out;
@@ -230,6 +242,23 @@ TEST(CouetteRheology, BinghamTorque) {
       << "the yield stress's share does not grow with the speed (measured 1.2234 for 1.2212; 2 without it)";
   EXPECT_GT(fast.torque / law(rim_speed), 1.05);  // the rim's excess: measured 1.132
   EXPECT_LT(fast.torque / law(rim_speed), 1.2);
+}
+
+// A paste that sets (an amalgam past its working time): the cure raises its viscosity by a factor
+// (cured_parameters), and a paste with a flow law keeps its law, the whole flow curve raised by it
+// (src/solver/rheology.cpp): the Bingham paste's torque three times at a factor of 3, yield stress
+// and all (before, a setting particle took the factor times its consistency as a Newtonian
+// viscosity and lost its yield stress).
+TEST(CouetteRheology, ASettingPasteKeepsItsFlowLawRaisedByTheSetting) {
+  Material paste{100, Kp, rho0, 0};
+  paste.yield_stress = 200;
+  paste.max_viscosity = 1e6;
+  const real dt = limit_step(rim_speed);
+  const Measured fresh = shear(paste, rim_speed, dt, turn, 0.5 * turn),
+                 set = shear(paste, rim_speed, dt, turn, 0.5 * turn, 3);
+  std::printf("setting paste: torque %.4g against %.4g fresh (%.4f times)\n", set.torque, fresh.torque,
+              set.torque / fresh.torque);
+  EXPECT_NEAR(set.torque / fresh.torque, 3, 0.03 * 3);
 }
 
 // The projected form with a Newtonian viscosity (a yield stress of 1e-9 Pa puts the liquid on the

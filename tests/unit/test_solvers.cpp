@@ -105,6 +105,40 @@ TEST(Solvers, EachStepsABlockOfPasteSettlingInAContainer) {
   }
 }
 
+// The viscous pressure (docs/model.md, "The viscous pressure") is carried from step to step by the
+// State, not the solver: one solver object stepping a second State from the same start gives it the
+// first one's result bit for bit (it once kept the last State's viscous pressure in its scratch and
+// handed it to the next State of the same size: the handling tests' second and later runs in a
+// process started from the first's), and removing particles takes theirs out.
+TEST(Solvers, TheViscousPressureIsTheStatesOwn) {
+  Box a = settling_box(Solver::iisph);
+  a.model.iisph.viscous_pressure = 0.5;
+  const State start = a.state;
+  const std::unique_ptr<StepSolver> solver = make_solver(Solver::iisph);
+  constexpr int kSteps = 30;
+  for (int k = 0; k < kSteps; ++k) solver->step(a.model, a.state, {});
+  ASSERT_GT(a.state.diagnostics.viscous_pressure_max, 0) << "Pa: the settling paste has a viscous pressure";
+  ASSERT_EQ(a.state.viscous_pressure.size(), a.state.size());
+  State b = start;
+  EXPECT_TRUE(b.viscous_pressure.empty());
+  for (int k = 0; k < kSteps; ++k) solver->step(a.model, b, {});
+  for (std::uint32_t id = 0; id < b.size(); ++id) {
+    ASSERT_EQ(b.pos[b.index_of_id[id]], a.state.pos[a.state.index_of_id[id]]) << "particle " << id;
+    ASSERT_EQ(b.viscous_pressure[id], a.state.viscous_pressure[id]) << "particle " << id;
+  }
+  // Removing particles re-keys it with the ids.
+  std::vector<std::uint8_t> remove(b.size(), 0);
+  const std::uint32_t gone = b.index_of_id[0];
+  remove[gone] = 1;
+  std::uint32_t pressed = 1;
+  while (pressed < b.size() && !(b.viscous_pressure[pressed] > 0)) ++pressed;
+  ASSERT_LT(pressed, b.size()) << "a particle with a viscous pressure";
+  const real p = b.viscous_pressure[pressed];
+  b.remove_particles(a.model, remove);
+  ASSERT_EQ(b.viscous_pressure.size(), b.size());
+  EXPECT_EQ(b.viscous_pressure[pressed - 1], p) << "id " << pressed << " is id " << pressed - 1 << " now";
+}
+
 // The iisph solver's density kernel (iisph.density_kernel, docs/model.md, "One kernel for the density
 // and its rate"): with either, a particle of a column's lattice (walls included) whose neighbourhood
 // is whole has the rest density after the first step's pair pass: the lattice mass, the material's
