@@ -119,7 +119,26 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
   }
   std::uint32_t bad = 0;
   for (const IncrementCure& r : a.increments) bad += r.adequate_fraction < 1;
-  if (a.increments.empty())
+  if (cm.paste.self_setting && !a.increments.empty()) {
+    // A paste that sets by itself (an amalgam): the light is not what sets it, so no increment is
+    // under-cured by it; say how much has set and when the rest will.
+    real set = 0;
+    for (const auto& [index, particles] : members)
+      for (const std::uint32_t i : particles)
+        if (c.rigid[s.id[i]]) set += s.mass[i] / s.rho0[i];
+    const real gel = cm.paste.working_time -
+                     cm.paste.set_time_constant * std::log1p(-cm.paste.alpha_gel / cm.paste.alpha_max);
+    for (IncrementCure& r : a.increments) {
+      r.under_cured_volume = 0;
+      r.message = fmt::format("{} is {:.2f} mm thick and sets by itself, light or none", increment_name(r.index),
+                              r.thickness / mm);
+    }
+    a.under_cured_volume = 0;
+    a.message = fmt::format("the paste sets by itself ({}), not by light: {:.2f} of {:.2f} mm3 set; it works for {:.0f} s "
+                            "after it is mixed and is rigid {:.0f} s after",
+                            cm.paste.name, set / (mm * mm * mm), a.paste_volume / (mm * mm * mm),
+                            cm.paste.working_time, gel);
+  } else if (a.increments.empty())
     a.message = "no paste to assess";
   else if (bad == 0)
     a.message = fmt::format("all paste adequately cured (bottom/top conversion at least {:.1f} in every increment)", criterion);

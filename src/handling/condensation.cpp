@@ -33,8 +33,7 @@ void working_window(const PastePreset& preset, const CondensationOptions& o, Han
   const real gel = cure.working_time - cure.set_time_constant * std::log1p(-cure.alpha_gel / cure.alpha_max);
   HandlingCurve curve;
   curve.file = "condensation_window";
-  curve.title = fmt::format("Working window: {} under a {:g} mm plugger, by the time since mixing", preset.name,
-                            o.window_plugger * 1e3);
+  curve.title = fmt::format("Working window: {} under a {:g} mm plugger", preset.name, o.window_plugger * 1e3);
   curve.x_label = "time since mixing (s)";
   curve.y_label = "peak stress under the plugger (MPa)";
   HandlingSeries series{"peak stress", {}, {}, false};

@@ -67,8 +67,10 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
   bonds = std::move(rebuilt);
   cure.compact(new_id, kept);
   if (!viscous_pressure.empty()) {
+    // Particles added since the last step (a dispense before a tool switch) have none yet: zero.
     std::vector<real> kept_pressure(kept, 0);
-    for (std::uint32_t old = 0; old < n; ++old)
+    const std::uint32_t known = std::min<std::uint32_t>(n, std::uint32_t(viscous_pressure.size()));
+    for (std::uint32_t old = 0; old < known; ++old)
       if (new_id[old] != gone) kept_pressure[new_id[old]] = viscous_pressure[old];
     viscous_pressure = std::move(kept_pressure);
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "dentsph/cure_assessment.hpp"
@@ -15,6 +16,27 @@ namespace dentsph::testing {
 namespace {
 
 constexpr real mm = 1e-3;
+
+// A paste that sets by itself (the amalgam's cure): no light cures it, so none of it is called
+// under-cured; the message says how much has set and when the rest will.
+TEST(CureAssessment, APasteThatSetsByItselfIsNotUnderCuredByTheLight) {
+  const real s = 0.2 * mm;
+  Model model = cure_model(s, {-1 * mm, -1 * mm, -1 * mm}, {3 * mm, 3 * mm, 7 * mm});
+  State st;
+  add_paste_layers(model, st, s, 5, 5, 0, 10);  // 250 particles, 2 mm
+  const CureModel cm = make_cure_model(model, cure_material_preset("amalgam"), s, kPaste);
+  for (std::uint32_t id = 0; id < 50; ++id) st.cure.rigid[id] = 1;  // a fifth set
+  const CureAssessment a = assess_cure(cm, st, {0, 0, 1});
+  ASSERT_EQ(a.increments.size(), 1u);
+  EXPECT_EQ(a.under_cured_volume, 0);
+  const real volume = st.mass[0] / kPaste.rho0 / (mm * mm * mm);  // mm3 a particle
+  EXPECT_NE(a.message.find(fmt::format("sets by itself (amalgam), not by light: {:.2f} of {:.2f} mm3 set", 50 * volume,
+                                       250 * volume)),
+            std::string::npos)
+      << a.message;
+  EXPECT_NE(a.message.find("rigid 346 s after"), std::string::npos) << a.message;
+  EXPECT_NE(a.increments[0].message.find("sets by itself"), std::string::npos) << a.increments[0].message;
+}
 
 TEST(CureAssessment, PerIncrementThicknessDoseAndUnderCuredShare) {
   const real s = 0.2 * mm;

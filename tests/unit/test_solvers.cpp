@@ -126,7 +126,14 @@ TEST(Solvers, TheViscousPressureIsTheStatesOwn) {
     ASSERT_EQ(b.pos[b.index_of_id[id]], a.state.pos[a.state.index_of_id[id]]) << "particle " << id;
     ASSERT_EQ(b.viscous_pressure[id], a.state.viscous_pressure[id]) << "particle " << id;
   }
-  // Removing particles re-keys it with the ids.
+  // Removing particles re-keys it with the ids, also right after particles were added (a dispense
+  // before a tool switch), before any step gave them one (they have none: 0; the removal read past
+  // the pressures' end there once, and a run diverged or not by what lay beyond).
+  const real m = b.mass[0];
+  std::vector<ParticleInit> more;
+  for (Vec3 x : testing::lattice({2 * kSpacing, 2 * kSpacing, 6 * kSpacing}, kSpacing, 2, 2, 1))
+    more.push_back(testing::particle(Role::material, x, m, Material{0.5, 60, 1000, 0}));
+  b.add_particles(a.model, more);
   std::vector<std::uint8_t> remove(b.size(), 0);
   const std::uint32_t gone = b.index_of_id[0];
   remove[gone] = 1;
@@ -137,6 +144,7 @@ TEST(Solvers, TheViscousPressureIsTheStatesOwn) {
   b.remove_particles(a.model, remove);
   ASSERT_EQ(b.viscous_pressure.size(), b.size());
   EXPECT_EQ(b.viscous_pressure[pressed - 1], p) << "id " << pressed << " is id " << pressed - 1 << " now";
+  for (std::uint32_t id = b.size() - 4; id < b.size(); ++id) EXPECT_EQ(b.viscous_pressure[id], 0) << "added, unstepped";
 }
 
 // The iisph solver's density kernel (iisph.density_kernel, docs/model.md, "One kernel for the density
