@@ -232,9 +232,11 @@ TEST(Filling, IisphFillsAndCuresTheBuiltInCrown) { fills_and_cures_the_crown(Sol
 // the pressure undoing its correction in clusters under the instrument, and the fill was 0.944 (a
 // part of it paste packed denser than it is). Measured with it (one thread, the test build): fill
 // 0.947, compression 0.082% (a step's at most 1.63%), the largest density error a solve left
-// 0.285%, peak 1.75 N (docs/model.md, "The viscous pressure"). The 0.95 fill the procedure asks
-// for is missed by 0.3 points (the paste keeps its volume and stands higher over the margin, with
-// more voids: 11, 1.54 mm^3): a departure, held at 0.94.
+// 0.285%, peak 1.75 N (docs/model.md, "The viscous pressure"). Since a converting paste's whole
+// flow curve rises with its cure (paste the light reached too little to set resists the next
+// increment as a stiffer paste, docs/model.md "Presets"): fill 0.9506 with 9 voids of 1.36 mm^3,
+// compression 0.135% (a step's at most 1.63%), the largest density error 0.896%, peak 1.72 N: the
+// procedure's 0.95 is reached.
 TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   Scene sc = default_dental_procedure(dental_params_for(paste_preset("universal")));
   sc.output.snapshot_interval = 0;
@@ -249,7 +251,7 @@ TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
               a["fill_fraction"].get<double>(), a["void_count"].get<int>(), a["void_volume_mm3"].get<double>(),
               a["pore_count"].get<int>(), a["pore_volume_mm3"].get<double>(), a["leaked_particles"].get<int>(),
               a["lost_particles"].get<int>(), s.peak_tool_force_N);
-  EXPECT_GE(a["fill_fraction"].get<double>(), 0.94);
+  EXPECT_GE(a["fill_fraction"].get<double>(), 0.95) << "the procedure's 0.95";
   EXPECT_EQ(a["leaked_particles"].get<int>(), 0);
   EXPECT_EQ(a["lost_particles"].get<int>(), 0);
   EXPECT_GT(s.solver_statistics.rheology_iterations_max, 0) << "the paste is non-Newtonian";
