@@ -234,9 +234,9 @@ TEST(Filling, IisphFillsAndCuresTheBuiltInCrown) { fills_and_cures_the_crown(Sol
 // 0.947, compression 0.082% (a step's at most 1.63%), the largest density error a solve left
 // 0.285%, peak 1.75 N (docs/model.md, "The viscous pressure"). Since a converting paste's whole
 // flow curve rises with its cure (paste the light reached too little to set resists the next
-// increment as a stiffer paste, docs/model.md "Presets"): fill 0.9506 with 9 voids of 1.36 mm^3,
-// compression 0.135% (a step's at most 1.63%), the largest density error 0.896%, peak 1.72 N: the
-// procedure's 0.95 is reached.
+// increment as a stiffer paste, docs/model.md "Presets") and the pressure budget at 100: fill
+// 0.9503 with 9 voids of 1.36 mm^3, compression 0.138% (a step's at most 1.63%), the largest
+// density error 0.73% (0.896% at a budget of 50), peak 1.73 N: the procedure's 0.95 is reached.
 TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   Scene sc = default_dental_procedure(dental_params_for(paste_preset("universal")));
   sc.output.snapshot_interval = 0;
