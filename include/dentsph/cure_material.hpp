@@ -58,6 +58,9 @@ PublishedDepthOfCure published_depth_of_cure(const std::string& preset);
 real conversion_from_dose(const CureMaterial& m, real dose);
 // Conversion of a self-setting material `age` seconds after mixing; 0 for one that is not.
 real conversion_from_age(const CureMaterial& m, real age);
+// The age (s after mixing) at which a self-setting material reaches its gel point (rigid):
+// conversion_from_age's inverse at alpha_gel; infinity for one that is not self-setting.
+real gel_age(const CureMaterial& m);
 // Attenuation coefficient (1/m) of the paste at conversion alpha.
 real paste_attenuation(const CureMaterial& m, real alpha);
 

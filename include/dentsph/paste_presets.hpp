@@ -72,8 +72,11 @@ std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& f
 // is non-Newtonian, with the viscous pressure (kPresetViscousPressure). The paste's contact with the instruments keeps no strength there
 // (Material::interface_strength 0; docs/model.md, "Tack").
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
-// Names `preset` as what fills `scene` (Scene::paste_preset, its temperature and its cure, which the
-// simulation cures it by) and renders its force in newtons (Scene::force_scale 1).
+// Names `preset` as what fills `scene` (Scene::paste_preset and its temperature) and renders its
+// force in newtons (Scene::force_scale 1).
 void fill_scene_with(Scene& scene, const PastePreset& preset);
+// The cure preset `scene`'s paste cures by (cure_material.hpp): its paste preset's ("amalgam" sets by
+// itself, light or none), "composite" (by light) for a scene without one.
+std::string scene_paste_cure(const Scene& scene);
 
 }  // namespace dentsph

@@ -91,9 +91,6 @@ struct Scene {
   // scene's own paste.
   std::string paste_preset;
   real paste_temperature_c = 23;  // C, the preset's temperature
-  // The cure preset the paste cures by (cure_material.hpp): "composite" (by light) or, for the
-  // `amalgam` preset, "amalgam" (it sets by itself from when it is dispensed, light or none).
-  std::string paste_cure = "composite";
   // Who ran it and which exercise it is, when a scene file or the command line says (the
   // report's title, the session store's index; docs/report.md).
   std::string student, exercise;

@@ -181,7 +181,7 @@ class Simulation {
   // on (set_light).
   bool curing() const { return cure_.has_value(); }
   // The cure's model (nullptr while the run does not cure): the scene's paste, cured as its cure
-  // preset (Scene::paste_cure: "composite", or "amalgam", which sets by itself: such a run cures
+  // preset (scene_paste_cure: "composite", or "amalgam", which sets by itself: such a run cures
   // from its start).
   const CureModel* cure_model() const { return cure_ ? &*cure_ : nullptr; }
   // A hand-held light (the viewer's key, the device's second button): on from now until turned off

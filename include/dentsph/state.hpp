@@ -164,8 +164,8 @@ class State {
   BondStore bonds;
   CureState cure;  // degree of conversion, dose, increment (include/dentsph/cure_state.hpp)
   // Pa, the iisph solver's viscous pressure of each particle (docs/model.md, "The viscous
-  // pressure"), carried from step to step: this State's own, kept with it when it is copied and
-  // re-keyed when particles are removed; empty until a step solves it (new particles start at 0).
+  // pressure"), carried from step to step: this State's own, kept with it when it is copied; empty
+  // until a step solves it, then one by id (add_particles appends 0, remove_particles re-keys it).
   std::vector<real> viscous_pressure;
 
   // ---- tool and time ------------------------------------------------------------------------

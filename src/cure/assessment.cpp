@@ -126,8 +126,7 @@ CureAssessment assess_cure(const CureModel& cm, const State& s, const Vec3& up_i
     for (const auto& [index, particles] : members)
       for (const std::uint32_t i : particles)
         if (c.rigid[s.id[i]]) set += s.mass[i] / s.rho0[i];
-    const real gel = cm.paste.working_time -
-                     cm.paste.set_time_constant * std::log1p(-cm.paste.alpha_gel / cm.paste.alpha_max);
+    const real gel = gel_age(cm.paste);
     for (IncrementCure& r : a.increments) {
       r.under_cured_volume = 0;
       r.message = fmt::format("{} is {:.2f} mm thick and sets by itself, light or none", increment_name(r.index),

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -75,24 +76,36 @@ real conversion_from_age(const CureMaterial& m, real age) {
   return m.alpha_max * -std::expm1(-(age - m.working_time) / m.set_time_constant);
 }
 
+real gel_age(const CureMaterial& m) {
+  if (!m.self_setting) return std::numeric_limits<real>::infinity();
+  return m.working_time - m.set_time_constant * std::log1p(-m.alpha_gel / m.alpha_max);
+}
+
 real paste_attenuation(const CureMaterial& m, real alpha) {
   const real f = std::clamp(alpha / m.alpha_max, real(0), real(1));
   return m.attenuation_uncured + (m.attenuation_cured - m.attenuation_uncured) * f;
 }
 
-real setting_viscosity_factor(const CureMaterial& m, real alpha) {
+namespace {
+
+// A factor rising geometrically with alpha / alpha_gel from 1 to `at_gel`, and `at_gel` past the gel
+// point (no pow: most calls, the paste set).
+real toward_gel(const CureMaterial& m, real alpha, real at_gel) {
   const real to_gel = std::clamp(alpha / m.alpha_gel, real(0), real(1));
-  // Past the gel point the gel point's factor (no pow: most calls, the paste set).
-  return to_gel >= 1 ? m.viscosity_factor_at_gel : std::pow(m.viscosity_factor_at_gel, to_gel);
+  return to_gel >= 1 ? at_gel : std::pow(at_gel, to_gel);
+}
+
+}  // namespace
+
+real setting_viscosity_factor(const CureMaterial& m, real alpha) {
+  return toward_gel(m, alpha, m.viscosity_factor_at_gel);
 }
 
 Material cured_parameters(const CureMaterial& m, const Material& uncured, real alpha, real viscosity_limit) {
-  const real to_gel = std::clamp(alpha / m.alpha_gel, real(0), real(1));
   Material p = uncured;
-  const bool gelled = to_gel >= 1;
   p.mu = uncured.mu * setting_viscosity_factor(m, alpha);
   p.mu = std::min(p.mu, std::max(uncured.mu, viscosity_limit));
-  p.Ka = uncured.Ka * (gelled ? m.adhesion_factor_at_gel : std::pow(m.adhesion_factor_at_gel, to_gel));
+  p.Ka = uncured.Ka * toward_gel(m, alpha, m.adhesion_factor_at_gel);
   p.rho0 = uncured.rho0 / (1 - m.shrinkage * std::clamp(alpha / m.alpha_max, real(0), real(1)));
   return p;
 }

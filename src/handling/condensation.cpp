@@ -1,7 +1,11 @@
 // The condensation test (include/dentsph/handling.hpp; docs/model.md, "Handling tests"): a flat
 // plugger driven into an increment of paste on the floor of a cylindrical cavity, as an amalgam is
 // condensed, on the packing test's rig (a finer spacing: the smaller plugger is 1.15 mm across).
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -13,10 +17,9 @@ namespace dentsph {
 
 namespace {
 
-// The paste `age` s after mixing: its whole flow curve (consistency, yield stress, cap) raised by the
-// setting's factor, as the simulation raises a setting particle's (docs/model.md, "Presets").
-PastePreset aged(const PastePreset& preset, const CureMaterial& cure, real age) {
-  const real f = setting_viscosity_factor(cure, conversion_from_age(cure, age));
+// The paste with its whole flow curve (consistency, yield stress, cap) raised by the setting's factor
+// f, as the simulation raises a setting particle's (docs/model.md, "Presets").
+PastePreset set_by(const PastePreset& preset, real f) {
   PastePreset p = preset;
   p.paste.mu *= f;
   p.paste.yield_stress *= f;
@@ -25,12 +28,13 @@ PastePreset aged(const PastePreset& preset, const CureMaterial& cure, real age) 
 }
 
 // The working window: the window plugger condensing the paste at each age before its gel point, and
-// the age at which the peak stress has doubled (linear between the ages that straddle it).
-void working_window(const PastePreset& preset, const CondensationOptions& o, HandlingResult& r) {
+// the age at which the peak stress has doubled (linear between the ages that straddle it). Ages
+// whose paste is the same (the working time's, unset) are condensed once: `fresh_peak`, the window
+// plugger's peak on the fresh paste where the test's own pluggers measured it (NaN otherwise).
+void working_window(const PastePreset& preset, const CondensationOptions& o, real fresh_peak, HandlingResult& r) {
   const CureMaterial cure = cure_material_preset(preset.cure);
   if (!cure.self_setting || o.ages.empty()) return;
-  // The gel point's age: conversion_from_age reaches alpha_gel.
-  const real gel = cure.working_time - cure.set_time_constant * std::log1p(-cure.alpha_gel / cure.alpha_max);
+  const real gel = gel_age(cure);
   HandlingCurve curve;
   curve.file = "condensation_window";
   curve.title = fmt::format("Working window: {} under a {:g} mm plugger", preset.name, o.window_plugger * 1e3);
@@ -42,14 +46,23 @@ void working_window(const PastePreset& preset, const CondensationOptions& o, Han
       "gel point at {:.0f} s): an amalgam's working time is about 3 minutes, from which the {:g} s was set (a "
       "calibration, not a prediction)",
       preset.cure, cure.working_time, cure.set_time_constant, gel, cure.working_time);
+  std::vector<std::pair<real, real>> condensed;  // (the setting's factor, the peak it gave)
+  if (std::isfinite(fresh_peak)) condensed.emplace_back(1, fresh_peak);
   real fresh = 0, working = -1;
   for (real age : o.ages) {
     if (!(age >= 0)) throw std::invalid_argument(fmt::format("condensation: an age of {} s since mixing is negative", age));
     if (age >= gel) break;  // set: rigid, not condensed
-    const PastePreset p = aged(preset, cure, age);
-    handling::MouldRig rig = handling::mould_rig(p, o.spacing, o.cavity_diameter, o.increment, o.window_plugger, o.dt,
-                                                 instrument_interface_strength(o.run.instrument));
-    const real peak = handling::press_probe(rig, o.window_plugger, o.speed, o.depth, 0, o.dt, o.run, "condensation").peak;
+    const real f = setting_viscosity_factor(cure, conversion_from_age(cure, age));
+    const auto same = std::find_if(condensed.begin(), condensed.end(), [f](const auto& c) { return c.first == f; });
+    real peak = 0;
+    if (same != condensed.end()) {
+      peak = same->second;
+    } else {
+      handling::MouldRig rig = handling::mould_rig(set_by(preset, f), o.spacing, o.cavity_diameter, o.increment,
+                                                   o.window_plugger, o.dt, instrument_interface_strength(o.run.instrument));
+      peak = handling::press_probe(rig, o.window_plugger, o.speed, o.depth, 0, o.dt, o.run, "condensation").peak;
+      condensed.emplace_back(f, peak);
+    }
     if (o.run.progress)
       o.run.progress(fmt::format("condensation: {} {:g} s after mixing: peak {:.3g} MPa", preset.name, age, peak));
     if (series.x.empty()) fresh = peak;
@@ -80,7 +93,9 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
     throw std::invalid_argument(
         "condensation: give at least one plugger, a positive spacing, speed, depth and dt, and an increment thicker "
         "than the stroke");
-  for (real d : o.plugger_diameters)
+  std::vector<real> pluggers = o.plugger_diameters;
+  if (!o.ages.empty()) pluggers.push_back(o.window_plugger);
+  for (real d : pluggers)
     if (!(d > 4 * o.spacing) || !(d < o.cavity_diameter - 2 * o.spacing))
       throw std::invalid_argument(fmt::format(
           "condensation: a {:g} mm plugger must be wider than four spacings and narrower than the cavity less two",
@@ -92,12 +107,14 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
                             preset.temperature_c, o.speed * 1e3, o.increment * 1e3);
   curve.x_label = "plugger's travel (mm)";
   curve.y_label = "stress under the plugger (MPa)";
+  real fresh_peak = std::numeric_limits<real>::quiet_NaN();  // the window plugger's, if it is one of them
   for (real d : o.plugger_diameters) {
     handling::MouldRig rig = handling::mould_rig(preset, o.spacing, o.cavity_diameter, o.increment, d, o.dt,
                                                  instrument_interface_strength(o.run.instrument));
     const handling::ProbePress run = handling::press_probe(rig, d, o.speed, o.depth, 0, o.dt, o.run, "condensation");
     const std::string plugger = fmt::format("{:g} mm plugger", d * 1e3);
     const real force = run.peak_force;
+    if (d == o.window_plugger) fresh_peak = run.peak;
     if (o.run.progress)
       o.run.progress(fmt::format("condensation: {} under a {}: peak {:.3g} MPa ({:.3g} N)", preset.name, plugger,
                                  run.peak, force));
@@ -113,7 +130,7 @@ HandlingResult condensation_test(const PastePreset& preset, const CondensationOp
   }
   curve.range_bar = std::array<real, 3>{o.depth * 1e3, 4, 9};
   r.curves.push_back(curve);
-  working_window(preset, o, r);
+  working_window(preset, o, fresh_peak, r);
   r.notes.push_back(fmt::format(
       "a {:g} mm increment on the floor of a cavity {:g} mm across ({:g} mm spacing); the plugger driven {:g} mm into "
       "it at {:g} mm/s (assumed: a condensing stroke); the stress is the paste's force on the plugger over its "

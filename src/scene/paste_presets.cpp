@@ -140,7 +140,14 @@ void fill_scene_with(Scene& scene, const PastePreset& preset) {
   scene.force_scale = 1;
   scene.paste_preset = preset.name;
   scene.paste_temperature_c = preset.temperature_c;
-  scene.paste_cure = preset.cure;
+}
+
+std::string scene_paste_cure(const Scene& scene) {
+  if (scene.paste_preset.empty()) return "composite";
+  for (const PresetRow& r : kPresets)
+    if (scene.paste_preset == r.name) return r.cure;
+  throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", scene.paste_preset,
+                                          fmt::join(paste_preset_names(), ", ")));
 }
 
 }  // namespace dentsph

@@ -10,6 +10,7 @@
 #include "dentsph/cure_assessment.hpp"
 #include "dentsph/dental.hpp"
 #include "dentsph/dispense.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/tools.hpp"
 
 namespace dentsph {
@@ -24,7 +25,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   stepper_ = new_stepper();
   lights_ = ActiveLights(scene.events);
   // A light cures the paste; an amalgam sets by itself, light or none.
-  if (!lights_.empty() || cure_material_preset(scene.paste_cure).self_setting) start_curing();
+  if (!lights_.empty() || cure_material_preset(scene_paste_cure(scene)).self_setting) start_curing();
 }
 
 const State& Simulation::synced() {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "dentsph/dispense.hpp"
+#include "dentsph/paste_presets.hpp"
 #include "dentsph/simulation.hpp"
 
 namespace dentsph {
@@ -21,7 +22,7 @@ bool same_pose(const Pose& a, const Pose& b) {
 
 void Simulation::start_curing() {
   if (cure_) return;
-  cure_ = make_cure_model(model_, cure_material_preset(scene_.paste_cure), increment_spacing(scene_),
+  cure_ = make_cure_model(model_, cure_material_preset(scene_paste_cure(scene_)), increment_spacing(scene_),
                           scene_paste(scene_).material);
 }
 

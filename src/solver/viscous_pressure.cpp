@@ -36,8 +36,8 @@ namespace dentsph::iisph {
 
 void push_viscous_pressure(const Model& model, State& s, IisphScratch& x, int threads) {
   const std::int64_t n = s.size();
-  // Sized when particles were added (between steps, as the scratch is): the new ones at zero.
-  if (s.viscous_pressure.size() != s.size()) s.viscous_pressure.resize(s.size(), 0);
+  // Made by the first step that solves it; add_particles and remove_particles keep it one by id.
+  if (s.viscous_pressure.empty()) s.viscous_pressure.assign(s.size(), 0);
   const real* pv = s.viscous_pressure.data();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)

@@ -66,11 +66,9 @@ void State::remove_particles(const Model& model, const std::vector<std::uint8_t>
   }
   bonds = std::move(rebuilt);
   cure.compact(new_id, kept);
-  if (!viscous_pressure.empty()) {
-    // Particles added since the last step (a dispense before a tool switch) have none yet: zero.
+  if (!viscous_pressure.empty()) {  // one by id (add_particles keeps it so)
     std::vector<real> kept_pressure(kept, 0);
-    const std::uint32_t known = std::min<std::uint32_t>(n, std::uint32_t(viscous_pressure.size()));
-    for (std::uint32_t old = 0; old < known; ++old)
+    for (std::uint32_t old = 0; old < n; ++old)
       if (new_id[old] != gone) kept_pressure[new_id[old]] = viscous_pressure[old];
     viscous_pressure = std::move(kept_pressure);
   }
@@ -196,6 +194,7 @@ void State::add_particles(const Model& model, const std::vector<ParticleInit>& p
     volume.push_back(p.mass / p.material.rho0);
     force.push_back({});
     cure.append(p, time);
+    if (!viscous_pressure.empty()) viscous_pressure.push_back(0);  // a new particle has none yet
   }
   size_by_id_and_scratch(model, n);
 }

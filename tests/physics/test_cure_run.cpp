@@ -98,11 +98,12 @@ TEST(CureInARun, TheSimulationCuresWithTheSceneLight) {
   EXPECT_FALSE(sim.summary().curing);
 }
 
-// A paste cured as an amalgam (Scene::paste_cure, the `amalgam` preset's): the light does not cure
-// it, and it sets by itself, light or none, once its age passes its gel point (346 s after mixing).
+// A scene named as filled with the `amalgam` preset cures by its cure (scene_paste_cure; the box's
+// paste stays the paper's, whose flow does not matter here): the light does not cure it, and it sets
+// by itself, light or none, once its age passes its gel point (346 s after mixing).
 TEST(CureInARun, AnAmalgamIgnoresTheLightAndSetsByItself) {
   Scene sc = cure_box_scene(0.1);
-  sc.paste_cure = "amalgam";
+  sc.paste_preset = "amalgam";
   const CureRun r = run_cure(sc, false);
   EXPECT_TRUE(r.summary.curing);
   EXPECT_EQ(count_rigid(r.state), 0u) << "an amalgam is not light-cured";

@@ -46,6 +46,10 @@ TEST(CureLaw, AmalgamSetsAfterItsWorkingTime) {
   EXPECT_EQ(conversion_from_age(m, 0.5 * m.working_time), 0);
   EXPECT_NEAR(conversion_from_age(m, m.working_time + m.set_time_constant), 1 - std::exp(-1.0), 1e-12);
   EXPECT_EQ(conversion_from_age(cure_material_preset("composite"), 1e4), 0) << "a composite needs light";
+  // Its gel point's age, the inverse of the law at alpha_gel: 346 s for the preset.
+  EXPECT_NEAR(conversion_from_age(m, gel_age(m)), m.alpha_gel, 1e-12);
+  EXPECT_NEAR(gel_age(m), 180 + 240 * std::log(2.0), 1e-9);
+  EXPECT_TRUE(std::isinf(gel_age(cure_material_preset("composite")))) << "a composite never gels by itself";
 }
 
 TEST(CureLaw, ConversionStiffensThePasteAndShrinksIt) {
