@@ -43,7 +43,7 @@ void MaterialTestCommand::add_to(CLI::App& app) {
       ->check(CLI::Range(1.0, 50.0))
       ->capture_default_str();
   const char* descriptions[] = {
-      "Parallel-plate rheometer in steady shear: the flow curve, the viscosity at 10 /s beside the published range",
+      "Parallel-plate rheometer: oscillation at 10 rad/s (complex viscosity, phase angle) and steady shear (the flow curve), beside the published ranges",
       "Slump on glass (Lee et al., Dent Mater 2010): a fixed volume let go for 10 s, its aspect ratio height / diameter",
       "Packing: 3 mm and 6 mm flat probes driven at 0.5 mm/s 2 mm into a mould 7 mm across, held 10 s: the stress "
       "under the probe",

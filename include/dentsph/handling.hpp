@@ -64,17 +64,24 @@ struct HandlingRunOptions {
   std::function<void(const std::string&)> progress;  // a line per stage, where set
 };
 
-// The parallel-plate rheometer in steady shear (the flow curve): a disc of paste between a fixed
-// plate and a turning one; at each rim shear rate the torque over the same quarter turn of the
-// plate, divided by the rheometer's constant measured, as a real rheometer's is, with a Newtonian
-// standard of the same form, and read as the viscosity at the rim's shear rate with the
-// Weissenberg-Rabinowitsch correction for parallel plates.
+// The parallel-plate rheometer: a disc of paste between a fixed plate and a turning one. In
+// oscillation (Lee, Son & Um, Dent Mater 2003), the plate turned back and forth at 10 rad/s: the
+// storage and loss moduli from the torque's first harmonic, the complex viscosity and the phase
+// angle. In steady shear (the flow curve), at each rim shear rate the torque over the same quarter
+// turn of the plate, read as the viscosity at the rim's shear rate with the Weissenberg-Rabinowitsch
+// correction for parallel plates. Every torque divided by the rheometer's constant measured, as a
+// real rheometer's is, with a Newtonian standard of the same form.
 struct RheometerOptions {
   HandlingRunOptions run;
   std::vector<real> shear_rates{1, 2, 5, 10, 20, 50, 100};  // 1/s at the rim, ascending, at least two
   real spacing = 0.3e-3;       // m (the dental paste's)
   int radius_spacings = 14;    // the disc's radius R
   int gap_layers = 6;          // the paste's layers; the gap H between the plates' first layers is one more
+  // The oscillation (docs/model.md, "Handling tests"): the plate turned back and forth at `frequency`
+  // to the rim's strain amplitude, for `cycles` periods (the first let go by: the stress builds up).
+  real frequency = 10;         // rad/s
+  real strain_amplitude = 1;   // at the rim
+  int cycles = 3;
 };
 // Throws std::invalid_argument for options rheometer_test cannot run: fewer than two shear rates,
 // rates not positive and ascending, an impossible rig (rheometer_test checks them so first).

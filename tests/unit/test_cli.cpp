@@ -450,7 +450,7 @@ TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "result.json"));
   EXPECT_EQ(j.at("test"), "rheometer");
   EXPECT_EQ(j.at("material"), "flowable");
-  bool eta = false, index = false;
+  bool eta = false, index = false, phase = false;
   for (const nlohmann::json& f : j.at("figures")) {
     ASSERT_TRUE(f.contains("name") && f.contains("value") && f.contains("unit") && f.contains("range") &&
                 f.contains("source"))
@@ -468,10 +468,19 @@ TEST(Cli, TheHandlingTestsWriteTheirResultAndPlot) {
       index = true;
       EXPECT_TRUE(f.at("range").is_null()) << "no published range: none claimed";
     }
+    if (f.at("name") == "phase angle at 10 rad/s") {  // the departure, shown against its range
+      phase = true;
+      EXPECT_EQ(f.at("unit"), "deg");
+      EXPECT_EQ(f.at("range"), nlohmann::json::array({30.9, 78.1}));
+      EXPECT_EQ(f.at("in_range"), false);
+      EXPECT_NE(f.at("source").get<std::string>().find("no elasticity"), std::string::npos);
+    }
   }
-  EXPECT_TRUE(eta && index) << j.dump(2);
-  ASSERT_EQ(j.at("curves").size(), 1u);
+  EXPECT_TRUE(eta && index && phase) << j.dump(2);
+  ASSERT_EQ(j.at("curves").size(), 2u);
   EXPECT_EQ(j.at("curves")[0].at("file"), "flow_curve.svg");
+  EXPECT_EQ(j.at("curves")[1].at("file"), "oscillation.svg");
+  EXPECT_TRUE(fs::is_regular_file(out / "oscillation.svg"));
   std::ifstream svg(out / "flow_curve.svg");
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("<svg"), std::string::npos);
