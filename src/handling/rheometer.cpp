@@ -86,7 +86,8 @@ real steady_torque(const Geometry& g, const Material& paste, real rate, const Rh
 // fitted by least squares with T0 + A sin(omega t) + B cos(omega t): in phase with the strain the
 // storage modulus G' = 2 H A / (pi R^4 theta0), with its rate the loss modulus G'' = 2 H B / (pi R^4
 // theta0) (a linear paste's; a paste that yields or thins gives the first harmonic's, as a
-// rheometer reports it). Divided by the rig's constant, as the steady torques are.
+// rheometer reports it); the caller divides them by the rig's constant in oscillation. Also the
+// last cycle's strain and stress (less its mean), each over its amplitude, for the plot.
 struct Moduli {
   real storage = 0, loss = 0;
   std::vector<real> time, strain, stress;  // the last cycle: s, of the strain's amplitude, of the stress's
