@@ -58,21 +58,33 @@ State plates_with(Model& model, const Geometry& g, const Material& paste) {
   return st;
 }
 
+// The rig with the paste between its plates at rest, stepped at dt.
+struct Rig {
+  Model model;
+  State state;
+};
+Rig rig_with(const Geometry& g, const Material& paste, real dt) {
+  const real reach = g.nr + 6;
+  Rig rig{make_model(handling::rig_params(g.s, Vec3{-reach, -reach, -6} * g.s, Vec3{reach, reach, g.nz + 6.0} * g.s,
+                                          dt, {})),
+          {}};
+  rig.state = plates_with(rig.model, g, paste);
+  return rig;
+}
+
 // The torque (N m) the paste puts against the plate turning at rim shear rate `rate`, averaged over
 // time from a tenth of a radian to a quarter turn beyond (the same angles at every rate, so that the
 // plate's lattice passes the paste's alike).
 real steady_torque(const Geometry& g, const Material& paste, real rate, const RheometerOptions& o) {
   const real omega = rate * g.H / g.R, rim = omega * g.R;
   const real dt = std::min<real>(IisphParams{}.cfl * 2 * g.s / rim, 0.05);
-  const real reach = g.nr + 6;
-  ModelParams p = handling::rig_params(g.s, Vec3{-reach, -reach, -6} * g.s, Vec3{reach, reach, g.nz + 6.0} * g.s, dt, {});
-  Model model = make_model(p);
-  State st = plates_with(model, g, paste);
+  Rig rig = rig_with(g, paste, dt);
+  State& st = rig.state;
   const real from = 0.1, to = from + 0.5 * pi;
   real sum = 0, time = 0;
   while (omega * st.time < to - 1e-9) {
     st.tool_pose = Pose{{}, Quat::from_axis_angle({0, 0, 1}, omega * (st.time + dt))};
-    handling::rig_step(model, st, o.run, "rheometer");
+    handling::rig_step(rig.model, st, o.run, "rheometer");
     if (omega * st.time > from) {
       sum += -st.tool_wrench.torque.z * dt;  // the paste's torque on the plate opposes its turning
       time += dt;
@@ -82,7 +94,7 @@ real steady_torque(const Geometry& g, const Material& paste, real rate, const Rh
 }
 
 // The paste's moduli in oscillation: the plate turned to theta0 sin(omega t), theta0 = gamma0 H / R (the
-// rim's strain amplitude gamma0), for `cycles` periods; the torque over the last cycles but the first
+// rim's strain amplitude gamma0, o.strain_amplitude; omega o.frequency), for o.cycles periods; the torque over the last cycles but the first
 // fitted by least squares with T0 + A sin(omega t) + B cos(omega t): in phase with the strain the
 // storage modulus G' = 2 H A / (pi R^4 theta0), with its rate the loss modulus G'' = 2 H B / (pi R^4
 // theta0) (a linear paste's; a paste that yields or thins gives the first harmonic's, as a
@@ -92,15 +104,14 @@ struct Moduli {
   real storage = 0, loss = 0;
   std::vector<real> time, strain, stress;  // the last cycle: s, of the strain's amplitude, of the stress's
 };
-Moduli oscillation(const Geometry& g, const Material& paste, real omega, real gamma0, int cycles,
-                   const RheometerOptions& o) {
-  const real theta0 = gamma0 * g.H / g.R, period = 2 * pi / omega;
+Moduli oscillation(const Geometry& g, const Material& paste, const RheometerOptions& o) {
+  const real omega = o.frequency;
+  const int cycles = o.cycles;
+  const real theta0 = o.strain_amplitude * g.H / g.R, period = 2 * pi / omega;
   const real rim = omega * theta0 * g.R;
   const real dt = std::min<real>(IisphParams{}.cfl * 2 * g.s / rim, period / 200);
-  const real reach = g.nr + 6;
-  ModelParams p = handling::rig_params(g.s, Vec3{-reach, -reach, -6} * g.s, Vec3{reach, reach, g.nz + 6.0} * g.s, dt, {});
-  Model model = make_model(p);
-  State st = plates_with(model, g, paste);
+  Rig rig = rig_with(g, paste, dt);
+  State& st = rig.state;
   // Sums of the least-squares normal equations over (1, sin, cos).
   real S[3][3] = {}, b[3] = {};
   const int steps = int(std::ceil(cycles * period / dt - 1e-9));
@@ -108,7 +119,7 @@ Moduli oscillation(const Geometry& g, const Material& paste, real omega, real ga
   for (int k = 1; k <= steps; ++k) {
     const real t = k * dt;
     st.tool_pose = Pose{{}, Quat::from_axis_angle({0, 0, 1}, theta0 * std::sin(omega * t))};
-    handling::rig_step(model, st, o.run, "rheometer");
+    handling::rig_step(rig.model, st, o.run, "rheometer");
     if (t <= period) continue;  // the first cycle: the stress building up
     const real torque = -st.tool_wrench.torque.z;
     if (t > (cycles - 1) * period) {
@@ -194,9 +205,9 @@ HandlingResult rheometer_test(const PastePreset& preset, const RheometerOptions&
 
   // In oscillation the rig's constant is measured again, with the same standard oscillated (its
   // complex viscosity is its viscosity).
-  const Moduli standard_osc = oscillation(g, standard, o.frequency, o.strain_amplitude, o.cycles, o);
+  const Moduli standard_osc = oscillation(g, standard, o);
   const real cal_osc = std::hypot(standard_osc.storage, standard_osc.loss) / o.frequency / standard.mu;
-  const Moduli osc = oscillation(g, preset.paste, o.frequency, o.strain_amplitude, o.cycles, o);
+  const Moduli osc = oscillation(g, preset.paste, o);
   const real eta_star = std::hypot(osc.storage, osc.loss) / cal_osc / o.frequency;
   const real phase = std::atan2(osc.loss, osc.storage) * 180 / pi;
   say(fmt::format("rheometer: {} at {:g} rad/s, strain {:g}: G' {:.4g} Pa, G'' {:.4g} Pa: |eta*| {:.4g} Pa s, phase "

@@ -60,6 +60,13 @@ constexpr PresetRow kPresets[] = {
      "none: an amalgam's consistency is not published as a viscosity (assumed, for its ordering)"},
 };
 
+// The row of the preset `name`; std::invalid_argument naming the choices where there is none.
+const PresetRow& preset_row(const std::string& name) {
+  for (const PresetRow& r : kPresets)
+    if (name == r.name) return r;
+  throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
+}
+
 }  // namespace
 
 const std::vector<std::string>& paste_preset_names() {
@@ -81,30 +88,27 @@ PastePreset paste_preset(const std::string& name, real temperature_c) {
     throw std::invalid_argument(fmt::format("a paste temperature of {} C is outside 10 to 70 C; give 23 (a room), 37 "
                                             "(the mouth) or 54 (a composite warmer)",
                                             temperature_c));
-  for (const PresetRow& r : kPresets) {
-    if (name != r.name) continue;
-    PastePreset p;
-    p.name = name;
-    p.temperature_c = temperature_c;
-    p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0, r.Kp);
-    // The published ranges are at 23 C; warmer, the whole flow curve is lower by the same factor
-    // (its consistency, yield stress and plateau).
-    const real warm = paste_temperature_factor(temperature_c);
-    p.paste.mu *= warm;
-    p.paste.yield_stress *= warm;
-    if (r.plateau > 0) p.paste.max_viscosity *= warm;
-    p.cure = r.cure;
-    p.published_low = r.low;
-    p.published_high = r.high;
-    p.source = r.source;
-    if (r.ratio_high > 0) {
-      p.published_ratio = std::array<real, 2>{r.ratio_low, r.ratio_high};
-      p.ratio_source = r.ratio_source;
-    }
-    p.viscosity_at_10 = rheology::effective_viscosity(p.paste, 10);
-    return p;
+  const PresetRow& r = preset_row(name);
+  PastePreset p;
+  p.name = name;
+  p.temperature_c = temperature_c;
+  p.paste = composite(r.eta10, r.n, r.yield_stress, r.plateau, r.rho0, r.Kp);
+  // The published ranges are at 23 C; warmer, the whole flow curve is lower by the same factor
+  // (its consistency, yield stress and plateau).
+  const real warm = paste_temperature_factor(temperature_c);
+  p.paste.mu *= warm;
+  p.paste.yield_stress *= warm;
+  if (r.plateau > 0) p.paste.max_viscosity *= warm;
+  p.cure = r.cure;
+  p.published_low = r.low;
+  p.published_high = r.high;
+  p.source = r.source;
+  if (r.ratio_high > 0) {
+    p.published_ratio = std::array<real, 2>{r.ratio_low, r.ratio_high};
+    p.ratio_source = r.ratio_source;
   }
-  throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", name, fmt::join(paste_preset_names(), ", ")));
+  p.viscosity_at_10 = rheology::effective_viscosity(p.paste, 10);
+  return p;
 }
 
 const std::vector<std::string>& instrument_surface_names() {
@@ -143,11 +147,7 @@ void fill_scene_with(Scene& scene, const PastePreset& preset) {
 }
 
 std::string scene_paste_cure(const Scene& scene) {
-  if (scene.paste_preset.empty()) return "composite";
-  for (const PresetRow& r : kPresets)
-    if (scene.paste_preset == r.name) return r.cure;
-  throw std::invalid_argument(fmt::format("unknown material \"{}\"; choose {}", scene.paste_preset,
-                                          fmt::join(paste_preset_names(), ", ")));
+  return scene.paste_preset.empty() ? "composite" : preset_row(scene.paste_preset).cure;
 }
 
 }  // namespace dentsph
