@@ -209,24 +209,26 @@ TEST(DeepColumn, ConjugateGradientsNeedFewerIterationsThanJacobiWhileItSettles) 
 // corrects the difference within its step, so the smaller the step the faster the heating. With one
 // kernel the prediction is the density's own rate (at the targets 1e-4 and 1e-3: 0.002 uJ, 1.2 mm/s
 // rms). The start: 0.5 s from the lattice at the velocity limit with the velocities damped by 0.9 a
-// step (a relaxed packing: the liquid's rest, not its dynamics), then free at that step to 1.25 s,
-// and from there at that step and at a quarter of it to 1.5 s. Measured over the last 0.25 s: dp/dd
-// 1.0139 rho g at both steps, 0.66 mm/s rms at both, the fastest particle at 7.2 and 7.1 mm/s.
-// Departure: the "every particle under 1 mm/s" is not reached: a few particles of the free
-// surface's layer keep sliding sideways at up to 5 to 7 mm/s (1.5 to 4.5 mm/s after 3 s with
-// targets ten times tighter); the model has no surface tension to hold them.
+// step (a relaxed packing: the liquid's rest, not its dynamics), then free at that step to 3.5 s, and
+// from there at that step and at a quarter of it to 3.75 s, the solve's targets 1e-6 (mean) and 1e-5
+// (largest). Measured over the last 0.25 s: dp/dd 1.0157 rho g at both steps, 0.043 and 0.041 mm/s
+// rms, the fastest particle at 0.44 and 0.45 mm/s. Released from the damped packing the lattice
+// rearranges (the free surface's layer slides sideways at up to 5 to 9 mm/s at 0.6 to 1.2 s) and the
+// water's viscosity takes about 2.5 s to calm it. The targets are the surface's: a largest density
+// error of 1e-4 is about 5 Pa of pressure, half of what holds up a surface particle (rho g s, 9.8 Pa),
+// and with 1e-5 and 1e-4 the fastest particle stays at 1.0 to 1.5 mm/s out to 4.5 s.
 TEST(DeepColumn, AtWatersViscosityOneKernelForTheDensityKeepsItAtRest) {
   const real dt = velocity_limited_step();
   Column c = column(dt, PressureSolve::cg, 200, /*cubic=*/true);
-  c.model.iisph.density_error = 1e-5;
-  c.model.iisph.max_density_error = 1e-4;
+  c.model.iisph.density_error = 1e-6;
+  c.model.iisph.max_density_error = 1e-5;
   while (c.state.time < 0.5) {
     step(c.model, c.state, StepOptions{1, nullptr});
     for (Vec3& v : c.state.vel) v *= 0.9;
   }
-  settle(c, dt, 1.25);
+  settle(c, dt, 3.5);
   Column q = c;
-  const Settled large = settle(c, dt, 1.5), quarter = settle(q, dt / 4, 1.5);
+  const Settled large = settle(c, dt, 3.75), quarter = settle(q, dt / 4, 3.75);
   for (const Column* col : {&c, &q}) {
     real ke = 0, m = 0;
     for (std::uint32_t i = 0; i < col->state.size(); ++i)
@@ -242,7 +244,7 @@ TEST(DeepColumn, AtWatersViscosityOneKernelForTheDensityKeepsItAtRest) {
     EXPECT_EQ(r->on_budget, 0) << "every step's solve reached its tolerance";
     EXPECT_NEAR(r->window.slope / (rho0 * g), 1.0, 0.02) << "dp/dd against rho g";
     EXPECT_LT(std::abs(r->window.intercept), 0.03 * rho0 * g * nz * s) << "Pa: through zero at the surface";
-    EXPECT_LT(r->window.max_speed, 1e-2) << "m/s: no particle moving on";
+    EXPECT_LT(r->window.max_speed, 1e-3) << "m/s: every particle at rest";
   }
   EXPECT_NEAR(large.window.slope, quarter.window.slope, 0.01 * rho0 * g) << "the same pressure at both steps";
 }
