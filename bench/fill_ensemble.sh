@@ -7,7 +7,8 @@
 # run and, per cavity and solver, the mean and range of the fill, the mean void volume, and the
 # particles leaked into the tooth and lost, summed.
 # Usage: bench/fill_ensemble.sh [BUILD_DIR] [SOLVER...]   (default: build/test paper iisph; iisph+cg:
-#        the iisph solver with its pressure by conjugate gradients, --pressure-solve cg)
+#        the iisph solver with its pressure by conjugate gradients, --pressure-solve cg; a paste
+#        preset's name, flowable, universal, packable or amalgam: --material NAME, its own solver)
 #        CAVITIES="crown 36II" RUNS=3 bench/fill_ensemble.sh ...   (fewer cavities or offsets)
 #        OFFSETS=2 bench/fill_ensemble.sh ...   (the second family of nine offsets, 0.01 to 0.04 mm)
 # Runs two at a time on one thread each; ../shared/data holds the scans. Measured on two idle
@@ -50,12 +51,17 @@ run_one() {  # SOLVER CAVITY K
     46II) args=(--mesh "$data/molar_FDI46_lower_right_first.stl" --cavity class2) ;;
   esac
   local out="$tmp/$1-$2-$3" solver="${1%%+*}"
+  case "$1" in
+    flowable | universal | packable | amalgam) args+=(--material "$1") ;;
+    *) args+=(--solver "$solver") ;;
+  esac
   [ "$1" != "$solver" ] && args+=(--pressure-solve "${1#*+}")
-  "$cli" run "${args[@]}" --procedure "$tmp/p$3.json" --solver "$solver" --threads 1 --quiet --out "$out" > /dev/null 2>&1
+  "$cli" run "${args[@]}" --procedure "$tmp/p$3.json" --threads 1 --quiet --out "$out" > /dev/null 2>&1
   python3 -c "
 import json
 a = json.load(open('$out/summary.json'))['assessment']
-print('$1 $2 $3', a['fill_fraction'], a['void_count'], a['void_volume_mm3'], a['leaked_particles'], a['lost_particles'])"
+print('$1 $2 $3', a['fill_fraction'], a['void_count'], a['void_volume_mm3'], a['leaked_particles'], a['lost_particles'],
+      a['overfill_mm3'])"
   rm -rf "$out"
 }
 export -f run_one
@@ -67,13 +73,14 @@ python3 - "$tmp/runs.txt" <<'PY'
 import collections, statistics, sys
 rows = collections.defaultdict(list)
 for line in open(sys.argv[1]):
-    s, c, k, fill, voids, vol, leaked, lost = line.split()
-    rows[(c, s)].append((float(fill), float(vol), int(leaked), int(lost)))
-print("cavity solver runs | fill mean (min-max) | void mm^3 mean (min-max) | leaked lost")
+    s, c, k, fill, voids, vol, leaked, lost, over = line.split()
+    rows[(c, s)].append((float(fill), float(vol), int(leaked), int(lost), int(voids), float(over)))
+print("cavity solver runs | fill mean (min-max) | void mm^3 mean (min-max) | voids mean | overfill mm^3 mean | leaked lost")
 for c in ["crown", "36I", "36II", "46I", "46II"]:
     for s in sorted({k[1] for k in rows if k[0] == c}):
         r = rows[(c, s)]
         f, v = [x[0] for x in r], [x[1] for x in r]
         print(f"{c} {s} {len(r)} | {statistics.mean(f):.4f} ({min(f):.3f}-{max(f):.3f}) | "
-              f"{statistics.mean(v):.3f} ({min(v):.3f}-{max(v):.3f}) | {sum(x[2] for x in r)} {sum(x[3] for x in r)}")
+              f"{statistics.mean(v):.3f} ({min(v):.3f}-{max(v):.3f}) | {statistics.mean(x[4] for x in r):.1f} | "
+              f"{statistics.mean(x[5] for x in r):.2f} | {sum(x[2] for x in r)} {sum(x[3] for x in r)}")
 PY
