@@ -159,9 +159,7 @@ TEST(DentalSceneFile, AMaterialPresetFillsIt) {
   EXPECT_EQ(sc.paste_temperature_c, 37);
   EXPECT_EQ(sc.force_scale, 1);
   const Material paste = sc.model.materials[*sc.model.materials.paste];
-  Material expected = paste_preset("universal", 37).paste;
-  expected.interface_strength = 0;  // the dental scenes keep the contact of no strength (docs/model.md, "Tack")
-  EXPECT_EQ(paste, expected);
+  EXPECT_EQ(paste, paste_preset("universal", 37).paste) << "the preset's paste, its contact's strength included";
   EXPECT_TRUE(sc.model.iisph.wall_rest_density) << "the preset's settings";
   EXPECT_EQ(sc.model.iisph.max_iterations, 80) << "the file's own over the preset's";
   EXPECT_EQ(parse(R"({"name": "f", "tooth": {}, "material": "flowable"})").paste_preset, "flowable");

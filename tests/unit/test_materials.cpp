@@ -350,9 +350,7 @@ TEST(PastePresets, AnchoredToTheirPublishedViscosityAndOrdered) {
     last_yield = p.paste.yield_stress;
     EXPECT_EQ(p.paste.interface_strength, kPasteSteelStrength) << name << ": its contact with steel";
     const DentalSceneParams dp = dental_params_for(p);
-    Material dental = p.paste;
-    dental.interface_strength = 0;  // the dental scenes keep the contact of no strength (docs/model.md, "Tack")
-    EXPECT_EQ(dp.paste, dental);
+    EXPECT_EQ(dp.paste, p.paste) << name << ": the dental scenes' paste, its contact's strength included";
     EXPECT_GE(dp.wall.Kp, dp.paste.Kp) << "walls at least as stiff as the paste";
     EXPECT_EQ(dp.solver, Solver::iisph);
     EXPECT_EQ(dp.iisph.viscous_pressure, kPresetViscousPressure) << "the paste keeps its volume";
