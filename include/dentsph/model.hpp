@@ -121,6 +121,13 @@ struct IisphParams {
   // (relative) in the last one.
   int rheology_iterations = 3;
   real rheology_tolerance = 0.02;
+  // Inexact Picard iterations: above 0, each Picard iteration's viscosity solve stops at the relative
+  // residual rheology_forcing times the change of the viscosities that called for it, kept between
+  // viscosity_tolerance and kPicardLoosest (10) times it; the first solve of a step at the loosest
+  // (its viscosities' error is not known yet). 0: every solve to viscosity_tolerance. Where the
+  // viscosities are still far from their law a tight solve is wasted, but the paste then keeps its
+  // volume less well; no preset sets it (docs/model.md, "Rheology").
+  real rheology_forcing = 0;
   // A wall particle's density target is the larger of its rest density and its walls' own density
   // (where walls overlap, as paste that set against the tooth's lining): without it a stiff paste
   // (Kp 1e4) is pushed off overlapping walls with megapascals and the run diverges; with it the

@@ -47,7 +47,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   if (!i) return p;
   i->only({"stiffness", "max_iterations", "density_error", "max_density_error", "pressure_solve", "omega",
            "viscosity_iterations", "viscosity_tolerance", "cfl", "gradient", "density_kernel", "rheology_iterations",
-           "rheology_tolerance", "wall_rest_density", "viscous_pressure", "surface_tension", "wetting"});
+           "rheology_tolerance", "rheology_forcing", "wall_rest_density", "viscous_pressure", "surface_tension", "wetting"});
   if (const std::optional<std::string> ps =
           i->optional_string("pressure_solve", "how the pressure is solved: \"jacobi\" or \"cg\"")) {
     const std::optional<PressureSolve> solve = pressure_solve_from_name(*ps);
@@ -106,6 +106,9 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
   p.rheology_tolerance = i->number_or("rheology_tolerance", p.rheology_tolerance,
                                       "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
                                       Range::non_negative);
+  p.rheology_forcing = i->number_or("rheology_forcing", p.rheology_forcing,
+                                    "a Picard solve's residual over the viscosities' change, in [0, 1]: 0.1 the presets', 0 none",
+                                    Range::non_negative);
   p.wall_rest_density = i->boolean_or("wall_rest_density", p.wall_rest_density,
                                    "true: a wall's density target is the larger of rho0 and its walls' own (for stiff pastes)");
   try {

@@ -115,6 +115,9 @@ using Deadline = std::chrono::steady_clock::time_point;
 // left with mean density errors of up to 65 (6,500%), and the built-in procedure under `run
 // --realtime --solve-deadline 1e-6` diverged in one run of six (docs/model.md, "The pressure solve").
 inline constexpr real kDeadlineErrorFactor = 10;
+// The loosest relative residual an inexact Picard iteration's viscosity solve stops at, over
+// iisph.viscosity_tolerance (IisphParams::rheology_forcing).
+inline constexpr real kPicardLoosest = 10;
 void solve_pressure_jacobi(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline);
 void solve_pressure_cg(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline);
 inline void solve_pressure(const Model& model, State& state, IisphScratch& x, int threads, Deadline deadline) {

@@ -184,23 +184,33 @@ class ViscositySolve {
   std::int64_t n_;
 };
 
-// Where the contact's strength is exceeded, its coupling weakened and the solve run again, up to
-// kInterfacePasses times (interface.cpp); the residual and iterations those solves leave. Returns
-// the particles weakened (finish.cpp reads their factors where there are any).
+// Where the contact's strength is exceeded, its coupling weakened and the solve run again to
+// `tolerance`, up to kInterfacePasses times (interface.cpp); the residual and iterations those solves
+// leave. Returns the particles weakened (finish.cpp reads their factors where there are any).
 template <class Solve>
-std::uint32_t slip(const Model& model, State& s, IisphScratch& x, int threads, Solve& solve, real& residual,
-                   int& iterations, Deadline deadline) {
+std::uint32_t slip(const Model& model, State& s, IisphScratch& x, int threads, Solve& solve, real tolerance,
+                   real& residual, int& iterations, Deadline deadline) {
   std::uint32_t weakened = 0;
   for (int pass = 0; pass < kInterfacePasses; ++pass) {
     const InterfacePass p = cap_tool_pull(model, s, x, threads, pass == 0);
     if (p.weakened == 0) break;
     weakened += p.first_time;
-    const auto [r, it] = solve.run(model.iisph.viscosity_iterations, model.iisph.viscosity_tolerance, deadline);
+    const auto [r, it] = solve.run(model.iisph.viscosity_iterations, tolerance, deadline);
     residual = r;
     iterations += it;
     if (past(deadline)) break;
   }
   return weakened;
+}
+
+// A Picard iteration's solve's relative residual (IisphParams::rheology_forcing): the viscosity's
+// tolerance, or with forcing the change of the viscosities that called for the solve times it, kept
+// between that tolerance and kPicardLoosest times it; the first solve of a step at the loosest.
+real picard_tolerance(const IisphParams& ip, int solves, real change) {
+  if (!(ip.rheology_forcing > 0)) return ip.viscosity_tolerance;
+  const real loosest = kPicardLoosest * ip.viscosity_tolerance;
+  if (solves == 0) return loosest;
+  return std::clamp(ip.rheology_forcing * change, ip.viscosity_tolerance, loosest);
 }
 
 }  // namespace
@@ -213,7 +223,9 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
   if (!x.rheology) {
     ViscositySolve<false> solve(model, s, x, threads);
     auto [residual, iterations] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
-    if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, residual, iterations, deadline);
+    if (interface)
+      s.diagnostics.interface_capped =
+          slip(model, s, x, threads, solve, ip.viscosity_tolerance, residual, iterations, deadline);
     s.diagnostics.viscosity_iterations = iterations;
     s.diagnostics.viscosity_residual = residual;
     s.diagnostics.rheology_iterations = 0;
@@ -225,7 +237,7 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
   // solving again once they changed by at most rheology_tolerance (that solve had them, within it).
   ViscositySolve<true> solve(model, s, x, threads);
   int solves = 0, iterations = 0;
-  real residual = 0, change = 0;
+  real residual = 0, change = 0, tolerance = ip.viscosity_tolerance;
   const int most = std::max(1, ip.rheology_iterations);
   for (;;) {
     change = update_viscosity(model, s, x, threads, solves == 0 ? s.vel.data() : x.v_a.data(), solves == 0);
@@ -235,12 +247,14 @@ void implicit_viscosity(const Model& model, State& s, IisphScratch& x, int threa
       s.diagnostics.on_deadline = true;
       break;
     }
-    const auto [r, it] = solve.run(ip.viscosity_iterations, ip.viscosity_tolerance, deadline);
+    tolerance = picard_tolerance(ip, solves, change);
+    const auto [r, it] = solve.run(ip.viscosity_iterations, tolerance, deadline);
     residual = r;
     iterations += it;
     ++solves;
   }
-  if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, residual, iterations, deadline);
+  // The slip's solves to the last Picard solve's tolerance: they correct it, no more exactly than it was.
+  if (interface) s.diagnostics.interface_capped = slip(model, s, x, threads, solve, tolerance, residual, iterations, deadline);
   s.diagnostics.viscosity_iterations = iterations;
   s.diagnostics.viscosity_residual = residual;
   s.diagnostics.rheology_iterations = solves;

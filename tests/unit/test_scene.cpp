@@ -669,6 +669,8 @@ const BrokenCase broken_cases[] = {
      "materials.paste", "set simulation.solver to \"iisph\""},
     {"iisph rheology iterations 0", [](json& j) { j["simulation"]["iisph"] = {{"rheology_iterations", 0}}; },
      "simulation.iisph.rheology_iterations", "[1, 100]"},
+    {"iisph rheology forcing 2", [](json& j) { j["simulation"]["iisph"] = {{"rheology_forcing", 2}}; },
+     "simulation.iisph.rheology_forcing", "[0, 1]"},
     {"an interface strength on the paper's step", [](json& j) { j["materials"]["paste"]["interface_strength"] = 5e4; },
      "materials.paste", "drop interface_strength"},
     {"an interface strength over 1e7 Pa",
