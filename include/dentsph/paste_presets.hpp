@@ -69,8 +69,9 @@ std::optional<PastePreset> procedure_paste_preset(const std::filesystem::path& f
 // The dental scene's parameters for a preset: its paste, walls and instruments as stiff as it (the
 // solve's walls give way otherwise), and the viscosity solved to a tolerance (a fixed count of
 // iterations leaves a stiff paste's viscosity far from solved). The iisph solver alone: the preset
-// is non-Newtonian, with the viscous pressure (kPresetViscousPressure). The paste's contact with the instruments keeps no strength there
-// (Material::interface_strength 0; docs/model.md, "Tack").
+// is non-Newtonian, with the viscous pressure (kPresetViscousPressure). The paste's contact with the
+// instruments keeps its strength (Material::interface_strength, the tack test's; docs/model.md, "Tack"):
+// paste pulled past an instrument slips off it.
 DentalSceneParams dental_params_for(const PastePreset& preset, DentalSceneParams base = {});
 // Names `preset` as what fills `scene` (Scene::paste_preset and its temperature) and renders its
 // force in newtons (Scene::force_scale 1).
