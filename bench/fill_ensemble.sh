@@ -4,8 +4,9 @@
 # the built-in crown and the four scanned cavities (FDI 36 and 46, Class I and II). A fill is
 # chaotic in small path changes (a gap a set increment keeps in a corner comes and goes), so one
 # run per cavity says little; the ensemble's means and spreads compare solvers. Prints one line per
-# run and, per cavity and solver, the mean and range of the fill, the mean void volume, and the
-# particles leaked into the tooth and lost, summed.
+# run and, per cavity and solver, the mean and range of the fill and of the void volume, the mean
+# count of voids and overfill above the margin, and the particles leaked into the tooth and lost,
+# summed.
 # Usage: bench/fill_ensemble.sh [BUILD_DIR] [SOLVER...]   (default: build/test paper iisph; iisph+cg:
 #        the iisph solver with its pressure by conjugate gradients, --pressure-solve cg; a paste
 #        preset's name, flowable, universal, packable or amalgam: --material NAME, its own solver)

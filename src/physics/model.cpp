@@ -97,7 +97,7 @@ void check_iisph_params(const IisphParams& ip) {
   if (!(ip.rheology_tolerance >= 0 && ip.rheology_tolerance < 1))
     fail("iisph.rheology_tolerance", fmt::format("must be in [0, 1), got {}; 0.02 is usual", ip.rheology_tolerance));
   if (!(ip.rheology_forcing >= 0 && ip.rheology_forcing <= 1))
-    fail("iisph.rheology_forcing", fmt::format("must be in [0, 1], got {}; 0.1 is the presets', 0 none", ip.rheology_forcing));
+    fail("iisph.rheology_forcing", fmt::format("must be in [0, 1], got {}; 0 (every solve to the tolerance) is the default, 0.1 usual", ip.rheology_forcing));
   if (!(ip.surface_tension >= 0 && ip.surface_tension <= 1))
     fail("iisph.surface_tension",
          fmt::format("must be in [0, 1] N/m, got {}; 0 for none, water's is 0.072, a resin's about 0.04 (docs/model.md)",

@@ -107,7 +107,7 @@ IisphParams read_iisph(const Reader& simulation, IisphParams p) {
                                       "the relative change of a viscosity that ends a step's Picard iterations, e.g. 0.02",
                                       Range::non_negative);
   p.rheology_forcing = i->number_or("rheology_forcing", p.rheology_forcing,
-                                    "a Picard solve's residual over the viscosities' change, in [0, 1]: 0.1 the presets', 0 none",
+                                    "a Picard solve's residual over the viscosities' change, in [0, 1]: 0 none (the default), 0.1 usual",
                                     Range::non_negative);
   p.wall_rest_density = i->boolean_or("wall_rest_density", p.wall_rest_density,
                                    "true: a wall's density target is the larger of rho0 and its walls' own (for stiff pastes)");

@@ -241,7 +241,7 @@ TEST(Filling, IisphFillsAndCuresTheBuiltInCrown) { fills_and_cures_the_crown(Sol
 // instrument (paste pulled past it slips off instead of being carried along; docs/model.md, "Tack")
 // and the pressure budget at 200: fill 0.954 with 4 voids of 1.245 mm^3, compression 0.158% (a
 // step's at most 1.9%), the largest density error 0.706% (1.15% at a budget of 100), peak 1.82 N;
-// 0.955 to 0.967 over the nine paths.
+// 0.954 to 0.966 over the nine paths (bench/results/fill-ensemble-presets.txt).
 TEST(Filling, TheUniversalPresetFillsAndCuresTheBuiltInCrown) {
   Scene sc = default_dental_procedure(dental_params_for(paste_preset("universal")));
   sc.output.snapshot_interval = 0;

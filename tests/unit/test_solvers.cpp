@@ -411,15 +411,21 @@ TEST(Solvers, ASolveStopsAtTheStepsDeadline) {
   }
 }
 
+// The settling box with a shear-thinning paste (flow index 0.5) at a 1 ms step.
+Box thinning_box() {
+  Material thinning{0.5, 60, 1000, 0};
+  thinning.flow_index = 0.5;
+  Box b = settling_box(Solver::iisph, thinning);
+  b.model.dt = 1e-3;
+  return b;
+}
+
 // A shear-thinning paste's Picard iterations are cut at the deadline by the same floor as the
 // solves: only once the viscosities changed by at most kDeadlineErrorFactor times
 // iisph.rheology_tolerance; before that they go on to iisph.rheology_iterations. (Before the floor
 // they stopped after the first solve however far the viscosities were from their law.)
 TEST(Solvers, APicardIterationIsCutAtTheDeadlineOnlyWithinTenTimesItsTolerance) {
-  Material thinning{0.5, 60, 1000, 0};
-  thinning.flow_index = 0.5;
-  Box b = settling_box(Solver::iisph, thinning);
-  b.model.dt = 1e-3;
+  Box b = thinning_box();
   b.model.iisph.rheology_tolerance = 1e-9;  // never reached: a cut could only be the deadline's
   b.model.iisph.rheology_iterations = 3;
   b.model.iisph.viscosity_tolerance = 1e-6;
@@ -440,10 +446,7 @@ TEST(Solvers, APicardIterationIsCutAtTheDeadlineOnlyWithinTenTimesItsTolerance) 
 // conjugate-gradient iterations than with every solve to the tolerance, leaves a residual within
 // 10 times the tolerance (kPicardLoosest), and velocities close to the exact solves'.
 TEST(Solvers, InexactPicardSolvesTakeFewerIterationsWithinTenTimesTheTolerance) {
-  Material thinning{0.5, 60, 1000, 0};
-  thinning.flow_index = 0.5;
-  Box b = settling_box(Solver::iisph, thinning);
-  b.model.dt = 1e-3;
+  Box b = thinning_box();
   b.model.iisph.viscosity_tolerance = 1e-6;
   const std::unique_ptr<StepSolver> warm = make_solver(Solver::iisph);
   for (int k = 0; k < 10; ++k) warm->step(b.model, b.state, {});
